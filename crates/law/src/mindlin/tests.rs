@@ -1,0 +1,320 @@
+//! Tests of the Cattaneo-Mindlin algorithm against the closed forms of Mindlin (1949) and
+//! Mindlin & Deresiewicz (1953) (as written in Johnson 1985, *Contact Mechanics*, §7.2).
+
+use super::*;
+use crate::material::{Material, Surface};
+
+const P: f64 = 100.0;
+
+fn pair() -> PairMaterial {
+    let m = Material::steel();
+    PairMaterial::new(&m, &m, Surface::Sphere(0.01), Surface::Plane).unwrap()
+}
+
+/// Mindlin's slip displacement `delta_s = 3 mu P / (16 G* a)` [m].
+fn delta_s(pair: &PairMaterial, p: f64) -> f64 {
+    3.0 * pair.mu * p / (16.0 * pair.g_star * hertz::contact_radius(pair, p))
+}
+
+/// Mindlin (1949) virgin loading: `Q = mu P [1 - (1 - delta/delta_s)^(3/2)]`, `mu P` beyond.
+fn q_load(mu_p: f64, ds: f64, d: f64) -> f64 {
+    let t = (1.0 - d / ds).max(0.0);
+    mu_p * (1.0 - t * t.sqrt())
+}
+
+/// Mindlin & Deresiewicz (1953) unloading from the turning point (d0, q0):
+/// `Q = q0 - 2 Q_load((d0 - d)/2)`; reloading from (d0, q0) with `s = +1`: `q0 + 2 Q_load((d - d0)/2)`.
+fn q_branch(mu_p: f64, ds: f64, d0: f64, q0: f64, d: f64) -> f64 {
+    let s = (d - d0).signum();
+    q0 + s * 2.0 * q_load(mu_p, ds, (d - d0).abs() / 2.0)
+}
+
+/// Drives the state collinearly along `dir` through `targets` in `steps` equal steps per leg and
+/// checks every step against the closed-form curve.
+fn check_path(steps: usize, dir: Vec2) -> f64 {
+    let pair = pair();
+    let mu_p = pair.mu * P;
+    let ds = delta_s(&pair, P);
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    let (d1, d2, d3) = (0.8 * ds, -0.6 * ds, 0.95 * ds);
+    let q1 = q_load(mu_p, ds, d1);
+    let q2 = q_branch(mu_p, ds, d1, q1, d2);
+    let mut worst: f64 = 0.0;
+    let mut d = 0.0;
+    for (from, to) in [(0.0, d1), (d1, d2), (d2, d3)] {
+        for i in 1..=steps {
+            let next = from + (to - from) * i as f64 / steps as f64;
+            let q = st.update(&pair, P, dir * (next - d)).q;
+            d = next;
+            let expect = if to == d1 {
+                q_load(mu_p, ds, d)
+            } else if to == d2 {
+                q_branch(mu_p, ds, d1, q1, d)
+            } else if d <= d1 {
+                q_branch(mu_p, ds, d2, q2, d)
+            } else {
+                // Past the old turning point the memory is erased: back on the virgin curve.
+                q_load(mu_p, ds, d)
+            };
+            let along = q.dot(dir);
+            let across = (q - dir * along).length();
+            worst = worst.max((along - expect).abs() / mu_p).max(across / mu_p);
+        }
+    }
+    worst
+}
+
+#[test]
+fn reproduces_mindlin_deresiewicz_with_1000_steps() {
+    let err = check_path(1000, Vec2::new(1.0, 0.0));
+    assert!(err < 1e-6, "max error {err:e} of mu P");
+    let err = check_path(1000, Vec2::new(0.6, -0.8));
+    assert!(err < 1e-6, "max error {err:e} of mu P");
+}
+
+#[test]
+fn reproduces_mindlin_deresiewicz_with_10_steps() {
+    let err = check_path(10, Vec2::new(1.0, 0.0));
+    assert!(err < 1e-6, "max error {err:e} of mu P");
+    let err = check_path(10, Vec2::new(-0.28, 0.96));
+    assert!(err < 1e-6, "max error {err:e} of mu P");
+}
+
+#[test]
+fn full_sliding_at_the_coulomb_limit() {
+    let pair = pair();
+    let ds = delta_s(&pair, P);
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    let q = st.update(&pair, P, Vec2::new(3.0 * ds, 0.0)).q;
+    assert!((q.length() / (pair.mu * P) - 1.0).abs() < 1e-12, "{q:?}");
+    // Reversing by 2 delta_s exactly reaches -mu P (Masing: twice the loading curve).
+    let q = st.update(&pair, P, Vec2::new(-2.0 * ds, 0.0)).q;
+    assert!((q.x / (pair.mu * P) + 1.0).abs() < 1e-12, "{q:?}");
+}
+
+#[test]
+fn no_slip_limit_is_linear_with_8_g_star_a() {
+    for mu in [f64::INFINITY, 1e9] {
+        let pair = pair().with_friction(mu).unwrap();
+        let a = hertz::contact_radius(&pair, P);
+        let mut st = MindlinState::new();
+        st.update(&pair, P, Vec2::ZERO);
+        let mut u = Vec2::ZERO;
+        let mut u_max: f64 = 0.0;
+        for i in 0..200 {
+            let du = Vec2::new((i as f64 * 0.37).sin(), (i as f64 * 0.11).cos()) * 1e-6;
+            u += du;
+            u_max = u_max.max(u.length());
+            let step = st.update(&pair, P, du);
+            let expect = u * (8.0 * pair.g_star * a);
+            // mu = 1e9: the springs at the very edge (where the limit -> 0) still slip a little.
+            let tol = if mu.is_infinite() { 1e-12 } else { 1e-6 };
+            // Error relative to the largest force seen (the path crosses zero).
+            let err = (step.q - expect).length() / (8.0 * pair.g_star * a * u_max);
+            assert!(err <= tol, "mu={mu} step {i}: relative error {err:e}");
+            assert!(step.q.is_finite());
+            if mu.is_infinite() {
+                assert_eq!(step.slip_dissipation, 0.0);
+            }
+        }
+        let e = st.elastic_energy(&pair);
+        let expect = 0.5 * 8.0 * pair.g_star * a * u.length_squared();
+        let scale = 0.5 * 8.0 * pair.g_star * a * u_max * u_max;
+        assert!((e - expect).abs() < 1e-6 * scale, "mu={mu}: {e:e} vs {expect:e}");
+    }
+}
+
+#[test]
+fn proportional_loading_below_mu_is_slip_free() {
+    // Mindlin & Deresiewicz (1953): increasing P and Q together with dQ/dP = lambda < mu gives no
+    // slip; the incremental stiffness is 8 G* a(P), so with a = A P^(1/3),
+    // delta_t(P) = integral lambda dP / (8 G* A P^(1/3)) = 3 lambda P^(2/3) / (16 G* A).
+    let pair = pair();
+    let lambda = 0.2;
+    let big_a = hertz::contact_radius(&pair, 1.0);
+    let delta_t = |p: f64| 3.0 * lambda * p.powf(2.0 / 3.0) / (16.0 * pair.g_star * big_a);
+    for (steps, tol) in [(10, 1e-12), (1000, 1e-12)] {
+        let mut st = MindlinState::new();
+        let mut prev = 0.0;
+        let mut worst: f64 = 0.0;
+        let mut dissipated = 0.0;
+        for i in 1..=steps {
+            let p = P * i as f64 / steps as f64;
+            let d = delta_t(p);
+            let step = st.update(&pair, p, Vec2::new(d - prev, 0.0));
+            prev = d;
+            dissipated += step.slip_dissipation;
+            if i > steps / 10 {
+                worst = worst.max((step.q.x / (lambda * p) - 1.0).abs());
+            }
+        }
+        assert!(worst < tol, "steps={steps}: worst relative error {worst:e}");
+        assert_eq!(dissipated, 0.0);
+        assert_eq!(st.memory_depth(), 1);
+    }
+}
+
+#[test]
+fn decreasing_normal_force_keeps_q_within_coulomb() {
+    let pair = pair();
+    let ds = delta_s(&pair, P);
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    st.update(&pair, P, Vec2::new(0.5 * ds, 0.2 * ds));
+    for i in 1..=100 {
+        let p = P * (1.0 - i as f64 / 100.0);
+        let q = st.update(&pair, p, Vec2::ZERO).q;
+        assert!(q.length() <= pair.mu * p * (1.0 + 1e-12) + 1e-300, "p={p} q={q:?}");
+    }
+    assert_eq!(st.force(), Vec2::ZERO);
+    assert_eq!(st.memory_depth(), 0);
+}
+
+/// Energy of a closed Mindlin-Deresiewicz loop between +d_amp and -d_amp, by Simpson's rule on
+/// the closed-form branches: integral (Q_upper - Q_lower) d delta.
+fn closed_form_loop_energy(mu_p: f64, ds: f64, d_amp: f64) -> f64 {
+    let q_amp = q_load(mu_p, ds, d_amp);
+    let n = 20_000;
+    let h = 2.0 * d_amp / n as f64;
+    // The reloading branch (from -d_amp, travelled with d increasing) lies above the unloading one.
+    let f = |d: f64| q_branch(mu_p, ds, -d_amp, -q_amp, d) - q_branch(mu_p, ds, d_amp, q_amp, d);
+    let mut s = f(-d_amp) + f(d_amp);
+    for i in 1..n {
+        let d = -d_amp + i as f64 * h;
+        s += if i % 2 == 1 { 4.0 } else { 2.0 } * f(d);
+    }
+    s * h / 3.0
+}
+
+#[test]
+fn hysteresis_loop_dissipation_matches_closed_form() {
+    let pair = pair();
+    let mu_p = pair.mu * P;
+    let ds = delta_s(&pair, P);
+    for amp in [0.1, 0.5, 0.9] {
+        let d_amp = amp * ds;
+        let expect = closed_form_loop_energy(mu_p, ds, d_amp);
+        for steps in [10, 500] {
+            let mut st = MindlinState::new();
+            st.update(&pair, P, Vec2::ZERO);
+            for _ in 0..steps {
+                st.update(&pair, P, Vec2::new(d_amp / steps as f64, 0.0));
+            }
+            // One full cycle +d_amp -> -d_amp -> +d_amp.
+            let mut dissipated = 0.0;
+            for leg in [-1.0, 1.0] {
+                for _ in 0..steps {
+                    dissipated += st.update(&pair, P, Vec2::new(leg * 2.0 * d_amp / steps as f64, 0.0)).slip_dissipation;
+                }
+            }
+            assert!(
+                (dissipated / expect - 1.0).abs() < 1e-6,
+                "amp={amp} steps={steps}: {dissipated:e} vs {expect:e}"
+            );
+        }
+    }
+}
+
+#[test]
+fn energy_balance_on_virgin_loading() {
+    // Work in = stored + dissipated; the work is integral Q d delta of the closed form.
+    let pair = pair();
+    let mu_p = pair.mu * P;
+    let ds = delta_s(&pair, P);
+    let d_end = 0.7 * ds;
+    let n = 20_000;
+    let h = d_end / n as f64;
+    let mut work = q_load(mu_p, ds, 0.0) + q_load(mu_p, ds, d_end);
+    for i in 1..n {
+        work += if i % 2 == 1 { 4.0 } else { 2.0 } * q_load(mu_p, ds, i as f64 * h);
+    }
+    work *= h / 3.0;
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    let mut dissipated = 0.0;
+    for _ in 0..7 {
+        dissipated += st.update(&pair, P, Vec2::new(0.0, d_end / 7.0)).slip_dissipation;
+    }
+    let total = st.elastic_energy(&pair) + dissipated;
+    assert!((total / work - 1.0).abs() < 1e-8, "{total:e} vs {work:e}");
+}
+
+#[test]
+fn memory_stays_bounded_on_nested_cycles() {
+    let pair = pair();
+    let ds = delta_s(&pair, P);
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    // Decreasing nested cycles create ever more turning points.
+    let mut d = 0.0;
+    for k in 0..40 {
+        let target = if k % 2 == 0 { 0.9 } else { -0.9 } * ds * 0.8f64.powi(k);
+        let q = st.update(&pair, P, Vec2::new(target - d, 0.0)).q;
+        d = target;
+        assert!(q.length() <= pair.mu * P * (1.0 + 1e-12));
+        assert!(st.memory_depth() <= MAX_PIECES);
+    }
+    assert!(st.memory_depth() >= 4, "depth {}", st.memory_depth());
+}
+
+#[test]
+fn circular_path_stays_within_coulomb_and_saturates() {
+    let pair = pair();
+    let ds = delta_s(&pair, P);
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    let r = 2.0 * ds;
+    let mut prev = Vec2::ZERO;
+    let mut total_d = 0.0;
+    for i in 1..=2000 {
+        let th = i as f64 * 0.01;
+        let pos = Vec2::new(r * (th.cos() - 1.0), r * th.sin());
+        let step = st.update(&pair, P, pos - prev);
+        prev = pos;
+        total_d += step.slip_dissipation;
+        assert!(step.q.length() <= pair.mu * P * (1.0 + 1e-12));
+        assert!(step.slip_dissipation >= 0.0);
+    }
+    // Long circular sliding: the force is at the Coulomb limit and follows the path tangent
+    // (within the lag a finite contact has: the force trails the slip direction).
+    assert!(st.force().length() > 0.99 * pair.mu * P, "{:?}", st.force());
+    assert!(total_d > 0.0);
+}
+
+#[test]
+fn transform_rotates_force_and_state() {
+    let pair = pair();
+    let ds = delta_s(&pair, P);
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    st.update(&pair, P, Vec2::new(0.5 * ds, 0.0));
+    let mut rotated = st;
+    rotated.transform([[0.0, -1.0], [1.0, 0.0]]);
+    assert!((rotated.force() - Vec2::new(0.0, st.force().x)).length() < 1e-12);
+    // Continuing along the rotated axis behaves like continuing along the old one.
+    let a = st.update(&pair, P, Vec2::new(0.1 * ds, 0.0)).q;
+    let b = rotated.update(&pair, P, Vec2::new(0.0, 0.1 * ds)).q;
+    assert!((a.x - b.y).abs() < 1e-12 * a.x.abs());
+}
+
+#[test]
+fn opening_contact_and_bad_inputs() {
+    let pair = pair();
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::new(1e-7, 0.0));
+    let step = st.update(&pair, 0.0, Vec2::new(1e-7, 0.0));
+    assert_eq!(step.q, Vec2::ZERO);
+    assert!(step.slip_dissipation > 0.0);
+    for p in [f64::NAN, -1.0, f64::INFINITY] {
+        let step = st.update(&pair, p, Vec2::new(1e-7, 0.0));
+        assert!(step.q.is_finite() && step.slip_dissipation.is_finite());
+    }
+    st.update(&pair, P, Vec2::ZERO);
+    let step = st.update(&pair, P, Vec2::new(f64::NAN, 1.0));
+    assert_eq!(step.q, Vec2::ZERO);
+    let step = st.update(&pair, P, Vec2::new(1e300, -1e300));
+    assert!(step.q.is_finite());
+    assert!(step.q.length() <= pair.mu * P * (1.0 + 1e-12));
+}
