@@ -55,20 +55,30 @@ struct Piece {
     c: Vec2,
 }
 
-/// `integral_{x1}^{x2} s dx` with `s = a^2 - x^2` [m^3].
+/// Depth `s(x) = a^2 - x^2 = (a - x)(a + x)` [m^2], in the factored form that keeps its relative
+/// accuracy near the edge `x -> a`.
 #[inline]
-fn int_s(a2: f64, x1: f64, x2: f64) -> f64 {
-    a2 * (x2 - x1) - (x2 * x2 * x2 - x1 * x1 * x1) / 3.0
+fn depth(a: f64, x: f64) -> f64 {
+    (a - x) * (a + x)
 }
 
-/// `integral_{x1}^{x2} s^2 dx` [m^5].
+/// `integral_{x1}^{x2} s dx` [m^3] by Simpson's rule (exact for the quadratic `s`), evaluated
+/// with [`depth`] so that thin annuli at the edge lose no digits.
 #[inline]
-fn int_s2(a2: f64, x1: f64, x2: f64) -> f64 {
-    let f = |x: f64| {
-        let xx = x * x;
-        x * (a2 * a2 - 2.0 * a2 * xx / 3.0 + xx * xx / 5.0)
-    };
-    f(x2) - f(x1)
+fn int_s(a: f64, x1: f64, x2: f64) -> f64 {
+    let h = x2 - x1;
+    h / 6.0 * (depth(a, x1) + 4.0 * depth(a, 0.5 * (x1 + x2)) + depth(a, x2))
+}
+
+/// `integral_{x1}^{x2} s^2 dx` [m^5] by 3-point Gauss-Legendre quadrature (exact for the quartic
+/// `s^2`; Abramowitz & Stegun 1964, eq. 25.4.29), free of cancellation like [`int_s`].
+#[inline]
+fn int_s2(a: f64, x1: f64, x2: f64) -> f64 {
+    const R: f64 = 0.774_596_669_241_483_4; // sqrt(3/5)
+    let h = 0.5 * (x2 - x1);
+    let m = 0.5 * (x1 + x2);
+    let (s0, sm, sp) = (depth(a, m), depth(a, m - R * h), depth(a, m + R * h));
+    h * (8.0 * s0 * s0 + 5.0 * (sm * sm + sp * sp)) / 9.0
 }
 
 /// What one Cattaneo-Mindlin update did.
@@ -139,11 +149,10 @@ impl MindlinState {
     /// Elastic energy stored in the tangential springs [J]:
     /// `W = 4 G* integral_0^a |u(x)|^2 dx` (two halves, `(1/2) 4 G* |u|^2` per unit length).
     pub fn elastic_energy(&self, pair: &PairMaterial) -> f64 {
-        let a2 = self.a * self.a;
         let mut x_lo = 0.0;
         let mut w = 0.0;
         for p in &self.pieces[..self.n] {
-            w += piece_u2(p, a2, x_lo, p.x_hi);
+            w += piece_u2(p, self.a, x_lo, p.x_hi);
             x_lo = p.x_hi;
         }
         4.0 * pair.g_star * w
@@ -183,7 +192,7 @@ impl MindlinState {
                 let p = self.pieces[i];
                 if p.x_hi > a {
                     let from = if x_lo > a { x_lo } else { a };
-                    dissipated += 4.0 * pair.g_star * piece_u2(&p, a2_old, from, p.x_hi);
+                    dissipated += 4.0 * pair.g_star * piece_u2(&p, a_old, from, p.x_hi);
                 }
                 if x_lo < a {
                     keep = i + 1;
@@ -230,7 +239,7 @@ impl MindlinState {
                 m += 1;
             }
             if cut < x_hi {
-                let (e, work) = slip_piece(&p, kappa, a2, cut, x_hi);
+                let (e, work) = slip_piece(&p, kappa, a, cut, x_hi);
                 dissipated += 8.0 * pair.g_star * work;
                 out[m] = Piece { x_hi, beta: e * kappa, c: Vec2::ZERO };
                 m += 1;
@@ -246,11 +255,10 @@ impl MindlinState {
 
     /// `Q = 8 G* sum_pieces integral u(x) dx`.
     fn integrate_force(&self, pair: &PairMaterial) -> Vec2 {
-        let a2 = self.a * self.a;
         let mut x_lo = 0.0;
         let mut sum = Vec2::ZERO;
         for p in &self.pieces[..self.n] {
-            sum += p.c * (p.x_hi - x_lo) + p.beta * int_s(a2, x_lo, p.x_hi);
+            sum += p.c * (p.x_hi - x_lo) + p.beta * int_s(self.a, x_lo, p.x_hi);
             x_lo = p.x_hi;
         }
         sum * (8.0 * pair.g_star)
@@ -265,13 +273,13 @@ fn kappa(pair: &PairMaterial) -> f64 {
 }
 
 /// `integral_{x1}^{x2} |u(x)|^2 dx` over a piece [m^3].
-fn piece_u2(p: &Piece, a2: f64, x1: f64, x2: f64) -> f64 {
+fn piece_u2(p: &Piece, a: f64, x1: f64, x2: f64) -> f64 {
     if x2 <= x1 {
         return 0.0;
     }
     let mut w = p.c.length_squared() * (x2 - x1);
     if p.beta != Vec2::ZERO {
-        w += p.beta.length_squared() * int_s2(a2, x1, x2) + 2.0 * p.beta.dot(p.c) * int_s(a2, x1, x2);
+        w += p.beta.length_squared() * int_s2(a, x1, x2) + 2.0 * p.beta.dot(p.c) * int_s(a, x1, x2);
     }
     w
 }
@@ -308,9 +316,9 @@ fn stick_radius(p: &Piece, kappa: f64, a2: f64) -> f64 {
 /// their common slip direction `e` (that of their summed trial displacement) and
 /// `integral kappa s (e . u_trial - kappa s) dx` [m^3]: the slip work divided by `8 G*` (force
 /// density `4 G* kappa s` times slip, two halves).
-fn slip_piece(p: &Piece, kappa: f64, a2: f64, x1: f64, x2: f64) -> (Vec2, f64) {
-    let is = int_s(a2, x1, x2);
-    let is2 = int_s2(a2, x1, x2);
+fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64) -> (Vec2, f64) {
+    let is = int_s(a, x1, x2);
+    let is2 = int_s2(a, x1, x2);
     let trial = p.beta * is + p.c * (x2 - x1);
     let l = trial.length();
     let e = if l > 0.0 && l.is_finite() { trial * (1.0 / l) } else { Vec2::new(1.0, 0.0) };
