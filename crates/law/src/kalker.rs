@@ -85,6 +85,21 @@ pub fn steady_creepage(s: f64, mu_p: f64, g: f64, a: f64, c11: f64) -> f64 {
     mu_p / denom * steady_creepage_n_c11(s, c11)
 }
 
+/// Steady creepage `F_ss` [-] for a tangential force of magnitude `q_abs` [N] (same law as
+/// [`steady_creepage`], from the force instead of the ratio). With `mu P = +inf` (no slip) this is
+/// the limit `mu -> inf` of Kalker's closed form, his linear theory: `F_ss = |Q| / (G a^2 C11)`.
+#[inline]
+pub fn steady_creepage_for_force(q_abs: f64, mu_p: f64, g: f64, a: f64, c11: f64) -> f64 {
+    if mu_p == f64::INFINITY {
+        let denom = g * a * a * c11;
+        return if denom > 0.0 && q_abs.is_finite() { q_abs / denom } else { 0.0 };
+    }
+    if !(mu_p > 0.0) {
+        return 0.0;
+    }
+    steady_creepage(q_abs / mu_p, mu_p, g, a, c11)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -140,5 +155,12 @@ mod tests {
         let expect = steady_creepage_n(0.5, nu) * mu_p / (g * a * a);
         assert!((f / expect - 1.0).abs() < 1e-14);
         assert_eq!(steady_creepage(0.5, mu_p, g, 0.0, c11(nu)), 0.0);
+        let by_force = steady_creepage_for_force(0.5 * mu_p, mu_p, g, a, c11(nu));
+        assert!((by_force / f - 1.0).abs() < 1e-14);
+        // mu -> inf: linear theory, and the finite-mu law approaches it.
+        let lin = steady_creepage_for_force(1.0, f64::INFINITY, g, a, c11(nu));
+        assert!((lin * g * a * a * c11(nu) - 1.0).abs() < 1e-14);
+        let big = steady_creepage_for_force(1.0, 1e8, g, a, c11(nu));
+        assert!((big / lin - 1.0).abs() < 1e-7);
     }
 }

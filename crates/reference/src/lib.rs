@@ -8,3 +8,6 @@ pub mod error;
 pub mod influence;
 
 pub use error::RefError;
+pub mod bem;
+pub mod contact;
+pub mod grid;

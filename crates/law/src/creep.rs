@@ -1,0 +1,218 @@
+//! Kuhn's creep-friction update for transient rolling and sliding of spheres (Kuhn 2011, the
+//! talk, eq. 1; after Dahlberg & Alfredsson 2009 for cylinders):
+//!
+//! `dQ = c_CM^-1 ( du_disp - F_ss(|Q|/(mu P)) Q/|Q| |du_roll| )`
+//!
+//! The Cattaneo-Mindlin compliance `c_CM` with its load history is [`MindlinState`]; `F_ss` is
+//! Kalker's steady creepage ([`kalker::steady_creepage`]). Each step feeds the Cattaneo-Mindlin
+//! algorithm the *effective* displacement `du_eff = du_disp - du_creep`, with the creep
+//! displacement `du_creep = F_ss Q/|Q| |du_roll|` evaluated explicitly from the force at the start
+//! of the step and the new normal force.
+//!
+//! Energy: the work `Q . du_disp` splits into the creep part `Q . du_creep = |Q| F_ss |du_roll|`
+//! (dissipated: the slip of the rolling contact's trailing slip zone) and `Q . du_eff`, which the
+//! Cattaneo-Mindlin springs store or dissipate by micro-slip.
+//!
+//! Stability guard (ours): an explicit creep step larger than the elastic displacement that would
+//! unload `|Q|` to zero would flip the force (creep can relax a force, never reverse it). The creep
+//! displacement of one step is therefore capped at that unloading displacement,
+//! `2 delta_CM(|Q|/2)` (Mindlin & Deresiewicz 1953 unloading; `delta_CM` Mindlin's loading curve),
+//! which is inactive whenever `F_ss |du_roll| <= |Q| / (8 G* a)` — all ordinary DEM steps.
+
+use crate::hertz;
+use crate::kalker;
+use crate::material::PairMaterial;
+use crate::mindlin::{MindlinState, MindlinStep};
+use crate::vector::Vec2;
+
+/// What one creep-friction update did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CreepStep {
+    /// Tangential force on p from q after the step [N].
+    pub q: Vec2,
+    /// Contact radius used [m].
+    pub a: f64,
+    /// Creep displacement of the step, `F_ss Q/|Q| |du_roll|` (after the guard) [m].
+    pub creep_displacement: Vec2,
+    /// Energy dissipated by Cattaneo-Mindlin micro-slip and gross slip [J] (>= 0).
+    pub slip_dissipation: f64,
+    /// Energy dissipated by creep, `|Q| F_ss |du_roll|` [J] (>= 0).
+    pub creep_dissipation: f64,
+}
+
+impl CreepStep {
+    /// Total energy dissipated in the step [J].
+    #[inline]
+    pub fn dissipation(&self) -> f64 {
+        self.slip_dissipation + self.creep_dissipation
+    }
+}
+
+/// State of one creep-friction contact: its Cattaneo-Mindlin load history. `Default` is a virgin,
+/// open contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CreepState {
+    mindlin: MindlinState,
+}
+
+impl CreepState {
+    /// A virgin, open contact.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Tangential force on p from q after the last update [N].
+    #[inline]
+    pub fn force(&self) -> Vec2 {
+        self.mindlin.force()
+    }
+
+    /// The underlying Cattaneo-Mindlin state (load history).
+    #[inline]
+    pub fn mindlin(&self) -> &MindlinState {
+        &self.mindlin
+    }
+
+    /// Mutable access to the Cattaneo-Mindlin state (e.g. to rotate it with the tangent basis).
+    #[inline]
+    pub fn mindlin_mut(&mut self) -> &mut MindlinState {
+        &mut self.mindlin
+    }
+
+    /// One step of Kuhn's rule: normal force `p` [N] at the end of the step (Hertz gives `a`),
+    /// relative displacement `du_disp = du_q - du_p` [m] and rolling displacement `du_roll` [m]
+    /// (Kuhn & Bagi 2004; only its length enters), both in the tangent plane. Non-finite inputs
+    /// count as zero motion / open contact.
+    pub fn update(&mut self, pair: &PairMaterial, p: f64, du_disp: Vec2, du_roll: Vec2) -> CreepStep {
+        let a = hertz::contact_radius(pair, p);
+        self.update_with_radius(pair, p, a, du_disp, du_roll)
+    }
+
+    /// [`CreepState::update`] with the contact radius `a` [m] given (e.g. from a DEM overlap).
+    pub fn update_with_radius(
+        &mut self,
+        pair: &PairMaterial,
+        p: f64,
+        a: f64,
+        du_disp: Vec2,
+        du_roll: Vec2,
+    ) -> CreepStep {
+        let roll = du_roll.length();
+        let q = self.mindlin.force();
+        let q_abs = q.length();
+        let mut creep = 0.0;
+        if roll > 0.0 && roll.is_finite() && q_abs > 0.0 && p > 0.0 && p.is_finite() && a > 0.0 {
+            let mu_p = pair.mu * p;
+            let f = kalker::steady_creepage_for_force(q_abs, mu_p, pair.g, a, pair.c11);
+            creep = f * roll;
+            let k_t = pair.tangential_stiffness(a);
+            if creep * k_t > q_abs {
+                creep = creep.min(unload_to_zero(q_abs, mu_p, k_t));
+            }
+            if !creep.is_finite() {
+                creep = 0.0;
+            }
+        }
+        let (du_eff, creep_vec) = if creep > 0.0 {
+            let c = q * (creep / q_abs);
+            (du_disp - c, c)
+        } else {
+            (du_disp, Vec2::ZERO)
+        };
+        let MindlinStep { q: q_new, a, slip_dissipation } = self.mindlin.update_with_radius(pair, a, du_eff);
+        CreepStep {
+            q: q_new,
+            a,
+            creep_displacement: creep_vec,
+            slip_dissipation,
+            creep_dissipation: q_abs * creep,
+        }
+    }
+}
+
+/// Displacement that unloads a force `q` [N] to zero along the Mindlin & Deresiewicz (1953)
+/// unloading branch from a virgin loading: `2 delta_CM(q/2)`, with Mindlin's loading curve
+/// `delta_CM(Q) = 3 mu P / (16 G* a) [1 - (1 - Q/(mu P))^(2/3)]` (`3 mu P/(16 G* a) = 3 mu P /
+/// (2 k_t)`); `q / k_t` when `mu P` is infinite.
+fn unload_to_zero(q: f64, mu_p: f64, k_t: f64) -> f64 {
+    if !mu_p.is_finite() {
+        return q / k_t;
+    }
+    let s = (0.5 * q / mu_p).min(1.0);
+    let t = (1.0 - s).cbrt();
+    2.0 * 3.0 * mu_p / (2.0 * k_t) * (1.0 - t * t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{Material, Surface};
+
+    fn pair() -> PairMaterial {
+        let m = Material::steel();
+        PairMaterial::new(&m, &m, Surface::Sphere(0.01), Surface::Plane).unwrap()
+    }
+
+    #[test]
+    fn no_rolling_is_plain_cattaneo_mindlin() {
+        let pair = pair();
+        let mut c = CreepState::new();
+        let mut m = MindlinState::new();
+        for i in 0..100 {
+            let du = Vec2::new((i as f64).sin(), (0.3 * i as f64).cos()) * 2e-7;
+            let p = 100.0 + 50.0 * (0.1 * i as f64).sin();
+            let a = c.update(&pair, p, du, Vec2::ZERO);
+            let b = m.update(&pair, p, du);
+            assert_eq!(a.q, b.q);
+            assert_eq!(a.slip_dissipation, b.slip_dissipation);
+            assert_eq!(a.creep_dissipation, 0.0);
+            assert_eq!(c.mindlin(), &m);
+        }
+    }
+
+    #[test]
+    fn unload_to_zero_matches_masing() {
+        // At q = 0.5 mu P the Masing unloading 2 delta(q/2) is exactly the closed form.
+        let (mu_p, k_t) = (30.0, 1e7);
+        let d = unload_to_zero(15.0, mu_p, k_t);
+        let ds = 3.0 * mu_p / (2.0 * k_t);
+        assert!((d - 2.0 * ds * (1.0 - 0.75f64.powf(2.0 / 3.0))).abs() < 1e-18);
+        // Small q: q / k_t.
+        assert!((unload_to_zero(1e-6, mu_p, k_t) * k_t / 1e-6 - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn steady_rolling_creepage_is_kalkers() {
+        // Roll at held displacement rate ratio xi: Q converges to Kalker's steady force.
+        let pair = pair();
+        let p = 100.0;
+        let a = hertz::contact_radius(&pair, p);
+        let mu_p = pair.mu * p;
+        for s_target in [0.2, 0.6, 0.9] {
+            let xi = kalker::steady_creepage(s_target, mu_p, pair.g, a, pair.c11);
+            let mut st = CreepState::new();
+            st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+            let dr = a / 50.0;
+            for _ in 0..5000 {
+                st.update(&pair, p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0));
+            }
+            let s = st.force().x / mu_p;
+            assert!((s - s_target).abs() < 1e-6, "target {s_target}: {s}");
+        }
+    }
+
+    #[test]
+    fn huge_rolling_step_relaxes_but_never_reverses() {
+        let pair = pair();
+        let p = 100.0;
+        let a = hertz::contact_radius(&pair, p);
+        let mut st = CreepState::new();
+        st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+        st.update(&pair, p, Vec2::new(1e-6, 0.0), Vec2::ZERO);
+        let q0 = st.force().x;
+        assert!(q0 > 0.0);
+        let step = st.update(&pair, p, Vec2::ZERO, Vec2::new(100.0 * a, 0.0));
+        assert!(step.q.x >= -1e-12 * q0 && step.q.x < q0, "{:?}", step.q);
+        assert!(step.creep_dissipation >= 0.0);
+    }
+}

@@ -1,0 +1,167 @@
+//! The boundary-element grid: square elements of side `h = 2a/N` covering the circular contact.
+
+use crate::contact::CircularContact;
+use crate::error::RefError;
+
+/// Smallest number of elements across the diameter accepted by the solvers.
+pub const MIN_GRID: usize = 4;
+/// Largest number of elements across the diameter accepted by the solvers (memory and time grow
+/// as `N^4` for the dense Gauss-Seidel sweeps).
+pub const MAX_GRID: usize = 256;
+
+/// One row (constant `y`) of contact elements; its elements are contiguous in `x`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Row {
+    /// Row index `j` (element centre `y = -a + (j + 1/2) h`).
+    pub iy: i64,
+    /// Column index of the row's first (smallest `x`) element.
+    pub ix_lo: i64,
+    /// Index of the row's first element in the element arrays.
+    pub start: usize,
+    /// Number of elements in the row.
+    pub len: usize,
+}
+
+/// Square elements of side `h = 2a/N` whose centres lie inside the contact circle. Element
+/// centres are `x_i = -a + (i + 1/2) h`, `y_j = -a + (j + 1/2) h`, `i, j in 0..N`. Elements are
+/// stored row by row (increasing `y`), each row by increasing `x`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    n: usize,
+    h: f64,
+    pub(crate) rows: Vec<Row>,
+    pub(crate) ix: Vec<i64>,
+    pub(crate) iy: Vec<i64>,
+    x: Vec<f64>,
+    y: Vec<f64>,
+}
+
+impl Grid {
+    /// Builds the grid with `n` elements across the diameter `2a` of a contact of radius `a` [m].
+    /// `n` must be in `[MIN_GRID, MAX_GRID]`.
+    pub fn new(a: f64, n: usize) -> Result<Self, RefError> {
+        if !(MIN_GRID..=MAX_GRID).contains(&n) {
+            return Err(RefError::InvalidGrid {
+                name: "grid",
+                value: n,
+                expected: "elements across the diameter, in [4, 256]",
+            });
+        }
+        crate::error::check_positive("a", a)?;
+        let h = 2.0 * a / n as f64;
+        let centre = |i: i64| -a + (i as f64 + 0.5) * h;
+        let mut g = Grid {
+            n,
+            h,
+            rows: Vec::new(),
+            ix: Vec::new(),
+            iy: Vec::new(),
+            x: Vec::new(),
+            y: Vec::new(),
+        };
+        for j in 0..n as i64 {
+            let y = centre(j);
+            let start = g.ix.len();
+            let mut lo = None;
+            for i in 0..n as i64 {
+                let x = centre(i);
+                if x * x + y * y < a * a {
+                    lo.get_or_insert(i);
+                    g.ix.push(i);
+                    g.iy.push(j);
+                    g.x.push(x);
+                    g.y.push(y);
+                }
+            }
+            if let Some(ix_lo) = lo {
+                g.rows.push(Row {
+                    iy: j,
+                    ix_lo,
+                    start,
+                    len: g.ix.len() - start,
+                });
+            }
+        }
+        Ok(g)
+    }
+
+    /// Number of elements across the diameter.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+    /// Element side `h` [m].
+    pub fn h(&self) -> f64 {
+        self.h
+    }
+    /// Element area `h^2` [m^2].
+    pub fn area(&self) -> f64 {
+        self.h * self.h
+    }
+    /// Number of elements in the contact.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+    /// Whether the grid has no element (never true for a valid grid).
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+    /// Element centres' `x` [m] (rolling direction).
+    pub fn x(&self) -> &[f64] {
+        &self.x
+    }
+    /// Element centres' `y` [m].
+    pub fn y(&self) -> &[f64] {
+        &self.y
+    }
+
+    /// Hertz pressure at the element centres [Pa], rescaled so that `sum p_I h^2 = P` exactly
+    /// (the discrete contact then carries the prescribed normal force, so full slip gives
+    /// `|Q| = mu P` to solver precision).
+    pub fn pressure(&self, contact: &CircularContact) -> Vec<f64> {
+        let mut p: Vec<f64> = (0..self.len())
+            .map(|e| contact.pressure(self.x[e], self.y[e]))
+            .collect();
+        let total: f64 = p.iter().sum::<f64>() * self.area();
+        let scale = contact.p() / total;
+        p.iter_mut().for_each(|v| *v *= scale);
+        p
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn grid_covers_the_circle() {
+        for n in [8, 16, 33, 64] {
+            let g = Grid::new(1.0, n).unwrap();
+            let area = g.len() as f64 * g.area();
+            // Lattice points in a disc: area within a few boundary cells of pi a^2.
+            assert!((area / PI - 1.0).abs() < 4.0 / n as f64, "n={n}: {area}");
+            // Rows are contiguous and symmetric in x.
+            for r in &g.rows {
+                let hi = r.ix_lo + r.len as i64 - 1;
+                assert_eq!(r.ix_lo, n as i64 - 1 - hi);
+                for k in 0..r.len {
+                    assert_eq!(g.ix[r.start + k], r.ix_lo + k as i64);
+                    assert_eq!(g.iy[r.start + k], r.iy);
+                }
+            }
+        }
+        assert!(Grid::new(1.0, 3).is_err());
+        assert!(Grid::new(1.0, 1000).is_err());
+        assert!(Grid::new(-1.0, 16).is_err());
+    }
+
+    #[test]
+    fn discrete_pressure_carries_p() {
+        let c = CircularContact::new(1e-3, 10.0, 1e9, 0.3, 0.3).unwrap();
+        let g = Grid::new(c.a(), 20).unwrap();
+        let p = g.pressure(&c);
+        let total: f64 = p.iter().sum::<f64>() * g.area();
+        assert!((total / c.p() - 1.0).abs() < 1e-12);
+        assert!(p.iter().all(|&v| v > 0.0));
+    }
+}
