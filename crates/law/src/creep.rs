@@ -38,6 +38,9 @@ pub struct CreepStep {
     pub slip_dissipation: f64,
     /// Energy dissipated by creep, `|Q| F_ss |du_roll|` [J] (>= 0).
     pub creep_dissipation: f64,
+    /// Energy added by simplifying an over-full load memory [J] (>= 0, see
+    /// [`MindlinStep::truncation_energy`]).
+    pub truncation_energy: f64,
 }
 
 impl CreepStep {
@@ -119,13 +122,15 @@ impl CreepState {
         } else {
             (du_disp, Vec2::ZERO)
         };
-        let MindlinStep { q: q_new, a, slip_dissipation } = self.mindlin.update_with_radius(pair, a, du_eff);
+        let MindlinStep { q: q_new, a, slip_dissipation, truncation_energy } =
+            self.mindlin.update_with_radius(pair, a, du_eff);
         CreepStep {
             q: q_new,
             a,
             creep_displacement: creep_vec,
             slip_dissipation,
             creep_dissipation: q_abs * creep,
+            truncation_energy,
         }
     }
 }

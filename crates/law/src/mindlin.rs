@@ -29,8 +29,10 @@
 //! rounding whatever the step size. For collinear paths the slip direction of a piece is exact;
 //! when the path turns, the springs of one slipping piece are given one common direction (that of
 //! their summed trial force) — the one approximation, which vanishes as steps get small.
-//! Pieces are merged when equal; a contact keeps at most [`MAX_PIECES`] (the narrowest inner
-//! piece is absorbed into its outer neighbour extended inwards, which keeps `|u| <= L`).
+//! Pieces are merged when equal; a contact keeps at most [`MAX_PIECES`] (see `merge`: two pieces
+//! at the slip limit become one along their summed force, or else the narrowest inner piece is
+//! absorbed into its outer neighbour extended inwards; both keep `|u| <= L`, and any energy the
+//! simplification removes is booked as dissipation).
 //!
 //! Conventions: `Q` is the tangential force on body p from body q [N]; the displacement increment
 //! `du` is `du_disp = du_q - du_p` [m] in the tangent plane, so a stuck contact has `dQ = k_t du`
@@ -42,6 +44,10 @@ use crate::vector::Vec2;
 
 /// The most pieces (annuli of distinct load history) one contact remembers.
 pub const MAX_PIECES: usize = 8;
+
+/// Largest displacement increment one update accepts [m]; longer ones are shortened to it (a
+/// guard that keeps every output finite for any finite input, e.g. with `mu = +inf`).
+pub const MAX_INCREMENT: f64 = 1e100;
 
 /// One annulus `x_lo < x <= x_hi` of the spring row, where `u(x) = s(x) beta + c` with the depth
 /// `s(x) = a^2 - x^2` [m^2] (the slip limit is `kappa s(x)`).
@@ -91,6 +97,10 @@ pub struct MindlinStep {
     /// Energy dissipated by micro-slip and gross slip in the step [J] (>= 0): slip of each spring
     /// times its force at the end of the step, plus the energy of springs that left the contact.
     pub slip_dissipation: f64,
+    /// Energy the springs gained when the memory was over [`MAX_PIECES`] and had to be
+    /// simplified by the last-resort rule [J] (>= 0; zero in all but rare, long 2-D histories).
+    /// The energy balance is `work = stored + slip_dissipation - truncation_energy`.
+    pub truncation_energy: f64,
 }
 
 /// Load-history state of one contact's Cattaneo-Mindlin tangential law. `Default` is a virgin,
@@ -170,7 +180,13 @@ impl MindlinState {
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
         let a = if a.is_finite() && a > 0.0 { a } else { 0.0 };
-        let du = if du.is_finite() { du } else { Vec2::ZERO };
+        let du = if !du.is_finite() {
+            Vec2::ZERO
+        } else if du.length() > MAX_INCREMENT {
+            du * (MAX_INCREMENT / du.length())
+        } else {
+            du
+        };
         let kappa = kappa(pair);
         let mut dissipated = 0.0;
         if a == 0.0 {
@@ -178,7 +194,7 @@ impl MindlinState {
                 dissipated = self.elastic_energy(pair);
             }
             *self = Self::default();
-            return MindlinStep { q: Vec2::ZERO, a: 0.0, slip_dissipation: dissipated };
+            return MindlinStep { q: Vec2::ZERO, a: 0.0, slip_dissipation: dissipated, truncation_energy: 0.0 };
         }
         let a_old = self.a;
         let a2_old = a_old * a_old;
@@ -247,10 +263,18 @@ impl MindlinState {
             x_lo = x_hi;
         }
         self.a = a;
-        self.n = merge(&mut out, m, a2);
+        let (n, d_u2) = merge(&mut out, m, a, kappa);
+        self.n = n;
+        let d_energy = 4.0 * pair.g_star * d_u2;
+        let truncation_energy = if d_energy > 0.0 { d_energy } else { 0.0 };
+        if d_energy < 0.0 {
+            dissipated -= d_energy;
+        }
         self.pieces[..self.n].copy_from_slice(&out[..self.n]);
         self.q = self.integrate_force(pair);
-        MindlinStep { q: self.q, a, slip_dissipation: dissipated.max(0.0) }
+        // Saturate instead of overflowing on absurd (but finite) displacements.
+        let slip_dissipation = if dissipated > 0.0 { dissipated.min(f64::MAX) } else { 0.0 };
+        MindlinStep { q: self.q, a, slip_dissipation, truncation_energy }
     }
 
     /// `Q = 8 G* sum_pieces integral u(x) dx`.
@@ -295,8 +319,9 @@ fn stick_radius(p: &Piece, kappa: f64, a2: f64) -> f64 {
     // s* = |c| / (sqrt(D') - beta.c_hat), D' = (beta.c_hat)^2 + kappa^2 - |beta|^2.
     let cl = p.c.length();
     if cl == 0.0 {
-        // |beta| <= kappa holds for every piece, so u = s beta is within the limit.
-        return f64::INFINITY;
+        // u = s beta: within the limit everywhere or nowhere (springs entering the contact can
+        // bring |beta| > kappa).
+        return if p.beta.length() <= kappa { f64::INFINITY } else { 0.0 };
     }
     let bc = p.beta.dot(p.c * (1.0 / cl));
     let d = bc * bc + (kappa * kappa - p.beta.length_squared()).max(0.0);
@@ -326,9 +351,18 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64) -> (Vec2, f64) {
     (e, if work > 0.0 { work } else { 0.0 })
 }
 
-/// Merges equal neighbours and drops empty pieces in place; enforces [`MAX_PIECES`]. Returns the
-/// number of pieces kept.
-fn merge(out: &mut [Piece], m: usize, a2: f64) -> usize {
+/// Merges equal neighbours and drops empty pieces in place, then enforces [`MAX_PIECES`].
+/// Returns the number of pieces kept and the change of `integral |u|^2 dx` [m^3] that the
+/// enforcement caused (<= 0 means energy was lost, which the caller books as dissipation).
+///
+/// Over the limit, two neighbours are made one: preferably two pieces both at the slip limit
+/// (`u = kappa s e1`, `kappa s e2`), which become one at the limit along their summed force
+/// (the stored energy is unchanged and `|u| <= kappa s` still holds); otherwise the narrowest
+/// pair whose least-squares merge stays within the limit (force kept, energy lost booked as
+/// dissipation); as a last resort the narrowest inner piece is absorbed by its outer neighbour
+/// extended inwards.
+fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
+    let a2 = a * a;
     let mut n = 0;
     let mut x_lo = 0.0;
     for i in 0..m {
@@ -344,20 +378,77 @@ fn merge(out: &mut [Piece], m: usize, a2: f64) -> usize {
         }
         x_lo = p.x_hi;
     }
+    let mut d_u2 = 0.0;
     while n > MAX_PIECES {
-        // Absorb the narrowest non-outermost piece into its outer neighbour, extended inwards:
-        // where the depth is larger the neighbour's field stays within the limit.
+        // The adjacent pair of limit pieces with the closest directions, if any.
+        let mut best_pair = None;
+        let mut best_cos = f64::NEG_INFINITY;
+        for i in 0..n - 1 {
+            let (p, q) = (&out[i], &out[i + 1]);
+            if p.c == Vec2::ZERO && q.c == Vec2::ZERO {
+                let cos = p.beta.dot(q.beta);
+                if cos > best_cos {
+                    best_cos = cos;
+                    best_pair = Some(i);
+                }
+            }
+        }
+        if let Some(i) = best_pair {
+            let lo = if i == 0 { 0.0 } else { out[i - 1].x_hi };
+            let (p, q) = (out[i], out[i + 1]);
+            let sum = p.beta * int_s(a, lo, p.x_hi) + q.beta * int_s(a, p.x_hi, q.x_hi);
+            let l = sum.length();
+            let e = if l > 0.0 && l.is_finite() { sum * (1.0 / l) } else { Vec2::new(1.0, 0.0) };
+            out[i] = Piece { x_hi: q.x_hi, beta: e * kappa, c: Vec2::ZERO };
+            out.copy_within(i + 2..n, i + 1);
+            n -= 1;
+            continue;
+        }
+        // Otherwise the least-squares merge (force-preserving, energy-non-increasing) of the
+        // narrowest neighbour pair whose merged field stays within the limit.
+        let mut order = [(0.0f64, 0usize); 2 * MAX_PIECES];
+        let mut lo = 0.0;
+        for i in 0..n - 1 {
+            order[i] = (out[i + 1].x_hi - lo, i);
+            lo = out[i].x_hi;
+        }
+        order[..n - 1].sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let mut merged = false;
+        for &(_, i) in &order[..n - 1] {
+            let lo = if i == 0 { 0.0 } else { out[i - 1].x_hi };
+            let (p, q) = (out[i], out[i + 1]);
+            let fit = least_squares_piece(&p, &q, a, lo);
+            if fit.beta.length() <= kappa && stick_radius(&fit, kappa, a2) >= fit.x_hi {
+                d_u2 += piece_u2(&fit, a, lo, fit.x_hi)
+                    - piece_u2(&p, a, lo, p.x_hi)
+                    - piece_u2(&q, a, p.x_hi, q.x_hi);
+                out[i] = fit;
+                out.copy_within(i + 2..n, i + 1);
+                n -= 1;
+                merged = true;
+                break;
+            }
+        }
+        if merged {
+            continue;
+        }
+        // Last resort: absorb the narrowest inner piece into its outer neighbour extended
+        // inwards (its field stays within the limit where the depth is larger).
         let mut best = 0;
         let mut best_w = f64::INFINITY;
         let mut lo = 0.0;
+        let mut best_lo = 0.0;
         for (i, p) in out[..n - 1].iter().enumerate() {
             let w = p.x_hi - lo;
             if w < best_w {
                 best_w = w;
                 best = i;
+                best_lo = lo;
             }
             lo = p.x_hi;
         }
+        let (gone, outer) = (out[best], out[best + 1]);
+        d_u2 += piece_u2(&outer, a, best_lo, gone.x_hi) - piece_u2(&gone, a, best_lo, gone.x_hi);
         out.copy_within(best + 1..n, best);
         n -= 1;
         if best > 0 && same_form(&out[best - 1], &out[best], a2) {
@@ -366,7 +457,26 @@ fn merge(out: &mut [Piece], m: usize, a2: f64) -> usize {
             n -= 1;
         }
     }
-    n
+    (n, d_u2)
+}
+
+/// The piece `s beta + c` on `lo < x <= q.x_hi` closest in `L2` to the two pieces `p`, `q`
+/// (normal equations in the basis `{s, 1}`): it keeps `integral u dx` (the force) and
+/// `integral s u dx`, and its `integral |u|^2 dx` is never larger (orthogonal projection).
+fn least_squares_piece(p: &Piece, q: &Piece, a: f64, lo: f64) -> Piece {
+    let (x1, x2) = (p.x_hi, q.x_hi);
+    let (l1, l2) = (x1 - lo, x2 - x1);
+    let (s1a, s1b) = (int_s(a, lo, x1), int_s(a, x1, x2));
+    let (s2a, s2b) = (int_s2(a, lo, x1), int_s2(a, x1, x2));
+    let (s0, s1, s2) = (l1 + l2, s1a + s1b, s2a + s2b);
+    let m0 = p.beta * s1a + p.c * l1 + q.beta * s1b + q.c * l2;
+    let m1 = p.beta * s2a + p.c * s1a + q.beta * s2b + q.c * s1b;
+    let det = s2 * s0 - s1 * s1;
+    if det > 1e-12 * s2 * s0 {
+        Piece { x_hi: x2, beta: (m1 * s0 - m0 * s1) * (1.0 / det), c: (m0 * s2 - m1 * s1) * (1.0 / det) }
+    } else {
+        Piece { x_hi: x2, beta: Vec2::ZERO, c: m0 * (1.0 / s0) }
+    }
 }
 
 /// Whether two pieces hold the same field to rounding (so they can be one).

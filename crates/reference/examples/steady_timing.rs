@@ -8,7 +8,11 @@ fn main() {
         .skip(1)
         .filter_map(|s| s.parse().ok())
         .collect();
-    let grids = if grids.is_empty() { vec![16, 32, 40, 64] } else { grids };
+    let grids = if grids.is_empty() {
+        vec![16, 32, 40, 64]
+    } else {
+        grids
+    };
     for nu in [0.0, 0.25, 0.5] {
         let c = CircularContact::normalised(nu).unwrap();
         for &n in &grids {

@@ -21,9 +21,9 @@ pub struct CircularContact {
 impl CircularContact {
     /// Validates and builds a contact.
     ///
-    /// * `a` — contact radius [m], finite and > 0;
-    /// * `p` — normal force [N], finite and > 0;
-    /// * `g` — combined shear modulus [Pa], finite and > 0;
+    /// * `a` — contact radius \[m\], finite and > 0;
+    /// * `p` — normal force \[N\], finite and > 0;
+    /// * `g` — combined shear modulus \[Pa\], finite and > 0;
     /// * `nu` — combined Poisson ratio, in `[0, 0.5]`;
     /// * `mu` — Coulomb friction coefficient, finite and > 0.
     pub fn new(a: f64, p: f64, g: f64, nu: f64, mu: f64) -> Result<Self, RefError> {
@@ -43,15 +43,15 @@ impl CircularContact {
         Self::new(1.0, 1.0, 1.0, nu, 1.0)
     }
 
-    /// Contact radius `a` [m].
+    /// Contact radius `a` \[m\].
     pub fn a(&self) -> f64 {
         self.a
     }
-    /// Normal force `P` [N].
+    /// Normal force `P` \[N\].
     pub fn p(&self) -> f64 {
         self.p
     }
-    /// Combined shear modulus `G` [Pa].
+    /// Combined shear modulus `G` \[Pa\].
     pub fn g(&self) -> f64 {
         self.g
     }
@@ -63,20 +63,20 @@ impl CircularContact {
     pub fn mu(&self) -> f64 {
         self.mu
     }
-    /// Coulomb limit of the tangential force, `mu P` [N].
+    /// Coulomb limit of the tangential force, `mu P` \[N\].
     pub fn mu_p(&self) -> f64 {
         self.mu * self.p
     }
-    /// Peak Hertz pressure `p0 = 3 P / (2 pi a^2)` [Pa] (Johnson 1985, eq. 4.22).
+    /// Peak Hertz pressure `p0 = 3 P / (2 pi a^2)` \[Pa\] (Johnson 1985, eq. 4.22).
     pub fn p0(&self) -> f64 {
         1.5 * self.p / (PI * self.a * self.a)
     }
-    /// Hertz pressure at `(x, y)` [m] from the centre, `p0 sqrt(1 - r^2/a^2)` [Pa], 0 outside.
+    /// Hertz pressure at `(x, y)` \[m\] from the centre, `p0 sqrt(1 - r^2/a^2)` \[Pa\], 0 outside.
     pub fn pressure(&self, x: f64, y: f64) -> f64 {
         let s = 1.0 - (x * x + y * y) / (self.a * self.a);
         if s > 0.0 { self.p0() * s.sqrt() } else { 0.0 }
     }
-    /// Creepage scale `mu P / (G a^2)` [dimensionless]: the normalised creepage is
+    /// Creepage scale `mu P / (G a^2)` \[dimensionless\]: the normalised creepage is
     /// `xi_n = xi / creepage_scale()` (the project's convention, DESIGN.md §2).
     pub fn creepage_scale(&self) -> f64 {
         self.mu * self.p / (self.g * self.a * self.a)

@@ -27,15 +27,15 @@
 //! and `∫∫ X Y/r^3 = -r` (elementary; they are the closed forms Kalker 1990, ch. 5, uses for
 //! piecewise-constant tractions), evaluated at the four corners.
 
-/// Tangential influence coefficients of one rectangle: displacement difference `u_p - u_q` [m]
-/// per unit uniform traction [Pa] on body `p` over the rectangle (so the unit is m/Pa).
+/// Tangential influence coefficients of one rectangle: displacement difference `u_p - u_q` \[m\]
+/// per unit uniform traction \[Pa\] on body `p` over the rectangle (so the unit is m/Pa).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tangential {
-    /// `u_x` per unit traction `t_x` [m/Pa].
+    /// `u_x` per unit traction `t_x` \[m/Pa\].
     pub xx: f64,
-    /// `u_x` per unit `t_y`, equal to `u_y` per unit `t_x` [m/Pa].
+    /// `u_x` per unit `t_y`, equal to `u_y` per unit `t_x` \[m/Pa\].
     pub xy: f64,
-    /// `u_y` per unit traction `t_y` [m/Pa].
+    /// `u_y` per unit traction `t_y` \[m/Pa\].
     pub yy: f64,
 }
 
@@ -63,10 +63,10 @@ fn corners(x1: f64, x2: f64, y1: f64, y2: f64, f: impl Fn(f64, f64) -> f64) -> f
 
 /// Cerruti influence coefficients (two quasi-identical bodies, combined `g` and `nu`) of a
 /// uniform tangential traction on the rectangle `[-hx/2, hx/2] x [-hy/2, hy/2]`, at the surface
-/// point `(x, y)` [m].
+/// point `(x, y)` \[m\].
 ///
-/// * `hx`, `hy` — rectangle sides [m], > 0;
-/// * `g` — combined shear modulus [Pa], > 0; `nu` — combined Poisson ratio, in `[0, 0.5]`.
+/// * `hx`, `hy` — rectangle sides \[m\], > 0;
+/// * `g` — combined shear modulus \[Pa\], > 0; `nu` — combined Poisson ratio, in `[0, 0.5]`.
 ///
 /// Source: Cerruti's point-force solution (Johnson 1985, §3.2) integrated in closed form (see the
 /// module documentation). Inputs are not validated here (internal kernel; callers validate).
@@ -87,8 +87,8 @@ pub fn rectangle_tangential(x: f64, y: f64, hx: f64, hy: f64, g: f64, nu: f64) -
 }
 
 /// Boussinesq influence coefficient (two quasi-identical bodies, combined `g`, `nu`): the normal
-/// displacement sum `u_zp + u_zq` [m] per unit uniform pressure [Pa] on the rectangle
-/// `[-hx/2, hx/2] x [-hy/2, hy/2]`, at the surface point `(x, y)` [m]. Unit m/Pa.
+/// displacement sum `u_zp + u_zq` \[m\] per unit uniform pressure \[Pa\] on the rectangle
+/// `[-hx/2, hx/2] x [-hy/2, hy/2]`, at the surface point `(x, y)` \[m\]. Unit m/Pa.
 ///
 /// Source: Boussinesq's point-force solution (Johnson 1985, §3.2) integrated in closed form
 /// (Love 1929). Inputs are not validated here.
@@ -114,7 +114,7 @@ pub(crate) struct Kernel {
 }
 
 impl Kernel {
-    /// Builds the table of [`rectangle_tangential`] for square elements of side `h` [m].
+    /// Builds the table of [`rectangle_tangential`] for square elements of side `h` \[m\].
     pub fn new(h: f64, g: f64, nu: f64, dx_min: i64, dx_max: i64, dy_max: i64, shift: f64) -> Self {
         let nx = (dx_max - dx_min + 1) as usize;
         let ny = (2 * dy_max + 1) as usize;
@@ -148,29 +148,17 @@ impl Kernel {
         (dy + self.dy_max) as usize * self.nx + (dx - self.dx_min) as usize
     }
 
-    /// The kernel `(K(d + e_x) - K(d)) / h` for `d` in `[dx_min, dx_max - 1]`: the steady-state
-    /// operator of the upwind rolling derivative (see [`crate::bem`]).
-    pub fn forward_difference(&self, h: f64) -> Kernel {
-        let nx = self.nx - 1;
-        let ny = (2 * self.dy_max + 1) as usize;
-        let mut out = Kernel {
-            dx_min: self.dx_min,
-            nx,
-            dy_max: self.dy_max,
-            xx: vec![0.0; nx * ny],
-            xy: vec![0.0; nx * ny],
-            yy: vec![0.0; nx * ny],
-        };
-        for jy in 0..ny {
-            for ix in 0..nx {
-                let k = jy * nx + ix;
-                let s = jy * self.nx + ix;
-                out.xx[k] = (self.xx[s + 1] - self.xx[s]) / h;
-                out.xy[k] = (self.xy[s + 1] - self.xy[s]) / h;
-                out.yy[k] = (self.yy[s + 1] - self.yy[s]) / h;
-            }
+    /// The kernel multiplied by `factor`.
+    pub fn scaled(mut self, factor: f64) -> Kernel {
+        for v in self
+            .xx
+            .iter_mut()
+            .chain(self.xy.iter_mut())
+            .chain(self.yy.iter_mut())
+        {
+            *v *= factor;
         }
-        out
+        self
     }
 }
 
@@ -275,9 +263,15 @@ mod tests {
             let expect = 2.0 * PI * q0 / (32.0 * g * a)
                 * (4.0 * (2.0 - nu) * a * a - (4.0 - 3.0 * nu) * x * x - (4.0 - nu) * y * y);
             // Piecewise-constant traction on a 64-grid: ~0.5 % quadrature error near the rim.
-            assert!((ux / expect - 1.0).abs() < 5e-3, "({x},{y}): {ux} vs {expect}");
+            assert!(
+                (ux / expect - 1.0).abs() < 5e-3,
+                "({x},{y}): {ux} vs {expect}"
+            );
             let expect_y = 2.0 * PI * q0 / (32.0 * g * a) * 2.0 * nu * x * y;
-            assert!((uy - expect_y).abs() < 5e-3 * expect, "uy = {uy} vs {expect_y}");
+            assert!(
+                (uy - expect_y).abs() < 5e-3 * expect,
+                "uy = {uy} vs {expect_y}"
+            );
         }
     }
 }

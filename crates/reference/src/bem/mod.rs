@@ -17,7 +17,7 @@
 //!   Creepage is the rigid slip velocity of **q relative to p** divided by the rolling speed
 //!   (`v_disp / |v_roll|` of DESIGN.md §2), so the rigid slip per unit rolling distance at
 //!   `(x, y)` is `w = (xi - phi y, eta + phi x)` with `xi` longitudinal, `eta` lateral
-//!   [dimensionless] and `phi` the spin creepage [1/m] (relative angular velocity of q with
+//!   \[dimensionless\] and `phi` the spin creepage \[1/m\] (relative angular velocity of q with
 //!   respect to p about the normal from p to q, over the rolling speed).
 //!   With these signs the linear theory reads `Fx = G a^2 C11 xi`, `Fy = G a^2 C22 eta + G a^3
 //!   C23 phi` (Kalker's `Fx = -G a b C11 xi` with his creepage of the opposite sign), and the
@@ -30,7 +30,7 @@
 //!   material point's previous position `x + dq` (computed exactly with influence coefficients at
 //!   the shifted offsets, so `dq` need not be a multiple of `h`).
 //! * Coulomb friction with the bound `mu p`, full non-linear slip direction, solved by a
-//!   non-linear Gauss-Seidel ([`gauss_seidel`]).
+//!   non-linear Gauss-Seidel (module `steady_gs` for steady rolling, module `convex_gs` for transient steps).
 //!
 //! # Cost
 //!
@@ -38,28 +38,36 @@
 //! `(2N) x (2N)` table. One Gauss-Seidel sweep costs `4 n^2` multiply-adds for `n ~ pi N^2 / 4`
 //! elements (about 6 million at `N = 40`).
 
-pub(crate) mod gauss_seidel;
+pub(crate) mod convex_gs;
+pub(crate) mod local;
+pub(crate) mod root;
 pub mod steady;
-// pub mod transient;
+pub(crate) mod steady_gs;
+pub mod transient;
 
-pub use steady::{SteadyInput, SteadyOutput, SteadySolver, steady};
-
+pub use steady::{
+    CreepCoefficients, SteadyInput, SteadyOutput, SteadySolver, creep_coefficients, steady,
+};
+pub use transient::{
+    TransientDrive, TransientInput, TransientRecord, TransientSolver, mindlin_loading,
+    transient_hold_creepage, transient_hold_force,
+};
 
 use crate::error::{RefError, check_finite};
 
 /// Rigid creepages of body q relative to body p (see the module's sign conventions).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Creepage {
-    /// Longitudinal creepage `xi` (rolling direction `x`) [dimensionless].
+    /// Longitudinal creepage `xi` (rolling direction `x`) \[dimensionless\].
     pub longitudinal: f64,
-    /// Lateral creepage `eta` [dimensionless].
+    /// Lateral creepage `eta` \[dimensionless\].
     pub lateral: f64,
-    /// Spin creepage `phi` [1/m].
+    /// Spin creepage `phi` \[1/m\].
     pub spin: f64,
 }
 
 impl Creepage {
-    /// Pure longitudinal creepage `xi` [dimensionless].
+    /// Pure longitudinal creepage `xi` \[dimensionless\].
     pub fn longitudinal(xi: f64) -> Self {
         Creepage {
             longitudinal: xi,
@@ -109,7 +117,13 @@ impl SolverOptions {
 
     /// Checks the ranges documented on the fields.
     pub fn validate(&self) -> Result<(), RefError> {
-        crate::error::check_range("tolerance", self.tolerance, f64::MIN_POSITIVE, 0.1, "in (0, 0.1]")?;
+        crate::error::check_range(
+            "tolerance",
+            self.tolerance,
+            f64::MIN_POSITIVE,
+            0.1,
+            "in (0, 0.1]",
+        )?;
         if self.max_sweeps == 0 {
             return Err(RefError::InvalidGrid {
                 name: "max_sweeps",
@@ -124,17 +138,17 @@ impl SolverOptions {
 /// The traction field of a solution, element by element (for plots of stick and slip zones).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TractionField {
-    /// Element centres' `x` [m] (rolling direction; leading edge at `+a`).
+    /// Element centres' `x` \[m\] (rolling direction; leading edge at `+a`).
     pub x: Vec<f64>,
-    /// Element centres' `y` [m].
+    /// Element centres' `y` \[m\].
     pub y: Vec<f64>,
-    /// Element side `h` [m].
+    /// Element side `h` \[m\].
     pub h: f64,
-    /// Normal pressure [Pa].
+    /// Normal pressure \[Pa\].
     pub pressure: Vec<f64>,
-    /// Tangential traction on body p, `x` component [Pa].
+    /// Tangential traction on body p, `x` component \[Pa\].
     pub tx: Vec<f64>,
-    /// Tangential traction on body p, `y` component [Pa].
+    /// Tangential traction on body p, `y` component \[Pa\].
     pub ty: Vec<f64>,
     /// Whether the element slips (`|t| = mu p`); otherwise it sticks.
     pub slip: Vec<bool>,
@@ -165,7 +179,7 @@ impl TractionField {
         }
     }
 
-    /// Total tangential force on body p `(Fx, Fy)` [N].
+    /// Total tangential force on body p `(Fx, Fy)` \[N\].
     pub fn force(&self) -> (f64, f64) {
         let a = self.h * self.h;
         (
@@ -175,7 +189,7 @@ impl TractionField {
     }
 
     /// Moment of the tangential traction about the contact centre, `Mz = sum (x ty - y tx) h^2`
-    /// [N m].
+    /// \[N m\].
     pub fn moment(&self) -> f64 {
         let a = self.h * self.h;
         (0..self.tx.len())
