@@ -1,9 +1,13 @@
-//! The `creep` command-line tool.
+//! The `creep` command-line tool: creep-friction contact laws and references, headless.
+mod law_cmd;
 mod ref_cmd;
 
 use clap::{Parser, Subcommand};
 
 /// Creep-friction: rolling resistance that is physically right.
+///
+/// With no command, prints a short tour of the contact law (steady creep curve, a
+/// Cattaneo-Mindlin cycle, Kuhn's transient build-up).
 #[derive(Debug, Parser)]
 #[command(name = "creep", version, about)]
 struct Cli {
@@ -13,6 +17,11 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// The short tour of the contact law (the default).
+    Demo,
+    /// The contact law (creep-law) as CSV.
+    #[command(subcommand)]
+    Law(law_cmd::LawCommand),
     /// Reference solutions (closed forms, FASTSIM, boundary elements) as CSV.
     #[command(subcommand, name = "ref")]
     Ref(ref_cmd::RefCommand),
@@ -23,7 +32,8 @@ fn main() -> std::process::ExitCode {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     let result = match &cli.command {
-        None => Ok(()),
+        None | Some(Command::Demo) => law_cmd::tour(&mut out),
+        Some(Command::Law(cmd)) => law_cmd::run(cmd, &mut out),
         Some(Command::Ref(cmd)) => ref_cmd::run(cmd, &mut out),
     };
     match result {

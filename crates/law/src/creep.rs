@@ -86,7 +86,13 @@ impl CreepState {
     /// relative displacement `du_disp = du_q - du_p` [m] and rolling displacement `du_roll` [m]
     /// (Kuhn & Bagi 2004; only its length enters), both in the tangent plane. Non-finite inputs
     /// count as zero motion / open contact.
-    pub fn update(&mut self, pair: &PairMaterial, p: f64, du_disp: Vec2, du_roll: Vec2) -> CreepStep {
+    pub fn update(
+        &mut self,
+        pair: &PairMaterial,
+        p: f64,
+        du_disp: Vec2,
+        du_roll: Vec2,
+    ) -> CreepStep {
         let a = hertz::contact_radius(pair, p);
         self.update_with_radius(pair, p, a, du_disp, du_roll)
     }
@@ -122,8 +128,12 @@ impl CreepState {
         } else {
             (du_disp, Vec2::ZERO)
         };
-        let MindlinStep { q: q_new, a, slip_dissipation, truncation_energy } =
-            self.mindlin.update_with_radius(pair, a, du_eff);
+        let MindlinStep {
+            q: q_new,
+            a,
+            slip_dissipation,
+            truncation_energy,
+        } = self.mindlin.update_with_radius(pair, a, du_eff);
         CreepStep {
             q: q_new,
             a,

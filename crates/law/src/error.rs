@@ -46,7 +46,11 @@ pub enum LawError {
 }
 
 /// Checks `value` is finite and strictly positive.
-pub(crate) fn positive(name: &'static str, value: f64, unit: &'static str) -> Result<f64, LawError> {
+pub(crate) fn positive(
+    name: &'static str,
+    value: f64,
+    unit: &'static str,
+) -> Result<f64, LawError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
@@ -55,7 +59,11 @@ pub(crate) fn positive(name: &'static str, value: f64, unit: &'static str) -> Re
 }
 
 /// Checks `value >= 0` and not NaN (`+inf` passes).
-pub(crate) fn non_negative(name: &'static str, value: f64, unit: &'static str) -> Result<f64, LawError> {
+pub(crate) fn non_negative(
+    name: &'static str,
+    value: f64,
+    unit: &'static str,
+) -> Result<f64, LawError> {
     if value >= 0.0 {
         Ok(value)
     } else {

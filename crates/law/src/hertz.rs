@@ -11,14 +11,22 @@ use crate::material::{Material, PairMaterial};
 /// eq. 4.22). Zero for `p <= 0`.
 #[inline]
 pub fn contact_radius(pair: &PairMaterial, p: f64) -> f64 {
-    if p > 0.0 { (0.75 * p * pair.r_star / pair.e_star).cbrt() } else { 0.0 }
+    if p > 0.0 {
+        (0.75 * p * pair.r_star / pair.e_star).cbrt()
+    } else {
+        0.0
+    }
 }
 
 /// Normal force `P = (4/3) E* sqrt(R*) delta^(3/2)` [N] for overlap `delta` [m] (Johnson 1985,
 /// eq. 4.23). Zero for `delta <= 0`.
 #[inline]
 pub fn normal_force(pair: &PairMaterial, delta: f64) -> f64 {
-    if delta > 0.0 { 4.0 / 3.0 * pair.e_star * (pair.r_star * delta).sqrt() * delta } else { 0.0 }
+    if delta > 0.0 {
+        4.0 / 3.0 * pair.e_star * (pair.r_star * delta).sqrt() * delta
+    } else {
+        0.0
+    }
 }
 
 /// Overlap (approach of distant points) `delta = a^2 / R* = (3 P / (4 E* sqrt(R*)))^(2/3)` [m] for
@@ -32,7 +40,11 @@ pub fn overlap(pair: &PairMaterial, p: f64) -> f64 {
 /// Contact radius from the overlap: `a = sqrt(R* delta)` [m] (Johnson 1985, eq. 4.23).
 #[inline]
 pub fn contact_radius_from_overlap(pair: &PairMaterial, delta: f64) -> f64 {
-    if delta > 0.0 { (pair.r_star * delta).sqrt() } else { 0.0 }
+    if delta > 0.0 {
+        (pair.r_star * delta).sqrt()
+    } else {
+        0.0
+    }
 }
 
 /// Normal stiffness `k_n = dP/d delta = 2 E* sqrt(R* delta) = 2 E* a` [N/m] at overlap `delta` [m].
@@ -45,7 +57,11 @@ pub fn normal_stiffness(pair: &PairMaterial, delta: f64) -> f64 {
 /// (the integral of [`normal_force`] over the overlap).
 #[inline]
 pub fn normal_energy(pair: &PairMaterial, delta: f64) -> f64 {
-    if delta > 0.0 { 0.4 * normal_force(pair, delta) * delta } else { 0.0 }
+    if delta > 0.0 {
+        0.4 * normal_force(pair, delta) * delta
+    } else {
+        0.0
+    }
 }
 
 /// Rayleigh time step of a sphere of radius `radius` [m] made of `material`:
@@ -109,7 +125,8 @@ mod tests {
     fn rayleigh_time_step_of_glass_bead() {
         // 1 mm glass: pi * 1e-3 * sqrt(2500 / 29e9) / (0.1631 * 0.23 + 0.8766).
         let t = rayleigh_time_step(&Material::glass(), 1e-3);
-        let expect = std::f64::consts::PI * 1e-3 * (2500.0f64 / 29e9).sqrt() / (0.1631 * 0.23 + 0.8766);
+        let expect =
+            std::f64::consts::PI * 1e-3 * (2500.0f64 / 29e9).sqrt() / (0.1631 * 0.23 + 0.8766);
         assert!((t / expect - 1.0).abs() < 1e-14);
         assert!(t > 1.0e-6 && t < 1.02e-6, "t = {t}");
         assert_eq!(rayleigh_time_step(&Material::glass(), -1.0), 0.0);

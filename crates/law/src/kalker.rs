@@ -92,7 +92,11 @@ pub fn steady_creepage(s: f64, mu_p: f64, g: f64, a: f64, c11: f64) -> f64 {
 pub fn steady_creepage_for_force(q_abs: f64, mu_p: f64, g: f64, a: f64, c11: f64) -> f64 {
     if mu_p == f64::INFINITY {
         let denom = g * a * a * c11;
-        return if denom > 0.0 && q_abs.is_finite() { q_abs / denom } else { 0.0 };
+        return if denom > 0.0 && q_abs.is_finite() {
+            q_abs / denom
+        } else {
+            0.0
+        };
     }
     if !(mu_p > 0.0) {
         return 0.0;

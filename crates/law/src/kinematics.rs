@@ -92,7 +92,12 @@ pub fn contact_rates(p: &BodyMotion, q: &BodyMotion, point: Vec3, normal: Vec3) 
         (Surface::Plane, Surface::Plane) => (up + uq) * 0.5,
     };
     let v_roll = ((up + uq) * 0.5 - c_dot).reject(n);
-    ContactRates { v_disp, v_roll, w_roll, w_twist }
+    ContactRates {
+        v_disp,
+        v_roll,
+        w_roll,
+        w_twist,
+    }
 }
 
 #[cfg(test)]
@@ -100,7 +105,12 @@ mod tests {
     use super::*;
 
     fn sphere(x: Vec3, v: Vec3, w: Vec3, r: f64) -> BodyMotion {
-        BodyMotion { position: x, velocity: v, angular_velocity: w, surface: Surface::Sphere(r) }
+        BodyMotion {
+            position: x,
+            velocity: v,
+            angular_velocity: w,
+            surface: Surface::Sphere(r),
+        }
     }
 
     #[test]
@@ -113,7 +123,12 @@ mod tests {
             angular_velocity: Vec3::ZERO,
             surface: Surface::Plane,
         };
-        let ball = sphere(Vec3::new(0.3, 0.0, r), Vec3::new(v, 0.0, 0.0), Vec3::new(0.0, v / r, 0.0), r);
+        let ball = sphere(
+            Vec3::new(0.3, 0.0, r),
+            Vec3::new(v, 0.0, 0.0),
+            Vec3::new(0.0, v / r, 0.0),
+            r,
+        );
         let k = contact_rates(&plane, &ball, Vec3::new(0.3, 0.0, 0.0), Vec3::Z);
         assert!(k.v_disp.length() < 1e-15);
         assert!((k.v_roll.length() - v).abs() < 1e-12);
@@ -128,7 +143,12 @@ mod tests {
         // Equal spheres, centres on the x axis, sliding past each other along y without rotation.
         let r = 0.01;
         let p = sphere(Vec3::ZERO, Vec3::new(0.0, -0.5, 0.0), Vec3::ZERO, r);
-        let q = sphere(Vec3::new(2.0 * r, 0.0, 0.0), Vec3::new(0.0, 0.5, 0.0), Vec3::ZERO, r);
+        let q = sphere(
+            Vec3::new(2.0 * r, 0.0, 0.0),
+            Vec3::new(0.0, 0.5, 0.0),
+            Vec3::ZERO,
+            r,
+        );
         let k = contact_rates(&p, &q, Vec3::new(r, 0.0, 0.0), Vec3::X);
         assert!(k.v_roll.length() < 1e-15, "{:?}", k.v_roll);
         assert!((k.v_disp - Vec3::new(0.0, 1.0, 0.0)).length() < 1e-15);
@@ -138,7 +158,12 @@ mod tests {
     fn gears_on_fixed_centres() {
         let (r, w) = (0.02, 3.0);
         let p = sphere(Vec3::ZERO, Vec3::ZERO, Vec3::new(0.0, 0.0, w), r);
-        let q = sphere(Vec3::new(2.0 * r, 0.0, 0.0), Vec3::ZERO, Vec3::new(0.0, 0.0, -w), r);
+        let q = sphere(
+            Vec3::new(2.0 * r, 0.0, 0.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, -w),
+            r,
+        );
         let k = contact_rates(&p, &q, Vec3::new(r, 0.0, 0.0), Vec3::X);
         assert!(k.v_disp.length() < 1e-15);
         assert!((k.v_roll.length() - w * r).abs() < 1e-15);
@@ -160,17 +185,41 @@ mod tests {
         let xp = Vec3::new(0.1, 0.2, 0.3);
         let xq = xp + n * (rp + rq - 1e-4);
         let c = xp + n * (rp - 0.5e-4);
-        let k = contact_rates(&rigid(xp, Surface::Sphere(rp)), &rigid(xq, Surface::Sphere(rq)), c, n);
-        assert!(k.v_disp.length() < 1e-14 && k.v_roll.length() < 1e-14, "{k:?}");
+        let k = contact_rates(
+            &rigid(xp, Surface::Sphere(rp)),
+            &rigid(xq, Surface::Sphere(rq)),
+            c,
+            n,
+        );
+        assert!(
+            k.v_disp.length() < 1e-14 && k.v_roll.length() < 1e-14,
+            "{k:?}"
+        );
         assert!(k.w_roll.length() < 1e-14 && k.w_twist.abs() < 1e-14);
         // Plane p, sphere q.
         let xq = c + n * rq;
-        let k = contact_rates(&rigid(xp, Surface::Plane), &rigid(xq, Surface::Sphere(rq)), c, n);
-        assert!(k.v_disp.length() < 1e-14 && k.v_roll.length() < 1e-14, "{k:?}");
+        let k = contact_rates(
+            &rigid(xp, Surface::Plane),
+            &rigid(xq, Surface::Sphere(rq)),
+            c,
+            n,
+        );
+        assert!(
+            k.v_disp.length() < 1e-14 && k.v_roll.length() < 1e-14,
+            "{k:?}"
+        );
         // Sphere p, plane q.
         let xp2 = c - n * rp;
-        let k = contact_rates(&rigid(xp2, Surface::Sphere(rp)), &rigid(xq, Surface::Plane), c, n);
-        assert!(k.v_disp.length() < 1e-14 && k.v_roll.length() < 1e-14, "{k:?}");
+        let k = contact_rates(
+            &rigid(xp2, Surface::Sphere(rp)),
+            &rigid(xq, Surface::Plane),
+            c,
+            n,
+        );
+        assert!(
+            k.v_disp.length() < 1e-14 && k.v_roll.length() < 1e-14,
+            "{k:?}"
+        );
     }
 
     #[test]
@@ -181,7 +230,12 @@ mod tests {
             angular_velocity: Vec3::ZERO,
             surface: Surface::Plane,
         };
-        let ball = sphere(Vec3::new(0.0, 0.0, 0.1), Vec3::new(1.0, 0.0, 0.0), Vec3::ZERO, 0.1);
+        let ball = sphere(
+            Vec3::new(0.0, 0.0, 0.1),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::ZERO,
+            0.1,
+        );
         let k = contact_rates(&plane, &ball, Vec3::ZERO, Vec3::Z);
         assert!((k.v_disp - Vec3::X).length() < 1e-15);
         assert!((k.v_roll - Vec3::X * -0.5).length() < 1e-15);

@@ -2,9 +2,11 @@
 //!
 //! Engine-free contact mechanics for *creep-friction* (Kuhn 2011).
 #![forbid(unsafe_code)]
+// `!(x > 0.0)` is used on purpose: it is true for NaN too, which is how inputs are sanitised.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-pub mod error;
 pub mod creep;
+pub mod error;
 pub mod hertz;
 pub mod kalker;
 pub mod kinematics;
@@ -13,8 +15,8 @@ pub mod mindlin;
 pub mod rolling_torque;
 pub mod vector;
 
+pub use creep::{CreepState, CreepStep};
 pub use error::LawError;
 pub use material::{FrictionCombine, Material, PairMaterial, Surface};
-pub use creep::{CreepState, CreepStep};
 pub use mindlin::{MindlinState, MindlinStep};
 pub use vector::{Vec2, Vec3};

@@ -34,23 +34,43 @@ impl Material {
         }
         let mu = non_negative("friction coefficient mu", friction, "-")?;
         let density = finite_non_negative("density", density, "kg/m^3")?;
-        Ok(Self { g, nu: poisson_ratio, mu, density })
+        Ok(Self {
+            g,
+            nu: poisson_ratio,
+            mu,
+            density,
+        })
     }
 
     /// Structural steel: G = 79.3 GPa, nu = 0.29, mu = 0.3, rho = 7850 kg/m^3.
     pub fn steel() -> Self {
-        Self { g: 79.3e9, nu: 0.29, mu: 0.3, density: 7850.0 }
+        Self {
+            g: 79.3e9,
+            nu: 0.29,
+            mu: 0.3,
+            density: 7850.0,
+        }
     }
 
     /// Soda-lime glass (ballotini, the talk's DEM material class): G = 29 GPa, nu = 0.23,
     /// mu = 0.5, rho = 2500 kg/m^3.
     pub fn glass() -> Self {
-        Self { g: 29e9, nu: 0.23, mu: 0.5, density: 2500.0 }
+        Self {
+            g: 29e9,
+            nu: 0.23,
+            mu: 0.5,
+            density: 2500.0,
+        }
     }
 
     /// Soft rubber: G = 1 MPa, nu = 0.49, mu = 0.9, rho = 1100 kg/m^3.
     pub fn rubber() -> Self {
-        Self { g: 1e6, nu: 0.49, mu: 0.9, density: 1100.0 }
+        Self {
+            g: 1e6,
+            nu: 0.49,
+            mu: 0.9,
+            density: 1100.0,
+        }
     }
 
     /// Shear modulus G [Pa].
@@ -174,7 +194,12 @@ pub struct PairMaterial {
 
 impl PairMaterial {
     /// Combines two materials and surfaces; the pair's friction is the `Average` of the two.
-    pub fn new(p: &Material, q: &Material, surface_p: Surface, surface_q: Surface) -> Result<Self, LawError> {
+    pub fn new(
+        p: &Material,
+        q: &Material,
+        surface_p: Surface,
+        surface_q: Surface,
+    ) -> Result<Self, LawError> {
         Self::with_rule(p, q, surface_p, surface_q, FrictionCombine::Average)
     }
 
@@ -193,15 +218,30 @@ impl PairMaterial {
             return Err(LawError::TwoPlanes);
         }
         let r_star = 1.0 / curvature;
-        let e_star = 1.0 / ((1.0 - p.nu * p.nu) / p.young_modulus() + (1.0 - q.nu * q.nu) / q.young_modulus());
+        let e_star = 1.0
+            / ((1.0 - p.nu * p.nu) / p.young_modulus() + (1.0 - q.nu * q.nu) / q.young_modulus());
         let g_star = 1.0 / ((2.0 - p.nu) / p.g + (2.0 - q.nu) / q.g);
         let g = 2.0 / (1.0 / p.g + 1.0 / q.g);
         let nu = 0.5 * g * (p.nu / p.g + q.nu / q.g);
         let mu = rule.combine(p.mu, q.mu);
         if mu.is_nan() {
-            return Err(LawError::Negative { name: "combined friction mu", value: mu, unit: "-" });
+            return Err(LawError::Negative {
+                name: "combined friction mu",
+                value: mu,
+                unit: "-",
+            });
         }
-        Ok(Self { r_star, e_star, g_star, g, nu, mu, c11: kalker::c11(nu), surface_p, surface_q })
+        Ok(Self {
+            r_star,
+            e_star,
+            g_star,
+            g,
+            nu,
+            mu,
+            c11: kalker::c11(nu),
+            surface_p,
+            surface_q,
+        })
     }
 
     /// This pair with another friction coefficient mu [-] (>= 0, may be `+inf`).
@@ -237,7 +277,9 @@ mod tests {
         assert!(Material::new(1e9, 0.3, 0.5, f64::INFINITY).is_err());
         assert!(Material::new(1e9, 0.5, f64::INFINITY, 0.0).is_ok());
         let m = Material::steel();
-        assert!(PairMaterial::new(&m, &m, Surface::Plane, Surface::Plane) == Err(LawError::TwoPlanes));
+        assert!(
+            PairMaterial::new(&m, &m, Surface::Plane, Surface::Plane) == Err(LawError::TwoPlanes)
+        );
         assert!(PairMaterial::new(&m, &m, Surface::Sphere(0.0), Surface::Plane).is_err());
         assert!(PairMaterial::new(&m, &m, Surface::Sphere(f64::NAN), Surface::Plane).is_err());
     }
@@ -268,7 +310,10 @@ mod tests {
 
     #[test]
     fn friction_rules() {
-        assert_eq!(FrictionCombine::Average.combine(0.2, 0.4), 0.30000000000000004);
+        assert_eq!(
+            FrictionCombine::Average.combine(0.2, 0.4),
+            0.30000000000000004
+        );
         assert_eq!(FrictionCombine::Min.combine(0.2, 0.4), 0.2);
         assert_eq!(FrictionCombine::Max.combine(0.2, 0.4), 0.4);
         assert!((FrictionCombine::Multiply.combine(0.2, 0.4) - 0.08).abs() < 1e-16);

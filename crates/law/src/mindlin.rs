@@ -148,7 +148,8 @@ impl MindlinState {
     /// Applies the 2x2 matrix `m` (rows) to the stored tangential state, e.g. a rotation when the
     /// engine's tangent basis turns with the contact normal.
     pub fn transform(&mut self, m: [[f64; 2]; 2]) {
-        let apply = |v: Vec2| Vec2::new(m[0][0] * v.x + m[0][1] * v.y, m[1][0] * v.x + m[1][1] * v.y);
+        let apply =
+            |v: Vec2| Vec2::new(m[0][0] * v.x + m[0][1] * v.y, m[1][0] * v.x + m[1][1] * v.y);
         for p in &mut self.pieces[..self.n] {
             p.c = apply(p.c);
             p.beta = apply(p.beta);
@@ -194,7 +195,12 @@ impl MindlinState {
                 dissipated = self.elastic_energy(pair);
             }
             *self = Self::default();
-            return MindlinStep { q: Vec2::ZERO, a: 0.0, slip_dissipation: dissipated, truncation_energy: 0.0 };
+            return MindlinStep {
+                q: Vec2::ZERO,
+                a: 0.0,
+                slip_dissipation: dissipated,
+                truncation_energy: 0.0,
+            };
         }
         let a_old = self.a;
         let a2_old = a_old * a_old;
@@ -229,7 +235,11 @@ impl MindlinState {
         // Springs entering during the step: the one at x entered when a(t)^2 = x^2 and, with the
         // displacement linear in a^2 over the step, took du (a^2 - x^2) / da2, i.e. beta = du / da2.
         if da2 > 0.0 {
-            let entering = Piece { x_hi: a, beta: du * (1.0 / da2), c: Vec2::ZERO };
+            let entering = Piece {
+                x_hi: a,
+                beta: du * (1.0 / da2),
+                c: Vec2::ZERO,
+            };
             if self.n < MAX_PIECES {
                 self.pieces[self.n] = entering;
                 self.n += 1;
@@ -239,42 +249,78 @@ impl MindlinState {
         }
 
         // (iii)-(iv) Return-map every piece: it splits into a stuck inner part and a slipping
-        // outer part.
-        let mut out = [Piece::default(); 2 * MAX_PIECES];
-        let mut m = 0;
+        // outer part. Pieces that only stick or only slip are updated in place; a split needs
+        // a scratch list.
+        let mut cuts = [0.0f64; MAX_PIECES];
+        let mut splits = 0;
         let mut x_lo = 0.0;
-        for i in 0..self.n {
-            let p = self.pieces[i];
-            let x_hi = p.x_hi;
-            if x_hi <= x_lo {
-                continue;
-            }
-            let cut = stick_radius(&p, kappa, a2).clamp(x_lo, x_hi);
-            if cut > x_lo {
-                out[m] = Piece { x_hi: cut, ..p };
-                m += 1;
-            }
-            if cut < x_hi {
-                let (e, work) = slip_piece(&p, kappa, a, cut, x_hi);
-                dissipated += 8.0 * pair.g_star * work;
-                out[m] = Piece { x_hi, beta: e * kappa, c: Vec2::ZERO };
-                m += 1;
-            }
-            x_lo = x_hi;
+        for (p, cut_out) in self.pieces[..self.n].iter().zip(cuts.iter_mut()) {
+            let cut = stick_radius(p, kappa, a2).clamp(x_lo, p.x_hi.max(x_lo));
+            splits += usize::from(cut > x_lo && cut < p.x_hi);
+            *cut_out = cut;
+            x_lo = p.x_hi.max(x_lo);
         }
+        let slip = |p: &Piece, cut: f64, dissipated: &mut f64| {
+            let (e, work) = slip_piece(p, kappa, a, cut, p.x_hi);
+            *dissipated += 8.0 * pair.g_star * work;
+            Piece {
+                x_hi: p.x_hi,
+                beta: e * kappa,
+                c: Vec2::ZERO,
+            }
+        };
+        let (n, d_u2) = if splits == 0 {
+            let mut x_lo = 0.0;
+            for (p, &cut) in self.pieces[..self.n].iter_mut().zip(cuts.iter()) {
+                let x_hi = p.x_hi;
+                if cut < x_hi && x_hi > x_lo {
+                    *p = slip(p, cut, &mut dissipated);
+                }
+                x_lo = x_hi.max(x_lo);
+            }
+            merge(&mut self.pieces, self.n, a, kappa)
+        } else {
+            let mut out = [Piece::default(); 2 * MAX_PIECES];
+            let mut m = 0;
+            let mut x_lo = 0.0;
+            for (p, &cut) in self.pieces[..self.n].iter().zip(cuts.iter()) {
+                if p.x_hi <= x_lo {
+                    continue;
+                }
+                if cut > x_lo {
+                    out[m] = Piece { x_hi: cut, ..*p };
+                    m += 1;
+                }
+                if cut < p.x_hi {
+                    out[m] = slip(p, cut, &mut dissipated);
+                    m += 1;
+                }
+                x_lo = p.x_hi;
+            }
+            let (n, d_u2) = merge(&mut out, m, a, kappa);
+            self.pieces[..n].copy_from_slice(&out[..n]);
+            (n, d_u2)
+        };
         self.a = a;
-        let (n, d_u2) = merge(&mut out, m, a, kappa);
         self.n = n;
         let d_energy = 4.0 * pair.g_star * d_u2;
         let truncation_energy = if d_energy > 0.0 { d_energy } else { 0.0 };
         if d_energy < 0.0 {
             dissipated -= d_energy;
         }
-        self.pieces[..self.n].copy_from_slice(&out[..self.n]);
         self.q = self.integrate_force(pair);
         // Saturate instead of overflowing on absurd (but finite) displacements.
-        let slip_dissipation = if dissipated > 0.0 { dissipated.min(f64::MAX) } else { 0.0 };
-        MindlinStep { q: self.q, a, slip_dissipation, truncation_energy }
+        let slip_dissipation = if dissipated > 0.0 {
+            dissipated.min(f64::MAX)
+        } else {
+            0.0
+        };
+        MindlinStep {
+            q: self.q,
+            a,
+            slip_dissipation,
+            truncation_energy,
+        }
     }
 
     /// `Q = 8 G* sum_pieces integral u(x) dx`.
@@ -321,7 +367,11 @@ fn stick_radius(p: &Piece, kappa: f64, a2: f64) -> f64 {
     if cl == 0.0 {
         // u = s beta: within the limit everywhere or nowhere (springs entering the contact can
         // bring |beta| > kappa).
-        return if p.beta.length() <= kappa { f64::INFINITY } else { 0.0 };
+        return if p.beta.length() <= kappa {
+            f64::INFINITY
+        } else {
+            0.0
+        };
     }
     let bc = p.beta.dot(p.c * (1.0 / cl));
     let d = bc * bc + (kappa * kappa - p.beta.length_squared()).max(0.0);
@@ -346,7 +396,11 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64) -> (Vec2, f64) {
     let is2 = int_s2(a, x1, x2);
     let trial = p.beta * is + p.c * (x2 - x1);
     let l = trial.length();
-    let e = if l > 0.0 && l.is_finite() { trial * (1.0 / l) } else { Vec2::new(1.0, 0.0) };
+    let e = if l > 0.0 && l.is_finite() {
+        trial * (1.0 / l)
+    } else {
+        Vec2::new(1.0, 0.0)
+    };
     let work = kappa * (e.dot(p.beta) * is2 + e.dot(p.c) * is) - kappa * kappa * is2;
     (e, if work > 0.0 { work } else { 0.0 })
 }
@@ -359,8 +413,8 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64) -> (Vec2, f64) {
 /// (`u = kappa s e1`, `kappa s e2`), which become one at the limit along their summed force
 /// (the stored energy is unchanged and `|u| <= kappa s` still holds); otherwise the narrowest
 /// pair whose least-squares merge stays within the limit (force kept, energy lost booked as
-/// dissipation); as a last resort the narrowest inner piece is absorbed by its outer neighbour
-/// extended inwards.
+/// dissipation); as a last resort the inner piece whose absorption by its outer neighbour
+/// (extended inwards) adds the least energy.
 fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
     let a2 = a * a;
     let mut n = 0;
@@ -398,8 +452,16 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
             let (p, q) = (out[i], out[i + 1]);
             let sum = p.beta * int_s(a, lo, p.x_hi) + q.beta * int_s(a, p.x_hi, q.x_hi);
             let l = sum.length();
-            let e = if l > 0.0 && l.is_finite() { sum * (1.0 / l) } else { Vec2::new(1.0, 0.0) };
-            out[i] = Piece { x_hi: q.x_hi, beta: e * kappa, c: Vec2::ZERO };
+            let e = if l > 0.0 && l.is_finite() {
+                sum * (1.0 / l)
+            } else {
+                Vec2::new(1.0, 0.0)
+            };
+            out[i] = Piece {
+                x_hi: q.x_hi,
+                beta: e * kappa,
+                c: Vec2::ZERO,
+            };
             out.copy_within(i + 2..n, i + 1);
             n -= 1;
             continue;
@@ -432,20 +494,21 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
         if merged {
             continue;
         }
-        // Last resort: absorb the narrowest inner piece into its outer neighbour extended
-        // inwards (its field stays within the limit where the depth is larger).
+        // Last resort: absorb an inner piece into its outer neighbour extended inwards (its field
+        // stays within the limit where the depth is larger): the one that adds the least energy.
         let mut best = 0;
-        let mut best_w = f64::INFINITY;
+        let mut best_gain = f64::INFINITY;
         let mut lo = 0.0;
         let mut best_lo = 0.0;
-        for (i, p) in out[..n - 1].iter().enumerate() {
-            let w = p.x_hi - lo;
-            if w < best_w {
-                best_w = w;
+        for i in 0..n - 1 {
+            let (gone, outer) = (&out[i], &out[i + 1]);
+            let gain = piece_u2(outer, a, lo, gone.x_hi) - piece_u2(gone, a, lo, gone.x_hi);
+            if gain < best_gain {
+                best_gain = gain;
                 best = i;
                 best_lo = lo;
             }
-            lo = p.x_hi;
+            lo = gone.x_hi;
         }
         let (gone, outer) = (out[best], out[best + 1]);
         d_u2 += piece_u2(&outer, a, best_lo, gone.x_hi) - piece_u2(&gone, a, best_lo, gone.x_hi);
@@ -473,18 +536,28 @@ fn least_squares_piece(p: &Piece, q: &Piece, a: f64, lo: f64) -> Piece {
     let m1 = p.beta * s2a + p.c * s1a + q.beta * s2b + q.c * s1b;
     let det = s2 * s0 - s1 * s1;
     if det > 1e-12 * s2 * s0 {
-        Piece { x_hi: x2, beta: (m1 * s0 - m0 * s1) * (1.0 / det), c: (m0 * s2 - m1 * s1) * (1.0 / det) }
+        Piece {
+            x_hi: x2,
+            beta: (m1 * s0 - m0 * s1) * (1.0 / det),
+            c: (m0 * s2 - m1 * s1) * (1.0 / det),
+        }
     } else {
-        Piece { x_hi: x2, beta: Vec2::ZERO, c: m0 * (1.0 / s0) }
+        Piece {
+            x_hi: x2,
+            beta: Vec2::ZERO,
+            c: m0 * (1.0 / s0),
+        }
     }
 }
 
 /// Whether two pieces hold the same field to rounding (so they can be one).
 #[inline]
 fn same_form(p: &Piece, q: &Piece, a2: f64) -> bool {
-    const TOL: f64 = 1e-12;
-    let scale = p.c.length().max(q.c.length()) + a2 * p.beta.length().max(q.beta.length());
-    (p.c - q.c).length() <= TOL * scale && a2 * (p.beta - q.beta).length() <= TOL * scale
+    const TOL2: f64 = 1e-24; // (1e-12)^2, compared on squares to save square roots
+    let scale2 = p.c.length_squared().max(q.c.length_squared())
+        + a2 * a2 * p.beta.length_squared().max(q.beta.length_squared());
+    (p.c - q.c).length_squared() <= TOL2 * scale2
+        && a2 * a2 * (p.beta - q.beta).length_squared() <= TOL2 * scale2
 }
 
 #[cfg(test)]

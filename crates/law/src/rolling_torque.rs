@@ -44,11 +44,15 @@ pub enum RollingModel {
 impl RollingModel {
     /// Type A with a validated `mu_r >= 0` [-].
     pub fn constant_torque(mu_r: f64) -> Result<Self, LawError> {
-        Ok(Self::ConstantTorque { mu_r: finite_non_negative("rolling friction mu_r", mu_r, "-")? })
+        Ok(Self::ConstantTorque {
+            mu_r: finite_non_negative("rolling friction mu_r", mu_r, "-")?,
+        })
     }
     /// Type B with a validated `beta >= 0` [s/m].
     pub fn viscous(beta: f64) -> Result<Self, LawError> {
-        Ok(Self::Viscous { beta: finite_non_negative("viscous rolling coefficient beta", beta, "s/m")? })
+        Ok(Self::Viscous {
+            beta: finite_non_negative("viscous rolling coefficient beta", beta, "s/m")?,
+        })
     }
     /// Type C with validated `mu_r >= 0` [-] and damping ratio `eta >= 0` [-].
     pub fn epsd(mu_r: f64, eta: f64) -> Result<Self, LawError> {
@@ -102,7 +106,11 @@ pub struct RollingState {
 pub fn epsd_rolling_inertia(m_p: f64, i_p: f64, r_p: f64, m_q: f64, i_q: f64, r_q: f64) -> f64 {
     let term = |m: f64, i: f64, r: f64| {
         let v = i + m * r * r;
-        if v.is_finite() && v > 0.0 { 1.0 / v } else { 0.0 }
+        if v.is_finite() && v > 0.0 {
+            1.0 / v
+        } else {
+            0.0
+        }
     };
     let s = term(m_p, i_p, r_p) + term(m_q, i_q, r_q);
     if s > 0.0 { 1.0 / s } else { 0.0 }
@@ -112,7 +120,15 @@ impl RollingModel {
     /// Torque of the model for one step. Non-finite or non-positive `p` gives no torque (and
     /// resets the EPSD spring).
     pub fn torque(&self, state: &mut RollingState, input: &RollingInput) -> RollingStep {
-        let RollingInput { p, r_star, k_n, w_roll, normal, dt, rolling_inertia } = *input;
+        let RollingInput {
+            p,
+            r_star,
+            k_n,
+            w_roll,
+            normal,
+            dt,
+            rolling_inertia,
+        } = *input;
         if !(p > 0.0 && p.is_finite() && r_star.is_finite() && w_roll.is_finite()) {
             state.spring = Vec3::ZERO;
             return RollingStep::default();
@@ -121,13 +137,23 @@ impl RollingModel {
         let dt = if dt.is_finite() && dt > 0.0 { dt } else { 0.0 };
         match *self {
             RollingModel::ConstantTorque { mu_r } => {
-                let Some(dir) = w_roll.try_normalize() else { return RollingStep::default() };
+                let Some(dir) = w_roll.try_normalize() else {
+                    return RollingStep::default();
+                };
                 let m = mu_r * r_star * p;
-                RollingStep { torque: dir * -m, dissipation: m * w * dt, mobilised: true }
+                RollingStep {
+                    torque: dir * -m,
+                    dissipation: m * w * dt,
+                    mobilised: true,
+                }
             }
             RollingModel::Viscous { beta } => {
                 let c = beta * r_star * r_star * p;
-                RollingStep { torque: w_roll * -c, dissipation: c * w * w * dt, mobilised: false }
+                RollingStep {
+                    torque: w_roll * -c,
+                    dissipation: c * w * w * dt,
+                    mobilised: false,
+                }
             }
             RollingModel::Epsd { mu_r, eta } => {
                 let k_r = 2.25 * k_n * mu_r * mu_r * r_star * r_star;
@@ -148,7 +174,11 @@ impl RollingModel {
                 } else {
                     (trial, 0.0, false)
                 };
-                state.spring = if spring.is_finite() { spring } else { Vec3::ZERO };
+                state.spring = if spring.is_finite() {
+                    spring
+                } else {
+                    Vec3::ZERO
+                };
                 let c = if mobilised || !(k_r > 0.0) || !(rolling_inertia > 0.0) {
                     0.0
                 } else {
@@ -214,7 +244,10 @@ mod tests {
             let out = m.torque(&mut s, &inp);
             theta += 5.0 * inp.dt;
             let expect = (k_r * theta).min(m_max);
-            assert!((out.torque.x + expect).abs() < 1e-12 * m_max, "theta={theta}");
+            assert!(
+                (out.torque.x + expect).abs() < 1e-12 * m_max,
+                "theta={theta}"
+            );
             dissipated += out.dissipation;
         }
         // Plastic rotation so far: theta - M_m / k_r.
@@ -244,6 +277,8 @@ mod tests {
         let i = 0.4 * m * r * r;
         let one = i + m * r * r;
         assert!((epsd_rolling_inertia(m, i, r, m, i, r) - one / 2.0).abs() < 1e-15);
-        assert!((epsd_rolling_inertia(m, i, r, f64::INFINITY, f64::INFINITY, 1.0) - one).abs() < 1e-15);
+        assert!(
+            (epsd_rolling_inertia(m, i, r, f64::INFINITY, f64::INFINITY, 1.0) - one).abs() < 1e-15
+        );
     }
 }

@@ -104,10 +104,11 @@ impl Vec2 {
     pub fn length_squared(self) -> f64 {
         self.dot(self)
     }
-    /// Euclidean length.
+    /// Euclidean length (`sqrt(x^2 + y^2)`: overflows to infinity only beyond ~1e154, far above
+    /// any displacement or force this crate lets through).
     #[inline]
     pub fn length(self) -> f64 {
-        self.x.hypot(self.y)
+        self.dot(self).sqrt()
     }
     /// True when both components are finite.
     #[inline]
@@ -146,7 +147,13 @@ mod tests {
 
     #[test]
     fn tangent_basis_is_orthonormal_and_right_handed() {
-        for n in [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::Z, Vec3::new(0.3, -0.4, 0.866).try_normalize().unwrap()] {
+        for n in [
+            Vec3::X,
+            Vec3::Y,
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::new(0.3, -0.4, 0.866).try_normalize().unwrap(),
+        ] {
             let (t1, t2) = n.tangent_basis();
             assert!((t1.length() - 1.0).abs() < 1e-14 && (t2.length() - 1.0).abs() < 1e-14);
             assert!(t1.dot(n).abs() < 1e-14 && t2.dot(n).abs() < 1e-14 && t1.dot(t2).abs() < 1e-14);

@@ -122,7 +122,10 @@ fn no_slip_limit_is_linear_with_8_g_star_a() {
         let e = st.elastic_energy(&pair);
         let expect = 0.5 * 8.0 * pair.g_star * a * u.length_squared();
         let scale = 0.5 * 8.0 * pair.g_star * a * u_max * u_max;
-        assert!((e - expect).abs() < 1e-6 * scale, "mu={mu}: {e:e} vs {expect:e}");
+        assert!(
+            (e - expect).abs() < 1e-6 * scale,
+            "mu={mu}: {e:e} vs {expect:e}"
+        );
     }
 }
 
@@ -166,7 +169,10 @@ fn decreasing_normal_force_keeps_q_within_coulomb() {
     for i in 1..=100 {
         let p = P * (1.0 - i as f64 / 100.0);
         let q = st.update(&pair, p, Vec2::ZERO).q;
-        assert!(q.length() <= pair.mu * p * (1.0 + 1e-12) + 1e-300, "p={p} q={q:?}");
+        assert!(
+            q.length() <= pair.mu * p * (1.0 + 1e-12) + 1e-300,
+            "p={p} q={q:?}"
+        );
     }
     assert_eq!(st.force(), Vec2::ZERO);
     assert_eq!(st.memory_depth(), 0);
@@ -206,7 +212,9 @@ fn hysteresis_loop_dissipation_matches_closed_form() {
             let mut dissipated = 0.0;
             for leg in [-1.0, 1.0] {
                 for _ in 0..steps {
-                    dissipated += st.update(&pair, P, Vec2::new(leg * 2.0 * d_amp / steps as f64, 0.0)).slip_dissipation;
+                    dissipated += st
+                        .update(&pair, P, Vec2::new(leg * 2.0 * d_amp / steps as f64, 0.0))
+                        .slip_dissipation;
                 }
             }
             assert!(
@@ -235,7 +243,9 @@ fn energy_balance_on_virgin_loading() {
     st.update(&pair, P, Vec2::ZERO);
     let mut dissipated = 0.0;
     for _ in 0..7 {
-        dissipated += st.update(&pair, P, Vec2::new(0.0, d_end / 7.0)).slip_dissipation;
+        dissipated += st
+            .update(&pair, P, Vec2::new(0.0, d_end / 7.0))
+            .slip_dissipation;
     }
     let total = st.elastic_energy(&pair) + dissipated;
     assert!((total / work - 1.0).abs() < 1e-8, "{total:e} vs {work:e}");

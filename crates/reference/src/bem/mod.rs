@@ -49,8 +49,8 @@ pub use steady::{
     CreepCoefficients, SteadyInput, SteadyOutput, SteadySolver, creep_coefficients, steady,
 };
 pub use transient::{
-    TransientDrive, TransientInput, TransientRecord, TransientSolver, mindlin_loading,
-    transient_hold_creepage, transient_hold_force,
+    TransientInput, TransientRecord, TransientSolver, mindlin_loading, transient_hold_creepage,
+    transient_hold_force,
 };
 
 use crate::error::{RefError, check_finite};

@@ -35,16 +35,6 @@ pub struct TransientInput {
     pub steps: usize,
 }
 
-/// What the transient run holds constant.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum TransientDrive {
-    /// Rigid creepages held from the first step on (the force builds up with rolling).
-    HoldCreepage(Creepage),
-    /// Longitudinal force ratio `Fx/(mu P)` held from the first step on, in `(-1, 1)` (the
-    /// creepage needed is computed each step; lateral creepage and spin are zero).
-    HoldForce(f64),
-}
-
 /// State after one transient step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TransientRecord {

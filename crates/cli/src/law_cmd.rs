@@ -1,0 +1,277 @@
+//! `creep law ...`: the contact law of crate `creep-law`, as CSV on stdout, and the default tour.
+
+use std::io::Write;
+
+use clap::{Subcommand, ValueEnum};
+use creep_law::{CreepState, Material, MindlinState, PairMaterial, Surface, Vec2, hertz, kalker};
+
+/// Steady creep laws selectable by `--model`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SteadyModel {
+    /// Kalker's closed form F_ss, as used in Kuhn's rule (the talk, eq. 1).
+    Kuhn,
+}
+
+/// The contact law as CSV.
+#[derive(Debug, Subcommand)]
+pub enum LawCommand {
+    /// Steady creep curve: normalised creepage xi G a^2/(mu P) for each force ratio |Q|/(mu P).
+    /// Prints `q_over_mu_p,creepage_n`.
+    Steady {
+        /// Steady creep law.
+        #[arg(long, value_enum, default_value_t = SteadyModel::Kuhn)]
+        model: SteadyModel,
+        /// Combined Poisson ratio nu (Kalker's sense), in (-1, 0.5].
+        #[arg(long)]
+        nu: f64,
+        /// Force ratios |Q|/(mu P) in [0, 1], comma separated.
+        #[arg(long = "q-ratio", value_delimiter = ',', required = true, num_args = 1..)]
+        q_ratio: Vec<f64>,
+    },
+    /// Cattaneo-Mindlin load, unload and reload at constant P for a sphere on a plane of the same
+    /// material. Prints `step,delta_m,q_n,q_over_mu_p`.
+    Mindlin {
+        /// Shear modulus G [Pa].
+        #[arg(long, default_value_t = 79.3e9)]
+        g: f64,
+        /// Poisson ratio nu.
+        #[arg(long, default_value_t = 0.29)]
+        nu: f64,
+        /// Friction coefficient mu.
+        #[arg(long, default_value_t = 0.3)]
+        mu: f64,
+        /// Sphere radius [m].
+        #[arg(long, default_value_t = 0.01)]
+        radius: f64,
+        /// Normal force P [N].
+        #[arg(long, default_value_t = 100.0)]
+        p: f64,
+        /// Steps per branch.
+        #[arg(long, default_value_t = 10)]
+        steps: usize,
+    },
+}
+
+type Res = Result<(), Box<dyn std::error::Error>>;
+
+fn check_nu(nu: f64) -> Result<(), String> {
+    if nu > -1.0 && nu <= 0.5 {
+        Ok(())
+    } else {
+        Err(format!("--nu must be in (-1, 0.5], got {nu}"))
+    }
+}
+
+/// Runs one `creep law` subcommand, writing CSV to `out`.
+pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
+    match cmd {
+        LawCommand::Steady { model, nu, q_ratio } => {
+            check_nu(*nu)?;
+            if let Some(bad) = q_ratio.iter().find(|r| !(**r >= 0.0 && **r <= 1.0)) {
+                return Err(format!("--q-ratio values must be in [0, 1], got {bad}").into());
+            }
+            writeln!(out, "q_over_mu_p,creepage_n")?;
+            for &s in q_ratio {
+                let x = match model {
+                    SteadyModel::Kuhn => kalker::steady_creepage_n(s, *nu),
+                };
+                writeln!(out, "{s},{x:.10e}")?;
+            }
+            Ok(())
+        }
+        LawCommand::Mindlin {
+            g,
+            nu,
+            mu,
+            radius,
+            p,
+            steps,
+        } => {
+            if *steps == 0 {
+                return Err("--steps must be >= 1".into());
+            }
+            if !(p.is_finite() && *p > 0.0) {
+                return Err(format!("--p must be finite and > 0 [N], got {p}").into());
+            }
+            let m = Material::new(*g, *nu, *mu, 7850.0)?;
+            let pair = PairMaterial::new(&m, &m, Surface::Sphere(*radius), Surface::Plane)?;
+            writeln!(out, "step,delta_m,q_n,q_over_mu_p")?;
+            for (i, (d, q)) in mindlin_cycle(&pair, *p, *steps).iter().enumerate() {
+                writeln!(out, "{i},{d:.10e},{q:.10e},{:.10}", q / (pair.mu * p))?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Load to 0.8, unload to -0.8, reload to 1.2 times Mindlin's slip distance
+/// `3 mu P / (16 G* a)`, `steps` per branch: (displacement [m], force [N]) pairs.
+fn mindlin_cycle(pair: &PairMaterial, p: f64, steps: usize) -> Vec<(f64, f64)> {
+    let a = hertz::contact_radius(pair, p);
+    let ds = 3.0 * pair.mu * p / (16.0 * pair.g_star * a);
+    let mut st = MindlinState::new();
+    st.update(pair, p, Vec2::ZERO);
+    let mut rows = vec![(0.0, 0.0)];
+    let mut d = 0.0;
+    for target in [0.8 * ds, -0.8 * ds, 1.2 * ds] {
+        let from = d;
+        for i in 1..=steps {
+            let next = from + (target - from) * i as f64 / steps as f64;
+            let q = st.update(pair, p, Vec2::new(next - d, 0.0)).q.x;
+            d = next;
+            rows.push((d, q));
+        }
+    }
+    rows
+}
+
+/// The default job: the steady creep curve, a Cattaneo-Mindlin cycle, and Kuhn's transient
+/// build-up of force at held creepage, as readable tables.
+pub fn tour(out: &mut dyn Write) -> Res {
+    let steel = Material::steel();
+    let pair = PairMaterial::new(&steel, &steel, Surface::Sphere(0.01), Surface::Plane)?;
+    let p = 100.0;
+    let a = hertz::contact_radius(&pair, p);
+    let mu_p = pair.mu * p;
+    writeln!(
+        out,
+        "creep-friction: a 20 mm steel ball on a steel plane, P = {p} N, mu = {}",
+        pair.mu
+    )?;
+    writeln!(
+        out,
+        "Hertz contact radius a = {:.4} mm; combined G = {:.1} GPa, nu = {:.3}, C11 = {:.3}",
+        a * 1e3,
+        pair.g / 1e9,
+        pair.nu,
+        pair.c11
+    )?;
+    writeln!(out)?;
+    writeln!(
+        out,
+        "1. Steady creep (Kalker 2000; Kuhn 2011 eq. 1): slip per unit rolling distance"
+    )?;
+    writeln!(
+        out,
+        "   |Q|/(mu P)   creepage_n = xi G a^2/(mu P)   creepage xi      linear theory xi"
+    )?;
+    for s in [0.0, 0.1, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.99, 1.0] {
+        let xn = kalker::steady_creepage_n(s, pair.nu);
+        let xi = kalker::steady_creepage(s, mu_p, pair.g, a, pair.c11);
+        let lin = s * mu_p / (pair.g * a * a * pair.c11);
+        writeln!(out, "   {s:10.2}   {xn:28.5}   {xi:14.4e}   {lin:14.4e}")?;
+    }
+    writeln!(out)?;
+    writeln!(
+        out,
+        "2. Cattaneo-Mindlin load / unload / reload at constant P (Mindlin & Deresiewicz 1953)"
+    )?;
+    writeln!(out, "   delta [um]     Q [N]   Q/(mu P)")?;
+    for (d, q) in mindlin_cycle(&pair, p, 4) {
+        writeln!(out, "   {:10.4}   {q:7.3}   {:8.4}", d * 1e6, q / mu_p)?;
+    }
+    writeln!(out)?;
+    writeln!(
+        out,
+        "3. Kuhn's transient rule: rolling at held creepage xi(0.6 mu P), force builds up"
+    )?;
+    writeln!(out, "   rolled/a   Q/(mu P)   (steady target 0.6)")?;
+    let xi = kalker::steady_creepage(0.6, mu_p, pair.g, a, pair.c11);
+    let mut st = CreepState::new();
+    st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+    let dr = a / 100.0;
+    for i in 1..=400 {
+        let q = st
+            .update(&pair, p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0))
+            .q;
+        if i % 50 == 0 {
+            writeln!(out, "   {:8.2}   {:8.4}", i as f64 / 100.0, q.x / mu_p)?;
+        }
+    }
+    writeln!(out)?;
+    writeln!(
+        out,
+        "CSV for scripts: creep law steady --nu 0.3 --q-ratio 0.1,0.5,0.9"
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run_str(cmd: &LawCommand) -> Result<String, String> {
+        let mut buf = Vec::new();
+        run(cmd, &mut buf).map_err(|e| e.to_string())?;
+        Ok(String::from_utf8(buf).unwrap())
+    }
+
+    #[test]
+    fn steady_csv_matches_closed_form() {
+        let text = run_str(&LawCommand::Steady {
+            model: SteadyModel::Kuhn,
+            nu: 0.25,
+            q_ratio: vec![0.0, 0.5, 1.0],
+        })
+        .unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("q_over_mu_p,creepage_n"));
+        for line in lines {
+            let (s, x) = line.split_once(',').unwrap();
+            let (s, x): (f64, f64) = (s.parse().unwrap(), x.parse().unwrap());
+            // 3/C11 (1 - (1-s)^(1/3)), C11(0.25) = 4.12 from Kalker's table.
+            let expect = 3.0 / 4.12 * (1.0 - (1.0 - s).cbrt());
+            assert!((x - expect).abs() < 1e-9, "{line}");
+        }
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        assert!(
+            run_str(&LawCommand::Steady {
+                model: SteadyModel::Kuhn,
+                nu: 0.7,
+                q_ratio: vec![0.5]
+            })
+            .is_err()
+        );
+        assert!(
+            run_str(&LawCommand::Steady {
+                model: SteadyModel::Kuhn,
+                nu: 0.3,
+                q_ratio: vec![1.5]
+            })
+            .is_err()
+        );
+        assert!(
+            run_str(&LawCommand::Mindlin {
+                g: -1.0,
+                nu: 0.3,
+                mu: 0.3,
+                radius: 0.01,
+                p: 1.0,
+                steps: 3
+            })
+            .is_err()
+        );
+        assert!(
+            run_str(&LawCommand::Mindlin {
+                g: 1e9,
+                nu: 0.3,
+                mu: 0.3,
+                radius: 0.01,
+                p: 0.0,
+                steps: 3
+            })
+            .is_err()
+        );
+    }
+
+    #[test]
+    fn tour_runs() {
+        let mut buf = Vec::new();
+        tour(&mut buf).unwrap();
+        let text = String::from_utf8(buf).unwrap();
+        assert!(text.contains("Steady creep") && text.contains("Cattaneo-Mindlin"));
+    }
+}
