@@ -1,7 +1,7 @@
 //! `creep ref ...`: the reference solvers of crate `creep-reference`, as CSV on stdout.
 //!
-//! Physical inputs are SI: contact radius `a` \[m\], normal force `P` \[N\], combined shear modulus
-//! `G` \[Pa\] and Poisson ratio `nu` of the pair (Kalker's combination, see
+//! Physical inputs are SI: contact radius `a` [m], normal force `P` [N], combined shear modulus
+//! `G` [Pa] and Poisson ratio `nu` of the pair (Kalker's combination, see
 //! `creep_reference::material::Pair`), friction coefficient `mu`. Creepage is the rigid slip
 //! velocity of body q relative to body p over the rolling speed; forces are on body p; the
 //! rolling direction is `x` (see `creep_reference::bem`).
@@ -38,13 +38,13 @@ pub enum RefCommand {
 /// The circular contact shared by the 3-D commands.
 #[derive(Debug, Args)]
 pub struct ContactArgs {
-    /// Contact radius a \[m\] (> 0).
+    /// Contact radius a [m] (> 0).
     #[arg(long, allow_negative_numbers = true)]
     a: f64,
-    /// Normal force P \[N\] (> 0).
+    /// Normal force P [N] (> 0).
     #[arg(long, allow_negative_numbers = true)]
     p: f64,
-    /// Combined shear modulus G \[Pa\] (> 0).
+    /// Combined shear modulus G [Pa] (> 0).
     #[arg(long, allow_negative_numbers = true)]
     g: f64,
     /// Combined Poisson ratio nu, in [0, 0.5].
@@ -75,7 +75,7 @@ pub enum SteadyMethod {
 pub struct SteadyArgs {
     #[command(flatten)]
     contact: ContactArgs,
-    /// Longitudinal creepages, comma separated \[dimensionless\].
+    /// Longitudinal creepages, comma separated [dimensionless].
     #[arg(
         long,
         value_delimiter = ',',
@@ -83,10 +83,10 @@ pub struct SteadyArgs {
         allow_negative_numbers = true
     )]
     creepage: Vec<f64>,
-    /// Lateral creepage: one value for all rows, or one per creepage \[dimensionless\].
+    /// Lateral creepage: one value for all rows, or one per creepage [dimensionless].
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     lateral: Vec<f64>,
-    /// Spin creepage: one value for all rows, or one per creepage \[1/m\].
+    /// Spin creepage: one value for all rows, or one per creepage [1/m].
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     spin: Vec<f64>,
     /// Elements across the contact diameter (boundary elements), in [4, 256].
@@ -105,10 +105,10 @@ pub struct TransientArgs {
     /// Hold the longitudinal force at this ratio Q/(mu P), in (-1, 1).
     #[arg(long, allow_negative_numbers = true, conflicts_with = "hold_creepage")]
     hold_force: Option<f64>,
-    /// Hold this longitudinal creepage \[dimensionless\].
+    /// Hold this longitudinal creepage [dimensionless].
     #[arg(long, allow_negative_numbers = true)]
     hold_creepage: Option<f64>,
-    /// Rolling distance per step DX \[m\] (> 0; the element side, about 2a/N, reproduces the
+    /// Rolling distance per step DX [m] (> 0; the element side, about 2a/N, reproduces the
     /// steady discretisation).
     #[arg(long, allow_negative_numbers = true)]
     step: f64,
@@ -136,10 +136,10 @@ pub struct MindlinArgs {
 /// Arguments of `creep ref carter`.
 #[derive(Debug, Args)]
 pub struct CarterArgs {
-    /// Contact half-width a \[m\] (> 0).
+    /// Contact half-width a [m] (> 0).
     #[arg(long)]
     a: f64,
-    /// Relative radius R \[m\] (1/R = 1/R1 + 1/R2, > 0).
+    /// Relative radius R [m] (1/R = 1/R1 + 1/R2, > 0).
     #[arg(long)]
     r: f64,
     /// Friction coefficient mu (> 0).
