@@ -1,0 +1,111 @@
+//! Per-collider creep materials. The registry is keyed by `ColliderHandle` (never the collider's
+//! `user_data`, which bevy_rapier uses for its `Entity`), so the same core serves plain Rapier
+//! and Bevy.
+
+use std::collections::HashMap;
+
+use creep_law::{Material, Surface};
+use rapier3d::prelude::{Collider, ColliderHandle};
+
+/// The fidelity a collider (or pair) asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Fidelity {
+    /// Plain Coulomb friction (Rapier's own response).
+    Coulomb,
+    /// Creep-friction on every contact.
+    Creep,
+    /// Creep-friction where it matters: a contact whose creep slip-speed bound
+    /// `F_ss(1) |v_roll|` is below `tolerance` [m/s] is left to Coulomb.
+    #[default]
+    Auto,
+}
+
+/// Contact-torque rolling resistance (the talk's other category), per collider.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum RollingResistance {
+    /// None (creep-friction alone).
+    #[default]
+    None,
+    /// A contact-torque model from creep-law (Ai et al. 2011 types A, B, C).
+    Torque(creep_law::rolling_torque::RollingModel),
+}
+
+/// What the plugin knows of one collider.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CreepMaterial {
+    /// Elastic properties (G, nu) and density; the friction coefficient used is the collider's
+    /// own (Rapier's combine rule applies).
+    pub material: Material,
+    /// Requested fidelity; a pair uses the lower of its two colliders' (Coulomb < Auto < Creep).
+    pub fidelity: Fidelity,
+    /// Contact-torque rolling resistance; a pair uses the first collider's that is not `None`.
+    pub rolling: RollingResistance,
+}
+
+impl CreepMaterial {
+    /// A material with `Fidelity::Auto` and no rolling torque.
+    pub fn new(material: Material) -> Self {
+        Self {
+            material,
+            fidelity: Fidelity::Auto,
+            rolling: RollingResistance::None,
+        }
+    }
+    /// This material with another fidelity.
+    pub fn with_fidelity(mut self, fidelity: Fidelity) -> Self {
+        self.fidelity = fidelity;
+        self
+    }
+    /// This material with a contact-torque rolling model.
+    pub fn with_rolling(mut self, model: creep_law::rolling_torque::RollingModel) -> Self {
+        self.rolling = RollingResistance::Torque(model);
+        self
+    }
+}
+
+/// Materials keyed by collider handle.
+#[derive(Debug, Clone, Default)]
+pub struct MaterialRegistry {
+    map: HashMap<ColliderHandle, CreepMaterial>,
+}
+
+impl MaterialRegistry {
+    /// An empty registry.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// Registers (or replaces) a collider's material.
+    pub fn insert(&mut self, collider: ColliderHandle, material: CreepMaterial) {
+        self.map.insert(collider, material);
+    }
+    /// Forgets a collider (call when removing it; unknown colliders fall back to Coulomb).
+    pub fn remove(&mut self, collider: ColliderHandle) -> Option<CreepMaterial> {
+        self.map.remove(&collider)
+    }
+    /// The material of a collider, if registered.
+    pub fn get(&self, collider: ColliderHandle) -> Option<&CreepMaterial> {
+        self.map.get(&collider)
+    }
+    /// Number of registered colliders.
+    pub fn len(&self) -> usize {
+        self.map.len()
+    }
+    /// Whether no collider is registered.
+    pub fn is_empty(&self) -> bool {
+        self.map.is_empty()
+    }
+}
+
+/// The contact surface a collider presents: a ball is a sphere, a cuboid or half-space a plane
+/// (its faces); other shapes are not supported by the Hertz contact of creep-law (`None`: the
+/// plugin falls back to Coulomb for them).
+pub fn surface_of(collider: &Collider) -> Option<Surface> {
+    let shape = collider.shape();
+    if let Some(ball) = shape.as_ball() {
+        return Some(Surface::Sphere(f64::from(ball.radius)));
+    }
+    if shape.as_cuboid().is_some() || shape.as_halfspace().is_some() {
+        return Some(Surface::Plane);
+    }
+    None
+}

@@ -1,0 +1,272 @@
+//! Rigid-regime tests: the plugin in Rapier's own solver, against closed forms.
+
+use creep_law::rolling_torque::RollingModel;
+use creep_law::{Material, PairMaterial, Surface, hertz, kalker};
+use creep_rapier::*;
+use rapier3d::prelude::*;
+
+const G: f64 = 9.81;
+
+/// A 0.1 m steel ball on a steel plane with gravity tilted by `theta` (an incline of angle
+/// theta, without the geometry of a tilted box). Returns the world and the ball.
+fn incline(dt: f32, theta: f64, fidelity: Fidelity) -> (CreepWorld, RigidBodyHandle) {
+    let mut w = CreepWorld::new(dt, CreepSettings::default()).unwrap();
+    w.physics.gravity = Vector::new((G * theta.sin()) as f32, (-G * theta.cos()) as f32, 0.0);
+    let steel =
+        CreepMaterial::new(Material::steel().with_friction(0.5).unwrap()).with_fidelity(fidelity);
+    w.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
+        ColliderBuilder::cuboid(1000.0, 0.5, 10.0).friction(0.5),
+        Some(steel),
+    );
+    let (ball, _) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, 0.1, 0.0))
+            .can_sleep(false),
+        ColliderBuilder::ball(0.1).density(7850.0).friction(0.5),
+        Some(steel),
+    );
+    (w, ball)
+}
+
+/// Runs `steps` steps and returns the position-based slip `(dx - R dtheta)/dx` over the second
+/// half (rotation about z accumulated from the orientation increments).
+fn rolling_slip(w: &mut CreepWorld, ball: RigidBodyHandle, steps: usize) -> f64 {
+    let r = 0.1f64;
+    let (mut x0, mut theta) = (0.0, 0.0);
+    for i in 0..steps {
+        let q_old = *w.physics.bodies[ball].rotation();
+        w.step().unwrap();
+        let b = &w.physics.bodies[ball];
+        let dq = *b.rotation() * q_old.inverse();
+        let ang = 2.0 * f64::from(dq.z).atan2(f64::from(dq.w));
+        if i == steps / 2 {
+            x0 = f64::from(b.translation().x);
+        } else if i > steps / 2 {
+            theta += ang;
+        }
+    }
+    let dx = f64::from(w.physics.bodies[ball].translation().x) - x0;
+    (dx + theta * r) / dx
+}
+
+#[test]
+fn incline_creep_slip_follows_kalker() {
+    // The creep slip the plugin adds to the engine's own (Coulomb run of the same scene and
+    // step) matches F_ss at the friction force the incline demands: Q = (2/7) m g sin(theta),
+    // P = m g cos(theta) (rolling without slip, Johnson 1985 §8.1 for the creep).
+    let theta = 20f64.to_radians();
+    let dt = 1.0 / 240.0;
+    let (mut wc, bc) = incline(dt, theta, Fidelity::Coulomb);
+    let (mut wk, bk) = incline(dt, theta, Fidelity::Creep);
+    let base = rolling_slip(&mut wc, bc, 240);
+    let creep = rolling_slip(&mut wk, bk, 240);
+    let m = f64::from(wk.physics.bodies[bk].mass());
+    let (p, q) = (m * G * theta.cos(), 2.0 / 7.0 * m * G * theta.sin());
+    let pair = PairMaterial::new(
+        &Material::steel(),
+        &Material::steel(),
+        Surface::Plane,
+        Surface::Sphere(0.1),
+    )
+    .unwrap()
+    .with_friction(0.5)
+    .unwrap();
+    let a = hertz::contact_radius(&pair, p);
+    let expect = kalker::steady_creepage(q / (0.5 * p), 0.5 * p, pair.g, a, pair.c11);
+    let measured = creep - base;
+    println!(
+        "incline: engine slip {base:+.3e}, creep run {creep:+.3e}, creep {measured:.4e} vs F_ss {expect:.4e}"
+    );
+    assert!(
+        (measured / expect - 1.0).abs() < 0.05,
+        "creep {measured:e} vs F_ss {expect:e}"
+    );
+    let counts = wk.hooks.counts();
+    assert_eq!(counts.creep, 1);
+    assert!(counts.creep_power > 0.0);
+    assert!(counts.max_loop_gain < 1.0);
+}
+
+#[test]
+fn anchor_drift_correction_stops_the_sinking() {
+    let run = |correct: bool| {
+        let settings = CreepSettings {
+            anchor_drift_correction: correct,
+            ..Default::default()
+        };
+        let (mut w, ball) = incline(1.0 / 60.0, 20f64.to_radians(), Fidelity::Coulomb);
+        w.hooks = CreepHooks::new(w.hooks.registry().clone(), settings).unwrap();
+        for _ in 0..60 {
+            w.step().unwrap();
+        }
+        f64::from(w.physics.bodies[ball].translation().y) - 0.1
+    };
+    let (with, without) = (run(true), run(false));
+    println!(
+        "sinking after 1 s at 1/60 s: {without:.2e} m without, {with:.2e} m with the correction"
+    );
+    assert!(without < -2e-3, "{without}");
+    assert!(with.abs() < 0.25 * without.abs(), "{with} vs {without}");
+}
+
+#[test]
+fn free_rolling_on_a_flat_floor_has_no_creep_resistance() {
+    // No tangential force is needed to roll on a level floor, so creep-friction alone leaves the
+    // speed as Coulomb does (the talk's point: creep needs a force).
+    let speed = |fidelity| {
+        let (mut w, ball) = incline(1.0 / 60.0, 0.0, fidelity);
+        let b = &mut w.physics.bodies[ball];
+        b.set_linvel(Vector::new(2.0, 0.0, 0.0), true);
+        b.set_angvel(Vector::new(0.0, 0.0, -20.0), true);
+        for _ in 0..600 {
+            w.step().unwrap();
+        }
+        f64::from(w.physics.bodies[ball].linvel().x)
+    };
+    let (c, k) = (speed(Fidelity::Coulomb), speed(Fidelity::Creep));
+    assert!((k / c - 1.0).abs() < 1e-4, "creep {k} vs coulomb {c}");
+    assert!((c - 2.0).abs() < 1e-2, "{c}");
+}
+
+#[test]
+fn constant_rolling_torque_stops_the_ball_at_the_closed_form_distance() {
+    // Ai et al. (2011) type A, M = mu_r R P: a ball rolling without slip decelerates at
+    // a = mu_r g R^2 m / (R^2 m + I) = (5/7) mu_r g, so it stops after 7 v0^2 / (10 mu_r g).
+    let (mu_r, v0) = (0.02, 1.0);
+    let mut w = CreepWorld::new(1.0 / 240.0, CreepSettings::default()).unwrap();
+    let steel = CreepMaterial::new(Material::steel())
+        .with_rolling(RollingModel::constant_torque(mu_r).unwrap());
+    w.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
+        ColliderBuilder::cuboid(1000.0, 0.5, 10.0),
+        Some(steel),
+    );
+    let (ball, _) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, 0.1, 0.0))
+            .linvel(Vector::new(v0, 0.0, 0.0))
+            .angvel(Vector::new(0.0, 0.0, -(v0 / 0.1) as f32))
+            .can_sleep(false),
+        ColliderBuilder::ball(0.1).density(7850.0),
+        Some(steel),
+    );
+    // Stops after v0 / ((5/7) mu_r g) = 7.3 s; run 9 s.
+    for _ in 0..240 * 9 {
+        w.step().unwrap();
+    }
+    let b = &w.physics.bodies[ball];
+    let x = f64::from(b.translation().x);
+    let expect = 7.0 * f64::from(v0).powi(2) / (10.0 * mu_r * G);
+    println!("stopping distance {x:.4} m vs {expect:.4} m");
+    assert!((x / expect - 1.0).abs() < 0.01, "{x} vs {expect}");
+    assert!(
+        f64::from(b.linvel().length()) < 1e-3,
+        "still moving: {:?}",
+        b.linvel()
+    );
+}
+
+#[test]
+fn unknown_colliders_fall_back_to_coulomb() {
+    let mut w = CreepWorld::new(1.0 / 60.0, CreepSettings::default()).unwrap();
+    let steel = CreepMaterial::new(Material::steel());
+    w.insert(
+        RigidBodyBuilder::fixed(),
+        ColliderBuilder::cuboid(10.0, 0.1, 10.0),
+        Some(steel),
+    );
+    // Opted in to the hook but not registered.
+    let c = ColliderBuilder::ball(0.1).active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+    w.insert(
+        RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.2, 0.0)),
+        c,
+        None,
+    );
+    // A capsule: not a shape creep-law models.
+    w.insert(
+        RigidBodyBuilder::dynamic().translation(Vector::new(1.0, 0.3, 0.0)),
+        ColliderBuilder::capsule_y(0.1, 0.1),
+        Some(steel),
+    );
+    let mut seen = StepCounts::default();
+    for _ in 0..30 {
+        let c = w.step().unwrap();
+        seen.coulomb_unregistered += c.coulomb_unregistered;
+        seen.coulomb_unsupported += c.coulomb_unsupported;
+    }
+    assert!(
+        seen.coulomb_unregistered > 0 && seen.coulomb_unsupported > 0,
+        "{seen:?}"
+    );
+}
+
+#[test]
+fn wrong_integration_parameters_are_a_clear_error() {
+    let mut w = CreepWorld::new(1.0 / 60.0, CreepSettings::default()).unwrap();
+    w.physics.integration_parameters.friction_model = FrictionModel::Simplified;
+    assert_eq!(w.step(), Err(PluginError::FrictionModel));
+    let mut p = IntegrationParameters::default();
+    configure_parameters(&mut p);
+    assert_eq!(check_parameters(&p), Ok(()));
+    p.contact_clustering = true;
+    assert_eq!(check_parameters(&p), Err(PluginError::ContactClustering));
+    p.contact_clustering = false;
+    p.dt = f32::NAN;
+    assert!(matches!(
+        check_parameters(&p),
+        Err(PluginError::TimeStep(_))
+    ));
+    let bad = CreepSettings {
+        auto_tolerance: -1.0,
+        ..Default::default()
+    };
+    assert!(CreepHooks::new(MaterialRegistry::new(), bad).is_err());
+}
+
+#[test]
+fn contact_records_stay_bounded_over_a_million_create_destroy_cycles() {
+    // Each cycle a new contact appears and the previous one ends: the sweep keeps memory flat.
+    let mut store = ContactStore::default();
+    let h = |i: u32| ColliderHandle::from_raw_parts(i, 0);
+    for i in 0..1_000_000u32 {
+        store.begin_step();
+        store.touch(ContactKey {
+            collider1: h(i),
+            collider2: h(i + 1),
+            feature1: i,
+            feature2: 0,
+        });
+        store.sweep();
+        assert!(store.len() <= 1);
+    }
+    store.begin_step();
+    store.sweep();
+    assert!(store.is_empty());
+}
+
+#[test]
+fn records_are_dropped_when_a_body_is_removed() {
+    let (mut w, ball) = incline(1.0 / 60.0, 0.3, Fidelity::Creep);
+    for _ in 0..10 {
+        w.step().unwrap();
+    }
+    assert_eq!(w.hooks.live_contacts(), 1);
+    w.remove_body(ball);
+    w.step().unwrap();
+    assert_eq!(w.hooks.live_contacts(), 0);
+}
+
+#[test]
+fn sphere_at_rest_does_not_creep_away() {
+    let (mut w, ball) = incline(1.0 / 60.0, 0.0, Fidelity::Creep);
+    for _ in 0..120 {
+        w.step().unwrap();
+    }
+    let x0 = w.physics.bodies[ball].translation();
+    for _ in 0..10_000 {
+        w.step().unwrap();
+    }
+    let d = (w.physics.bodies[ball].translation() - x0).length();
+    assert!(f64::from(d) < 1e-6, "drifted {d} m");
+}
