@@ -404,14 +404,11 @@ fn apply_rolling_impulse(bodies: &mut RigidBodySet, rec: &ContactRecord, dt: f64
         return; // already reversed or stopped: no torque pushes it further
     }
     let j = vf(axis * impulse);
-    if let Some(rb) = rec.bodies.1.and_then(|h| bodies.get_mut(h)) {
-        if rb.is_dynamic() {
-            rb.apply_torque_impulse(j, true);
-        }
-    }
-    if let Some(rb) = rec.bodies.0.and_then(|h| bodies.get_mut(h)) {
-        if rb.is_dynamic() {
-            rb.apply_torque_impulse(-j, true);
+    for (handle, jj) in [(rec.bodies.1, j), (rec.bodies.0, -j)] {
+        if let Some(rb) = handle.and_then(|h| bodies.get_mut(h))
+            && rb.is_dynamic()
+        {
+            rb.apply_torque_impulse(jj, true);
         }
     }
 }
