@@ -1,13 +1,14 @@
 //! The `creep` command-line tool: creep-friction contact laws and references, headless.
 mod law_cmd;
 mod ref_cmd;
+mod run_cmd;
 
 use clap::{Parser, Subcommand};
 
 /// Creep-friction: rolling resistance that is physically right.
 ///
-/// With no command, prints a short tour of the contact law (steady creep curve, a
-/// Cattaneo-Mindlin cycle, Kuhn's transient build-up).
+/// With no command, prints a short tour: the contact law (steady creep curve, a
+/// Cattaneo-Mindlin cycle, Kuhn's transient build-up) and the Rapier scenarios.
 #[derive(Debug, Parser)]
 #[command(name = "creep", version, about)]
 struct Cli {
@@ -22,6 +23,9 @@ enum Command {
     /// The contact law (creep-law) as CSV.
     #[command(subcommand)]
     Law(law_cmd::LawCommand),
+    /// Scenarios in Rapier with the creep-friction plugin, measured against closed forms.
+    #[command(subcommand)]
+    Run(run_cmd::RunCommand),
     /// Reference solutions (closed forms, FASTSIM, boundary elements) as CSV.
     #[command(subcommand, name = "ref")]
     Ref(ref_cmd::RefCommand),
@@ -32,7 +36,10 @@ fn main() -> std::process::ExitCode {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     let result = match &cli.command {
-        None | Some(Command::Demo) => law_cmd::tour(&mut out),
+        None | Some(Command::Demo) => {
+            law_cmd::tour(&mut out).and_then(|()| run_cmd::tour(&mut out))
+        }
+        Some(Command::Run(cmd)) => run_cmd::run(cmd, &mut out),
         Some(Command::Law(cmd)) => law_cmd::run(cmd, &mut out),
         Some(Command::Ref(cmd)) => ref_cmd::run(cmd, &mut out),
     };

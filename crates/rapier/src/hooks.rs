@@ -41,6 +41,11 @@
 //! (see the incline test), so measure creep against a Coulomb run of the same scene and step,
 //! and use dt <= 1/240 s where the absolute slip matters.
 //!
+//! Known limitation: with locked rotation axes against a kinematic or fixed body, Rapier's coupled
+//! 2x2 friction solve can become singular in one tangent direction and turn any tangential
+//! target (even rounding noise) into a saturated friction force there; give such bodies their
+//! rotations (the friction-drive scene locks translations only).
+//!
 //! Requirements (checked by [`check_parameters`]): `FrictionModel::Coulomb` (per-point friction
 //! impulses are only written then) and `contact_clustering = false`.
 
@@ -336,13 +341,15 @@ fn motion(
     }
 }
 
-/// Inverse effective mass of a contact along the unit direction `t` at `point`:
-/// `sum_i [1/m_i + (r_i x t) . I_i^-1 (r_i x t)]` over the dynamic bodies [1/kg].
-fn inverse_effective_mass(
+/// Inverse effective mass of a contact between the unit directions `t` and `u` at `point`:
+/// `sum_i [t . M_i^-1 u + (r_i x t) . I_i^-1 (r_i x u)]` over the dynamic bodies [1/kg] (the
+/// Delassus operator of the contact; `t = u` gives the inverse mass along `t`).
+fn inverse_mass(
     bodies: &RigidBodySet,
     handles: [Option<RigidBodyHandle>; 2],
     point: Vector,
     t: Vector,
+    u: Vector,
 ) -> f64 {
     let mut inv = 0.0;
     for h in handles {
@@ -354,9 +361,9 @@ fn inverse_effective_mass(
         }
         let mp = rb.mass_properties();
         let r = point - rb.center_of_mass();
-        let rt = r.cross(t);
-        inv += f64::from((mp.effective_inv_mass * t).dot(t))
-            + f64::from(rt.dot(mp.effective_world_inv_inertia * rt));
+        let (rt, ru) = (r.cross(t), r.cross(u));
+        inv += f64::from((mp.effective_inv_mass * t).dot(u))
+            + f64::from(rt.dot(mp.effective_world_inv_inertia * ru));
     }
     inv
 }
@@ -538,7 +545,7 @@ impl PhysicsHooks for CreepHooks {
             let s_prev = (q_prev.length() / mu_p).min(0.999);
             let dfdq = (1.0 - s_prev).powf(-2.0 / 3.0) / (pair.g * a * a * pair.c11);
             let t_dir = (q_meas - q_prev).try_normalize().or(dir).unwrap_or(Vec3::X);
-            let inv_m = inverse_effective_mass(bodies, [h1, h2], vf(c), vf(t_dir));
+            let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(t_dir), vf(t_dir));
             let gain = if inv_m > 0.0 {
                 roll * dfdq / (inv_m * dt)
             } else {

@@ -146,7 +146,7 @@ fn constant_rolling_torque_stops_the_ball_at_the_closed_form_distance() {
         RigidBodyBuilder::dynamic()
             .translation(Vector::new(0.0, 0.1, 0.0))
             .linvel(Vector::new(v0, 0.0, 0.0))
-            .angvel(Vector::new(0.0, 0.0, -(v0 / 0.1) as f32))
+            .angvel(Vector::new(0.0, 0.0, -(v0 / 0.1)))
             .can_sleep(false),
         ColliderBuilder::ball(0.1).density(7850.0),
         Some(steel),

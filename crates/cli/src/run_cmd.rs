@@ -1,0 +1,263 @@
+//! `creep run ...`: the scenarios of crate `creep-scenes`, measured against their closed forms.
+
+use std::io::Write;
+
+use clap::Subcommand;
+use creep_law::Material;
+use creep_scenes::{cue_ball, free_rolling, friction_drive, incline};
+
+type Res = Result<(), Box<dyn std::error::Error>>;
+
+/// Scenarios (Rapier worlds with the creep-friction plugin).
+#[derive(Debug, Subcommand)]
+pub enum RunCommand {
+    /// A 0.1 m steel ball rolling down an incline: acceleration vs (5/7) g sin(theta), creep slip
+    /// vs Kalker's F_ss.
+    Incline {
+        /// Incline angle [degrees].
+        #[arg(long, default_value_t = 20.0)]
+        theta_deg: f64,
+        /// Time step [s].
+        #[arg(long, default_value_t = 1.0 / 240.0)]
+        dt: f64,
+    },
+    /// A driven steel sphere turning a braked one: the output lags by the creepage, swept over
+    /// the brake torque up to slip.
+    FrictionDrive {
+        /// Print CSV (`brake_torque,p,q,q_over_mu_p,contact_radius,g,nu,mu,creepage_measured,creepage_expected`).
+        #[arg(long)]
+        csv: bool,
+        /// Brake torques as fractions of the slip torque mu P R, comma separated, in [0, 1).
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,0.94"
+        )]
+        ratios: Vec<f64>,
+        /// Time step [s].
+        #[arg(long, default_value_t = 1.0 / 240.0)]
+        dt: f64,
+    },
+    /// A steel ball rolling freely on a level floor for 10 s: creep-friction adds no resistance.
+    FreeRolling,
+    /// A cue ball launched sliding: slip phase and final speed vs the closed forms.
+    CueBall,
+}
+
+/// Runs one scenario.
+pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
+    match cmd {
+        RunCommand::Incline { theta_deg, dt } => {
+            let p = incline::InclineParams {
+                theta: theta_deg.to_radians(),
+                dt: *dt,
+                ..Default::default()
+            };
+            let r = incline::run(&p)?;
+            writeln!(
+                out,
+                "incline {theta_deg} deg, 0.1 m steel ball, mu = 0.5, dt = {dt:.5} s; Q/(mu P) = {:.3}",
+                r.q_over_mu_p
+            )?;
+            writeln!(
+                out,
+                "  quantity                      measured       expected     error"
+            )?;
+            row(
+                out,
+                "acceleration [m/s^2]",
+                r.creep.acceleration,
+                r.acceleration_expected,
+            )?;
+            row(
+                out,
+                "creep slip (creep - Coulomb)",
+                r.creepage_measured,
+                r.creepage_expected,
+            )?;
+            writeln!(
+                out,
+                "  engine's own slip (Coulomb)   {:+.4e}",
+                r.coulomb.slip
+            )?;
+        }
+        RunCommand::FrictionDrive { csv, ratios, dt } => {
+            let p = friction_drive::DriveParams {
+                dt: *dt,
+                ..Default::default()
+            };
+            if let Some(bad) = ratios.iter().find(|r| !(**r >= 0.0 && **r < 1.0)) {
+                return Err(format!("--ratios must be in [0, 1), got {bad}").into());
+            }
+            let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
+            let slip_torque = p.material.friction() * m * incline::G * p.radius;
+            let torques: Vec<f64> = ratios.iter().map(|r| r * slip_torque).collect();
+            let rows = friction_drive::run(&p, &torques)?;
+            if *csv {
+                writeln!(
+                    out,
+                    "brake_torque,p,q,q_over_mu_p,contact_radius,g,nu,mu,creepage_measured,creepage_expected"
+                )?;
+                for r in rows {
+                    writeln!(
+                        out,
+                        "{},{},{},{},{},{},{},{},{},{}",
+                        r.brake_torque,
+                        r.p,
+                        r.q,
+                        r.q_over_mu_p,
+                        r.contact_radius,
+                        r.g,
+                        r.nu,
+                        r.mu,
+                        r.creepage_measured,
+                        r.creepage_expected
+                    )?;
+                }
+            } else {
+                writeln!(
+                    out,
+                    "friction drive: 0.05 m steel spheres, 10 rad/s, P = m g, dt = {dt:.5} s"
+                )?;
+                writeln!(
+                    out,
+                    "  Q/(mu P)   creepage measured   Kalker F_ss     error    (engine's own slip)"
+                )?;
+                for r in rows {
+                    writeln!(
+                        out,
+                        "  {:8.3}   {:17.4e}   {:11.4e}   {:+7.2}%   ({:+.2e})",
+                        r.q_over_mu_p,
+                        r.creepage_measured,
+                        r.creepage_expected,
+                        100.0 * (r.creepage_measured / r.creepage_expected - 1.0),
+                        r.creepage_engine
+                    )?;
+                }
+            }
+        }
+        RunCommand::FreeRolling => {
+            let r = free_rolling::run(Material::steel(), 2.0, 1.0 / 60.0, 10.0)?;
+            writeln!(
+                out,
+                "free rolling 10 s at 1/60 s from 2 m/s: Coulomb {:.6} m/s, creep {:.6} m/s (difference {:+.1e})",
+                r.coulomb_speed,
+                r.creep_speed,
+                r.creep_speed / r.coulomb_speed - 1.0
+            )?;
+        }
+        RunCommand::CueBall => {
+            let r = cue_ball::run(Material::steel(), 2.0, 1.0 / 240.0)?;
+            writeln!(out, "cue ball from 2 m/s, mu = 0.3, dt = 1/240 s")?;
+            row(
+                out,
+                "final speed (creep) [m/s]",
+                r.creep.final_speed,
+                r.final_speed_expected,
+            )?;
+            row(
+                out,
+                "final speed (Coulomb) [m/s]",
+                r.coulomb.final_speed,
+                r.final_speed_expected,
+            )?;
+            row(
+                out,
+                "slip time (creep) [s]",
+                r.creep.slip_time,
+                r.slip_time_expected,
+            )?;
+        }
+    }
+    Ok(())
+}
+
+fn row(out: &mut dyn Write, name: &str, measured: f64, expected: f64) -> Res {
+    writeln!(
+        out,
+        "  {name:<28}  {measured:12.5e}   {expected:12.5e}   {:+.3}%",
+        100.0 * (measured / expected - 1.0)
+    )?;
+    Ok(())
+}
+
+/// The scenario part of the default tour.
+pub fn tour(out: &mut dyn Write) -> Res {
+    writeln!(
+        out,
+        "4. In Rapier (crate creep-rapier, rigid regime), measured against closed forms:"
+    )?;
+    run(
+        &RunCommand::Incline {
+            theta_deg: 20.0,
+            dt: 1.0 / 240.0,
+        },
+        out,
+    )?;
+    run(
+        &RunCommand::FrictionDrive {
+            csv: false,
+            ratios: vec![0.2, 0.5, 0.8, 0.94],
+            dt: 1.0 / 240.0,
+        },
+        out,
+    )?;
+    run(&RunCommand::FreeRolling, out)?;
+    writeln!(out)?;
+    writeln!(
+        out,
+        "More: creep run incline|friction-drive [--csv]|free-rolling|cue-ball; creep law ...; creep ref ..."
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn friction_drive_csv_has_the_documented_header() {
+        let mut buf = Vec::new();
+        run(
+            &RunCommand::FrictionDrive {
+                csv: true,
+                ratios: vec![0.5],
+                dt: 1.0 / 240.0,
+            },
+            &mut buf,
+        )
+        .unwrap();
+        let text = String::from_utf8(buf).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next(),
+            Some(
+                "brake_torque,p,q,q_over_mu_p,contact_radius,g,nu,mu,creepage_measured,creepage_expected"
+            )
+        );
+        let cols: Vec<f64> = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(|c| c.parse().unwrap())
+            .collect();
+        assert_eq!(cols.len(), 10);
+        assert!((cols[8] / cols[9] - 1.0).abs() < 0.01, "{cols:?}");
+    }
+
+    #[test]
+    fn bad_ratio_is_an_error() {
+        let mut buf = Vec::new();
+        assert!(
+            run(
+                &RunCommand::FrictionDrive {
+                    csv: true,
+                    ratios: vec![1.2],
+                    dt: 1.0 / 240.0
+                },
+                &mut buf
+            )
+            .is_err()
+        );
+    }
+}

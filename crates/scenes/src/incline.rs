@@ -1,0 +1,144 @@
+//! A sphere rolling down an incline. Without creep (Coulomb, rolling without slip) its
+//! acceleration is `(5/7) g sin(theta)` (a uniform solid sphere: `I = (2/5) m R^2`); the friction
+//! force is `Q = (2/7) m g sin(theta)` at `P = m g cos(theta)`. With creep-friction the contact
+//! also slips forward by Kalker's steady creepage `F_ss(Q/(mu P))` per unit rolled distance.
+//! The incline is a fixed flat cuboid with the gravity tilted by `theta`.
+
+use creep_law::{Material, PairMaterial, Surface, hertz, kalker};
+use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld, Fidelity};
+use rapier3d::prelude::*;
+
+use crate::measure::{RollingMeter, SceneError, positive};
+
+/// Standard gravity [m/s^2].
+pub const G: f64 = 9.81;
+
+/// Parameters of the incline scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InclineParams {
+    /// Incline angle theta [rad], in (0, atan(7 mu / 2)) for rolling.
+    pub theta: f64,
+    /// Sphere radius R [m].
+    pub radius: f64,
+    /// Material of ball and incline (G, nu, rho; friction mu).
+    pub material: Material,
+    /// Time step [s].
+    pub dt: f64,
+    /// Duration [s]; slip is measured over the second half.
+    pub duration: f64,
+}
+
+impl Default for InclineParams {
+    fn default() -> Self {
+        Self {
+            theta: 20f64.to_radians(),
+            radius: 0.1,
+            material: Material::steel()
+                .with_friction(0.5)
+                .unwrap_or_else(|_| Material::steel()),
+            dt: 1.0 / 240.0,
+            duration: 1.0,
+        }
+    }
+}
+
+/// What the incline measured, for one fidelity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InclineRun {
+    /// Mean acceleration along the incline [m/s^2].
+    pub acceleration: f64,
+    /// Slip over the second half, `(dx - R dtheta) / dx` from positions [-].
+    pub slip: f64,
+}
+
+/// The incline measured with Coulomb and with creep-friction, and the closed forms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InclineResult {
+    /// Coulomb run (Rapier's own rolling, including its spurious slip).
+    pub coulomb: InclineRun,
+    /// Creep-friction run.
+    pub creep: InclineRun,
+    /// `(5/7) g sin(theta)` [m/s^2].
+    pub acceleration_expected: f64,
+    /// Creep slip measured: creep run minus Coulomb run [-].
+    pub creepage_measured: f64,
+    /// Kalker's `F_ss(Q/(mu P))` [-].
+    pub creepage_expected: f64,
+    /// `Q / (mu P)` the incline demands [-].
+    pub q_over_mu_p: f64,
+}
+
+fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneError> {
+    let mut w = CreepWorld::new(p.dt as f32, CreepSettings::default())?;
+    w.physics.gravity = Vector::new((G * p.theta.sin()) as f32, (-G * p.theta.cos()) as f32, 0.0);
+    let mat = CreepMaterial::new(p.material).with_fidelity(fidelity);
+    let mu = p.material.friction() as f32;
+    w.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
+        ColliderBuilder::cuboid(1.0e4, 0.5, 10.0).friction(mu),
+        Some(mat),
+    );
+    let r = p.radius as f32;
+    let (ball, _) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, r, 0.0))
+            .can_sleep(false),
+        ColliderBuilder::ball(r)
+            .density(p.material.density() as f32)
+            .friction(mu),
+        Some(mat),
+    );
+    let steps = (p.duration / p.dt).round() as usize;
+    let mut meter = RollingMeter::default();
+    let mut x0 = 0.0;
+    for i in 0..steps {
+        w.step()?;
+        let b = &w.physics.bodies[ball];
+        if i == steps / 2 {
+            x0 = f64::from(b.translation().x);
+            meter = RollingMeter::default();
+        }
+        meter.update(*b.rotation(), Vector::Z);
+    }
+    let b = &w.physics.bodies[ball];
+    let dx = f64::from(b.translation().x) - x0;
+    let t = steps as f64 * p.dt;
+    Ok(InclineRun {
+        acceleration: f64::from(b.linvel().x) / t,
+        slip: (dx + meter.angle * p.radius) / dx,
+    })
+}
+
+/// Runs the incline with Coulomb and with creep-friction (same scene, same step).
+pub fn run(p: &InclineParams) -> Result<InclineResult, SceneError> {
+    positive("radius", p.radius)?;
+    positive("dt", p.dt)?;
+    positive("duration", p.duration)?;
+    let mu = p.material.friction();
+    if !(p.theta > 0.0 && p.theta.tan() < 3.5 * mu) {
+        return Err(SceneError::Parameter(format!(
+            "theta = {} rad: the ball rolls only for 0 < tan(theta) < 7 mu / 2 = {}",
+            p.theta,
+            3.5 * mu
+        )));
+    }
+    let coulomb = run_one(p, Fidelity::Coulomb)?;
+    let creep = run_one(p, Fidelity::Creep)?;
+    let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
+    let (pn, q) = (m * G * p.theta.cos(), 2.0 / 7.0 * m * G * p.theta.sin());
+    let pair = PairMaterial::new(
+        &p.material,
+        &p.material,
+        Surface::Plane,
+        Surface::Sphere(p.radius),
+    )?;
+    let a = hertz::contact_radius(&pair, pn);
+    Ok(InclineResult {
+        coulomb,
+        creep,
+        acceleration_expected: 5.0 / 7.0 * G * p.theta.sin(),
+        creepage_measured: creep.slip - coulomb.slip,
+        creepage_expected: kalker::steady_creepage(q / (mu * pn), mu * pn, pair.g, a, pair.c11),
+        q_over_mu_p: q / (mu * pn),
+    })
+}

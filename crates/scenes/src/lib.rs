@@ -1,0 +1,15 @@
+//! # creep-scenes
+//!
+//! The scenarios of the project, each a function that builds a Rapier world with the
+//! creep-friction plugin, runs it, and returns measurements next to their closed-form
+//! expectation. Tests, the `creep` CLI, benchmarks and demos call the same code.
+#![forbid(unsafe_code)]
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod cue_ball;
+pub mod free_rolling;
+pub mod friction_drive;
+pub mod incline;
+mod measure;
+
+pub use measure::{RollingMeter, SceneError};

@@ -1,0 +1,65 @@
+//! The scenarios against their closed forms (headless Rapier stepping).
+
+use creep_law::Material;
+use creep_scenes::{cue_ball, free_rolling, friction_drive, incline};
+
+#[test]
+fn incline_rolls_at_five_sevenths_and_creeps_by_kalker() {
+    let r = incline::run(&incline::InclineParams::default()).unwrap();
+    let acc_err = r.creep.acceleration / r.acceleration_expected - 1.0;
+    let creep_err = r.creepage_measured / r.creepage_expected - 1.0;
+    println!(
+        "incline: acceleration error {acc_err:+.2e}, creep {:.4e} vs {:.4e} ({creep_err:+.2e})",
+        r.creepage_measured, r.creepage_expected
+    );
+    assert!(acc_err.abs() < 1e-3, "{acc_err}");
+    assert!(creep_err.abs() < 0.01, "{creep_err}");
+}
+
+#[test]
+fn friction_drive_creep_curve_matches_kalker_below_095() {
+    let p = friction_drive::DriveParams::default();
+    let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
+    let mu_p = p.material.friction() * m * incline::G;
+    let torques: Vec<f64> = [0.1, 0.5, 0.9, 0.94]
+        .iter()
+        .map(|s| s * mu_p * p.radius)
+        .collect();
+    for row in friction_drive::run(&p, &torques).unwrap() {
+        let err = row.creepage_measured / row.creepage_expected - 1.0;
+        println!(
+            "drive Q/(mu P) = {:.2}: creepage {:.4e} vs F_ss {:.4e} ({err:+.2e})",
+            row.q_over_mu_p, row.creepage_measured, row.creepage_expected
+        );
+        assert!(err.abs() < 0.01, "Q/(mu P) = {}: {err}", row.q_over_mu_p);
+    }
+    assert!(friction_drive::run(&p, &[2.0 * mu_p * p.radius]).is_err());
+}
+
+#[test]
+fn free_rolling_has_no_creep_resistance() {
+    let r = free_rolling::run(Material::steel(), 2.0, 1.0 / 60.0, 10.0).unwrap();
+    let rel = r.creep_speed / r.coulomb_speed - 1.0;
+    println!(
+        "free rolling 10 s: creep {} vs coulomb {} ({rel:+.1e})",
+        r.creep_speed, r.coulomb_speed
+    );
+    assert!(rel.abs() < 1e-4, "{rel}");
+}
+
+#[test]
+fn cue_ball_slides_then_rolls_as_coulomb() {
+    let r = cue_ball::run(Material::steel(), 2.0, 1.0 / 240.0).unwrap();
+    for run in [r.coulomb, r.creep] {
+        assert!(
+            (run.final_speed / r.final_speed_expected - 1.0).abs() < 0.01,
+            "{run:?}"
+        );
+        assert!(
+            (run.slip_time / r.slip_time_expected - 1.0).abs() < 0.01,
+            "{run:?} vs {}",
+            r.slip_time_expected
+        );
+    }
+    assert!((r.creep.final_speed / r.coulomb.final_speed - 1.0).abs() < 1e-4);
+}
