@@ -15,14 +15,18 @@
 //! the Coulomb limit the implicit friction solve enforces that slip; at the limit it slides.
 //!
 //! # Stability of the feedback Q -> slip -> Q
-//! The slip target depends on the force the solver then produces. Linearised, one step maps a
-//! force error `e` to `-g e` with the loop gain `g = m_t |v_roll| dF_ss/dQ / dt`, where `m_t` is
-//! the contact's effective mass along `Q` and `dF_ss/dQ = (1 - s)^(-2/3) / (G a^2 C11)`. The
-//! explicit loop is unstable for `g > 1` (light bodies, soft materials, long steps, fast spin,
-//! `s -> 1`). The hook therefore relaxes the force it uses, `Q_used += (Q_measured - Q_used) /
-//! (1 + g)`, the implicit (backward-Euler) solution of the linearised local relation: the
-//! error then contracts by `g / (1 + g) < 1` for every `g >= 0`, and the steady state (where
-//! `Q_measured = Q_used`) is unchanged. The largest `g` of each step is reported.
+//! The slip target depends on the force the solver then transmits. Explicitly (target from the
+//! last force), one step maps a force error `e` to `-g e` with the loop gain
+//! `g = m_t |v_roll| dF_ss/dQ / dt` (`m_t` the contact's effective mass along `Q`,
+//! `dF_ss/dQ = (1 - s)^(-2/3) / (G a^2 C11)`), unstable for `g > 1` (soft materials, light
+//! bodies, long steps, fast spin, `s -> 1`). The hook instead solves the local relation
+//! implicitly: had the last step's target been `tau` instead of `tau_prev`, the solver would
+//! have transmitted `Q* - (m_t/dt) tau` with `Q* = Q_measured + (m_t/dt) tau_prev`; with
+//! `tau = F_ss(|Q|/(mu P)) |v_roll| Q/|Q|` this is the scalar equation
+//! `|Q| + (m_t |v_roll| / dt) F_ss(|Q|) = |Q*|` along `Q*`, whose root is unique (`F_ss`
+//! increases) and is found by safeguarded Newton iterations, capped at `mu P`. It holds for any
+//! `g`; in steady state (`tau = tau_prev`) it returns the measured force. The largest `g` of each
+//! step is reported in [`StepCounts::max_loop_gain`].
 //!
 //! # Anchor-drift correction
 //! Rapier stores each solver contact's anchor in its body's frame, so within a step the anchor of
@@ -167,6 +171,10 @@ pub struct ContactRecord {
     pub w_roll: Vec3,
     /// Normal force of the previous step, total normal impulse / dt [N].
     pub p: f64,
+    /// Creep slip target set in the last step [m/s] (world frame).
+    pub target: Vec3,
+    /// Contact normal of the last step (the basis of its friction impulse).
+    pub normal: Vec3,
     /// Step in which the record was last seen.
     generation: u64,
 }
@@ -495,6 +503,8 @@ impl PhysicsHooks for CreepHooks {
             rec.bodies = (h1, h2);
             let p_force = f64::from(point.data.impulse) / dt;
             rec.p = p_force;
+            let n_prev_step = rec.normal;
+            rec.normal = n;
             let roll = rates.v_roll.length();
 
             // Contact-torque rolling resistance (computed here, applied in end_step).
@@ -517,12 +527,14 @@ impl PhysicsHooks for CreepHooks {
 
             if fidelity == Fidelity::Coulomb {
                 counts.coulomb_requested += 1;
+                rec.target = Vec3::ZERO;
                 continue;
             }
             if !(p_force > 0.0) || !(roll > 0.0) || !(mu > 0.0) {
                 // New contact (no impulse yet), no rolling, or frictionless: nothing creeps.
                 rec.q_used = Vec3::ZERO;
                 counts.coulomb_auto += 1;
+                rec.target = Vec3::ZERO;
                 continue;
             }
             let a = hertz::contact_radius(&pair, p_force);
@@ -531,43 +543,108 @@ impl PhysicsHooks for CreepHooks {
             if fidelity == Fidelity::Auto && bound < self.settings.auto_tolerance {
                 counts.coulomb_auto += 1;
                 rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
                 continue;
             }
-            // Measured friction force of the last step: magnitude from the step's total
-            // impulse, direction from its world-space warm-start impulse (on body 1).
+            // Measured friction force of the last step, on body 1: the step's total tangent
+            // impulse in the solver's tangent basis, built from the normal of that step.
+            // (`warmstart_tangent_world` holds the last substep only and reads zero on most
+            // rolling steps: a direction taken from it never follows a reversal.)
             let ti = point.data.tangent_impulse;
-            let q_abs = f64::from(ti.x).hypot(f64::from(ti.y)) / dt;
-            let dir = v3(point.data.warmstart_tangent_world)
-                .reject(n)
-                .try_normalize()
-                .or_else(|| rec.q_used.reject(n).try_normalize());
-            let q_meas = dir.map(|d| d * q_abs).unwrap_or(Vec3::ZERO);
-            // Implicit relaxation of the feedback (module docs).
-            let q_prev = rec.q_used.reject(n);
-            let s_prev = (q_prev.length() / mu_p).min(0.999);
-            let dfdq = (1.0 - s_prev).powf(-2.0 / 3.0) / (pair.g * a * a * pair.c11);
-            let t_dir = (q_meas - q_prev).try_normalize().or(dir).unwrap_or(Vec3::X);
-            let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(t_dir), vf(t_dir));
-            let gain = if inv_m > 0.0 {
-                roll * dfdq / (inv_m * dt)
+            let n_prev = if n_prev_step == Vec3::ZERO {
+                n
             } else {
-                0.0
+                n_prev_step
             };
-            counts.max_loop_gain = counts.max_loop_gain.max(gain);
-            let q_used = q_prev + (q_meas - q_prev) * (1.0 / (1.0 + gain));
-            rec.q_used = q_used;
-            let Some(q_hat) = q_used.try_normalize() else {
+            let (t1, t2) = solver_tangents(n_prev);
+            let q_meas = (t1 * f64::from(ti.x) + t2 * f64::from(ti.y)).reject(n) * (1.0 / dt);
+            // Local implicit solve of the creep relation (module docs): the force the solver
+            // would transmit for a target tau is Q* - (m_t/dt) tau, with
+            // Q* = Q_meas + (m_t/dt) tau_prev; tau = F_ss(|Q|/mu P) |v_roll| Q/|Q|.
+            let probe = (q_meas + rec.target.reject(n))
+                .try_normalize()
+                .unwrap_or(Vec3::X);
+            let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(probe), vf(probe));
+            let q_star = if inv_m > 0.0 {
+                q_meas + rec.target.reject(n) * (1.0 / (inv_m * dt))
+            } else {
+                q_meas
+            };
+            let Some(q_hat) = q_star.try_normalize() else {
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
                 counts.coulomb_auto += 1;
                 continue;
             };
-            let s = q_used.length() / mu_p;
-            let slip = kalker::steady_creepage(s, mu_p, pair.g, a, pair.c11) * roll;
+            let k = if inv_m > 0.0 {
+                roll / (inv_m * dt)
+            } else {
+                0.0
+            };
+            let q_abs = solve_creep_force(q_star.length(), k, mu_p, pair.g * a * a * pair.c11);
+            let gain = k * (1.0 - (q_abs / mu_p).min(0.999)).powf(-2.0 / 3.0)
+                / (pair.g * a * a * pair.c11);
+            counts.max_loop_gain = counts.max_loop_gain.max(gain);
+            let q_used = q_hat * q_abs;
+            rec.q_used = q_used;
+            let slip = kalker::steady_creepage(q_abs / mu_p, mu_p, pair.g, a, pair.c11) * roll;
             let target = q_hat * slip;
+            rec.target = target;
             counts.creep += 1;
             counts.creep_power += q_used.dot(target).max(0.0);
             sc.tangent_velocity = vf(target);
         }
     }
+}
+
+/// The friction basis of Rapier's Coulomb contact constraint for a manifold of normal `n`
+/// (rapier3d 0.36 `compute_tangent_contact_directions`: `t1 = orthonormal_vector(-n)`, the
+/// branchless basis of Duff et al. 2017, `t2 = -n x t1`); `ContactData::tangent_impulse` is in it.
+fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
+    let d = -n;
+    let sign = 1f64.copysign(d.z);
+    let a = -1.0 / (sign + d.z);
+    let b = d.x * d.y * a;
+    let t1 = Vec3::new(b, sign + d.y * d.y * a, -d.y);
+    (t1, d.cross(t1))
+}
+
+/// Solves `q + k F(q) = q_star` for `0 <= q <= mu P` (Newton with bisection safeguard), with
+/// `F(q) = 3 mu P/(G a^2 C11) [1 - (1 - q/(mu P))^(1/3)]` Kalker's steady creepage
+/// (`gac = G a^2 C11` [N]) and `k = m_t |v_roll| / dt` [N]: the force a rolling contact of
+/// effective mass `m_t` transmits when its slip target follows the force it transmits. `F` is
+/// increasing, so the root is unique; beyond `mu P` the contact slides at `mu P`.
+fn solve_creep_force(q_star: f64, k: f64, mu_p: f64, gac: f64) -> f64 {
+    let f = |q: f64| 3.0 * mu_p / gac * (1.0 - (1.0 - (q / mu_p).min(1.0)).cbrt());
+    let hi0 = q_star.min(mu_p);
+    if !(k > 0.0) || !(hi0 > 0.0) {
+        return hi0.max(0.0);
+    }
+    let h = |q: f64| q + k * f(q) - q_star;
+    if h(hi0) <= 0.0 {
+        return hi0;
+    }
+    let (mut lo, mut hi) = (0.0, hi0);
+    let mut q = hi0 / (1.0 + k / gac); // the linear-theory root as a start
+    for _ in 0..60 {
+        let hq = h(q);
+        if hq > 0.0 {
+            hi = q
+        } else {
+            lo = q
+        }
+        let s = (q / mu_p).min(0.999_999);
+        let dh = 1.0 + k / gac * (1.0 - s).powf(-2.0 / 3.0);
+        let mut next = q - hq / dh;
+        if !(next > lo && next < hi) {
+            next = 0.5 * (lo + hi);
+        }
+        if (next - q).abs() <= 1e-14 * hi0 {
+            return next;
+        }
+        q = next;
+    }
+    q
 }
 
 /// Mean spurious change of the separation along `n` caused by a body's contact anchor riding
