@@ -7,7 +7,9 @@
 //!   plugin's integration parameters: Coulomb friction, no clustering);
 //! * `flag_only`: the same flags as with the plugin (`MODIFY_SOLVER_CONTACTS` on every
 //!   collider) but Rapier's no-op hooks `()`: the cost of the lost contact recycling alone;
-//! * `plugin_auto`: every collider registered, `Fidelity::Auto` (the default);
+//! * `plugin_auto`: every collider registered, `Fidelity::Auto` (the default), with the default
+//!   activation speed (bodies slower than 1e-2 m/s keep their hooks off and their recycling);
+//! * `plugin_auto_always_on`: the same with `activation_speed = 0` (every hook on);
 //! * `plugin_creep`: every collider registered, `Fidelity::Creep` (every contact on the creep
 //!   path);
 //! * `plugin_coulomb`: every collider registered, `Fidelity::Coulomb`: the hook is called and
@@ -142,6 +144,12 @@ fn bench(c: &mut Criterion) {
     let mut auto = with_fidelity(&w, Fidelity::Auto);
     let mut creep = with_fidelity(&w, Fidelity::Creep);
     let mut coulomb = with_fidelity(&w, Fidelity::Coulomb);
+    let mut auto_on = with_fidelity(&w, Fidelity::Auto);
+    let settings = CreepSettings {
+        activation_speed: 0.0,
+        ..*w.hooks.settings()
+    };
+    auto_on.hooks = CreepHooks::new(auto_on.hooks.registry().clone(), settings).unwrap();
     // A few steps so that every copy has rebuilt its workspace (and `plain` its recycling).
     for _ in 0..5 {
         plain.step();
@@ -149,6 +157,7 @@ fn bench(c: &mut Criterion) {
         auto.step().unwrap();
         creep.step().unwrap();
         coulomb.step().unwrap();
+        auto_on.step().unwrap();
     }
     let counts = auto.step().unwrap();
     eprintln!("plugin_auto counts: {counts:?}");
@@ -161,6 +170,9 @@ fn bench(c: &mut Criterion) {
     g.bench_function("plugin_auto", |b| b.iter(|| auto.step().unwrap()));
     g.bench_function("plugin_creep", |b| b.iter(|| creep.step().unwrap()));
     g.bench_function("plugin_coulomb", |b| b.iter(|| coulomb.step().unwrap()));
+    g.bench_function("plugin_auto_always_on", |b| {
+        b.iter(|| auto_on.step().unwrap())
+    });
     g.finish();
 }
 

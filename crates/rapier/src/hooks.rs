@@ -96,6 +96,14 @@ pub struct CreepSettings {
     /// Compensate the contact-anchor drift of rolling spheres within a step (see the module
     /// docs; default true).
     pub anchor_drift_correction: bool,
+    /// Speed [m/s] below which a body's `Auto` and `Coulomb` colliders switch the hook off before
+    /// a step ([`CreepHooks::update_activation`]): its contacts then stay plain Coulomb and keep
+    /// Rapier's contact recycling (a collider with `MODIFY_SOLVER_CONTACTS` loses it). The speed
+    /// is `|v| + |w| r` with `r` the collider's bounding radius; a contact moving at it creeps at
+    /// most `F_ss(1)` times it (1e-5..1e-2 for steel to rubber). `Creep` colliders and colliders
+    /// with a contact-torque rolling model are always on.
+    /// Default 1e-2 m/s; 0 keeps every hook on.
+    pub activation_speed: f64,
 }
 
 impl Default for CreepSettings {
@@ -103,6 +111,7 @@ impl Default for CreepSettings {
         Self {
             auto_tolerance: 1e-7,
             anchor_drift_correction: true,
+            activation_speed: 1e-2,
         }
     }
 }
@@ -114,6 +123,13 @@ impl CreepSettings {
             return Err(PluginError::Setting {
                 name: "auto_tolerance",
                 value: self.auto_tolerance,
+                why: "must be finite and >= 0 [m/s]",
+            });
+        }
+        if !(self.activation_speed >= 0.0 && self.activation_speed.is_finite()) {
+            return Err(PluginError::Setting {
+                name: "activation_speed",
+                value: self.activation_speed,
                 why: "must be finite and >= 0 [m/s]",
             });
         }
@@ -140,6 +156,8 @@ pub struct StepCounts {
     pub creep_power: f64,
     /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
     pub max_loop_gain: f64,
+    /// Registered colliders whose hook was on for this step ([`CreepHooks::update_activation`]).
+    pub hooks_on: usize,
 }
 
 /// Stable identity of one contact point across steps: the collider pair and the two shape
@@ -274,6 +292,45 @@ impl CreepHooks {
         inner.store.begin_step();
         inner.counts = StepCounts::default();
         Ok(())
+    }
+
+    /// Call before each step (after [`CreepHooks::begin_step`]), with the world's bodies and
+    /// colliders: switches `ActiveHooks::MODIFY_SOLVER_CONTACTS` on for the registered colliders
+    /// whose body moves faster than [`CreepSettings::activation_speed`] (always for `Creep`
+    /// colliders) and off for the others, so that quiet contacts keep Rapier's contact recycling.
+    /// Returns how many are on. Unregistered colliders are left as they are.
+    pub fn update_activation(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+    ) -> usize {
+        let v_act = self.settings.activation_speed;
+        let mut on_count = 0;
+        for (&handle, mat) in self.registry.iter() {
+            let Some(co) = colliders.get_mut(handle) else {
+                continue;
+            };
+            let on = mat.fidelity == Fidelity::Creep
+                || matches!(mat.rolling, RollingResistance::Torque(_))
+                || v_act == 0.0
+                || co.parent().and_then(|h| bodies.get(h)).is_some_and(|rb| {
+                    let r = co.shape().compute_local_bounding_sphere().radius;
+                    rb.linvel().length() + rb.angvel().length() * r > v_act as f32
+                });
+            let flags = co.active_hooks();
+            let wanted = if on {
+                flags | ActiveHooks::MODIFY_SOLVER_CONTACTS
+            } else {
+                flags - ActiveHooks::MODIFY_SOLVER_CONTACTS
+            };
+            if wanted != flags {
+                co.set_active_hooks(wanted);
+            }
+            on_count += usize::from(on);
+        }
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        inner.counts.hooks_on = on_count;
+        on_count
     }
 
     /// Call after each step: applies the contact-torque rolling resistance computed in the step

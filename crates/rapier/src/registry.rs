@@ -90,6 +90,10 @@ impl MaterialRegistry {
     pub fn len(&self) -> usize {
         self.map.len()
     }
+    /// Iterates over the registered colliders.
+    pub fn iter(&self) -> impl Iterator<Item = (&ColliderHandle, &CreepMaterial)> {
+        self.map.iter()
+    }
     /// Whether no collider is registered.
     pub fn is_empty(&self) -> bool {
         self.map.is_empty()

@@ -78,6 +78,8 @@ impl CreepWorld {
     pub fn step(&mut self) -> Result<StepCounts, PluginError> {
         self.hooks
             .begin_step(&self.physics.integration_parameters)?;
+        self.hooks
+            .update_activation(&self.physics.bodies, &mut self.physics.colliders);
         self.physics.step_with_events(&self.hooks, &());
         self.hooks.end_step(&mut self.physics.bodies);
         Ok(self.hooks.counts())

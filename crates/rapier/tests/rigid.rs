@@ -183,11 +183,11 @@ fn unknown_colliders_fall_back_to_coulomb() {
         c,
         None,
     );
-    // A capsule: not a shape creep-law models.
+    // A capsule: not a shape creep-law models (Creep fidelity keeps its hook on at rest).
     w.insert(
         RigidBodyBuilder::dynamic().translation(Vector::new(1.0, 0.3, 0.0)),
         ColliderBuilder::capsule_y(0.1, 0.1),
-        Some(steel),
+        Some(steel.with_fidelity(Fidelity::Creep)),
     );
     let mut seen = StepCounts::default();
     for _ in 0..30 {
@@ -269,4 +269,34 @@ fn sphere_at_rest_does_not_creep_away() {
     }
     let d = (w.physics.bodies[ball].translation() - x0).length();
     assert!(f64::from(d) < 1e-6, "drifted {d} m");
+}
+
+#[test]
+fn quiet_bodies_switch_their_hooks_off_and_moving_ones_on() {
+    // A ball resting on a floor (Auto): below the activation speed its collider's hook is off,
+    // so its contacts keep Rapier's recycling; pushed, it comes back on and creeps.
+    let (mut w, ball) = incline(1.0 / 60.0, 0.0, Fidelity::Auto);
+    for _ in 0..120 {
+        w.step().unwrap();
+    }
+    assert_eq!(w.hooks.counts().hooks_on, 0);
+    let collider = w.physics.bodies[ball].colliders()[0];
+    assert!(
+        !w.physics.colliders[collider]
+            .active_hooks()
+            .contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+    );
+    w.physics.bodies[ball].set_linvel(Vector::new(1.0, 0.0, 0.0), true);
+    w.step().unwrap();
+    assert_eq!(w.hooks.counts().hooks_on, 1);
+    assert!(
+        w.physics.colliders[collider]
+            .active_hooks()
+            .contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+    );
+    let bad = CreepSettings {
+        activation_speed: f64::NAN,
+        ..Default::default()
+    };
+    assert!(CreepHooks::new(MaterialRegistry::new(), bad).is_err());
 }
