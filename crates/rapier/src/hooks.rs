@@ -307,7 +307,9 @@ impl CreepHooks {
         let v_act = self.settings.activation_speed;
         let mut on_count = 0;
         for (&handle, mat) in self.registry.iter() {
-            let Some(co) = colliders.get_mut(handle) else {
+            // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
+            // re-process it (a large cost if done for every collider every step).
+            let Some(co) = colliders.get(handle) else {
                 continue;
             };
             let on = mat.fidelity == Fidelity::Creep
@@ -323,7 +325,9 @@ impl CreepHooks {
             } else {
                 flags - ActiveHooks::MODIFY_SOLVER_CONTACTS
             };
-            if wanted != flags {
+            if wanted != flags
+                && let Some(co) = colliders.get_mut(handle)
+            {
                 co.set_active_hooks(wanted);
             }
             on_count += usize::from(on);
