@@ -197,10 +197,41 @@ pub struct ContactRecord {
     generation: u64,
 }
 
+/// A fast, non-cryptographic hasher for [`ContactKey`]s (the multiply-rotate scheme of
+/// rustc's FxHash): the keys are small integers, so SipHash's flood resistance buys nothing
+/// and costs a sizable part of the hook's time.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct KeyHasher(u64);
+
+impl std::hash::Hasher for KeyHasher {
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut buf = [0u8; 8];
+            buf[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(buf));
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.write_u64(u64::from(i));
+    }
+    #[inline]
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type KeyMap<V> = HashMap<ContactKey, V, std::hash::BuildHasherDefault<KeyHasher>>;
+
 /// Contact records keyed by [`ContactKey`], swept of the contacts not seen in a step.
 #[derive(Debug, Clone, Default)]
 pub struct ContactStore {
-    records: HashMap<ContactKey, ContactRecord>,
+    records: KeyMap<ContactRecord>,
     generation: u64,
 }
 
