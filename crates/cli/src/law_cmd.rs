@@ -3,13 +3,29 @@
 use std::io::Write;
 
 use clap::{Subcommand, ValueEnum};
-use creep_law::{CreepState, Material, MindlinState, PairMaterial, Surface, Vec2, hertz, kalker};
+use creep_law::{
+    CreepModel, CreepState, Material, MindlinState, PairMaterial, Surface, Vec2, hertz, kalker,
+    steady_law,
+};
 
 /// Steady creep laws selectable by `--model`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum SteadyModel {
     /// Kalker's closed form F_ss, as used in Kuhn's rule (the talk, eq. 1).
     Kuhn,
+    /// The steady law fitted to the boundary-element exact theory (creep_law::steady_law);
+    /// also the steady limit of the fitted-transient tier. Needs nu in [0, 0.5].
+    Fitted,
+}
+
+impl SteadyModel {
+    /// The creep-law tier whose steady law this is.
+    pub fn creep_model(self) -> CreepModel {
+        match self {
+            SteadyModel::Kuhn => CreepModel::Kuhn,
+            SteadyModel::Fitted => CreepModel::Fitted,
+        }
+    }
 }
 
 /// The contact law as CSV.
@@ -67,14 +83,17 @@ pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
     match cmd {
         LawCommand::Steady { model, nu, q_ratio } => {
             check_nu(*nu)?;
+            if *model == SteadyModel::Fitted && *nu < 0.0 {
+                return Err(
+                    format!("--model fitted is tabulated for nu in [0, 0.5], got {nu}").into(),
+                );
+            }
             if let Some(bad) = q_ratio.iter().find(|r| !(**r >= 0.0 && **r <= 1.0)) {
                 return Err(format!("--q-ratio values must be in [0, 1], got {bad}").into());
             }
             writeln!(out, "q_over_mu_p,creepage_n")?;
             for &s in q_ratio {
-                let x = match model {
-                    SteadyModel::Kuhn => kalker::steady_creepage_n(s, *nu),
-                };
+                let x = steady_law::steady_creepage_n(model.creep_model(), s, *nu);
                 writeln!(out, "{s},{x:.10e}")?;
             }
             Ok(())
@@ -191,7 +210,7 @@ pub fn tour(out: &mut dyn Write) -> Res {
     writeln!(out)?;
     writeln!(
         out,
-        "CSV for scripts: creep law steady --nu 0.3 --q-ratio 0.1,0.5,0.9"
+        "CSV for scripts: creep law steady [--model kuhn|fitted] --nu 0.3 --q-ratio 0.1,0.5,0.9"
     )?;
     Ok(())
 }
@@ -223,6 +242,41 @@ mod tests {
             let expect = 3.0 / 4.12 * (1.0 - (1.0 - s).cbrt());
             assert!((x - expect).abs() < 1e-9, "{line}");
         }
+    }
+
+    #[test]
+    fn steady_csv_fitted_model_is_the_fitted_law() {
+        let text = run_str(&LawCommand::Steady {
+            model: SteadyModel::Fitted,
+            nu: 0.3,
+            q_ratio: vec![0.0, 0.5, 0.98, 1.0],
+        })
+        .unwrap();
+        let rows: Vec<(f64, f64)> = text
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let (s, x) = l.split_once(',').unwrap();
+                (s.parse().unwrap(), x.parse().unwrap())
+            })
+            .collect();
+        assert_eq!(rows.len(), 4);
+        for (s, x) in rows {
+            let expect = steady_law::fitted_creepage_n(s, 0.3);
+            assert!((x - expect).abs() < 1e-9 * expect.max(1e-9), "{s}: {x}");
+            // Below Kalker's F_ss away from s = 0 (the closed form over-estimates).
+            if s > 0.0 {
+                assert!(x < kalker::steady_creepage_n(s, 0.3));
+            }
+        }
+        assert!(
+            run_str(&LawCommand::Steady {
+                model: SteadyModel::Fitted,
+                nu: -0.2,
+                q_ratio: vec![0.5]
+            })
+            .is_err()
+        );
     }
 
     #[test]

@@ -33,6 +33,69 @@ pub enum RefCommand {
     /// Carter's 2-D steady rolling of cylinders (closed form). Header
     /// `q_over_mu_p,creepage,stick_half_width_over_a`.
     Carter(CarterArgs),
+    /// Boundary-element tables for the creep-law tiers, and the fit of creep-law's steady law.
+    #[command(subcommand)]
+    Fit(FitCommand),
+}
+
+/// `creep ref fit ...`: generators of the checked-in tables (normalised units: a = G = mu P = 1).
+#[derive(Debug, Subcommand)]
+pub enum FitCommand {
+    /// Steady curves by boundary elements on grids N/2 and N at the node and check Poisson
+    /// ratios, their Richardson extrapolation 2 f(N) - f(N/2), and the fitted steady law's
+    /// coefficients as creep-law's `steady_table.rs`.
+    Steady(FitSteadyArgs),
+    /// Transient curves (held force, held creepage at Q/(mu P) = 0.3, 0.6, 0.9) by boundary
+    /// elements on grids N/2 and N, as CSV.
+    Transient(FitTransientArgs),
+}
+
+/// Arguments of `creep ref fit steady`.
+#[derive(Debug, Args)]
+pub struct FitSteadyArgs {
+    /// Elements across the contact diameter of the fine grid N (the coarse one is N/2), in
+    /// [8, 256].
+    #[arg(long, default_value_t = 64)]
+    grid: usize,
+    /// Worker threads (one Poisson ratio per thread).
+    #[arg(long, default_value_t = 2)]
+    threads: usize,
+    /// Read the boundary-element curves from this CSV instead of solving (refit only).
+    #[arg(long)]
+    from: Option<std::path::PathBuf>,
+    /// Write the boundary-element curves (CSV) here.
+    #[arg(long)]
+    data: Option<std::path::PathBuf>,
+    /// Write the Rust table here (default: stdout).
+    #[arg(long)]
+    out: Option<std::path::PathBuf>,
+    /// Largest force ratio fitted, in (0.5, 1).
+    #[arg(long, default_value_t = 0.99)]
+    s_max: f64,
+}
+
+/// Arguments of `creep ref fit transient`.
+#[derive(Debug, Args)]
+pub struct FitTransientArgs {
+    /// Elements across the contact diameter of the fine grid N (the coarse one is N/2), in
+    /// [8, 256].
+    #[arg(long, default_value_t = 32)]
+    grid: usize,
+    /// Rolled distance per step, in contact radii (> 0; 2/N is the fine grid's element side).
+    #[arg(long, default_value_t = 0.0625)]
+    dq: f64,
+    /// Steps per curve, in [1, 100000].
+    #[arg(long, default_value_t = 64)]
+    steps: usize,
+    /// Poisson ratios, each in [0, 0.5].
+    #[arg(long, value_delimiter = ',', default_value = "0,0.25,0.5")]
+    nu: Vec<f64>,
+    /// Worker threads.
+    #[arg(long, default_value_t = 2)]
+    threads: usize,
+    /// Write the CSV here (default: stdout).
+    #[arg(long)]
+    out: Option<std::path::PathBuf>,
 }
 
 /// The circular contact shared by the 3-D commands.
@@ -287,7 +350,157 @@ pub fn run(cmd: &RefCommand, out: &mut dyn Write) -> Result<(), Box<dyn std::err
         RefCommand::Transient(a) => run_transient(a, out),
         RefCommand::Mindlin(a) => run_mindlin(a, out),
         RefCommand::Carter(a) => run_carter(a, out),
+        RefCommand::Fit(FitCommand::Steady(a)) => run_fit_steady(a, out),
+        RefCommand::Fit(FitCommand::Transient(a)) => run_fit_transient(a, out),
     }
+}
+
+/// Today's date (UTC) as `YYYY-MM-DD`, from the system clock (days-to-civil conversion of
+/// Hinnant, "chrono-Compatible Low-Level Date Algorithms").
+fn today() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0) as i64;
+    let z = secs.div_euclid(86_400) + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}")
+}
+
+fn check_grid(grid: usize) -> Result<(), Box<dyn std::error::Error>> {
+    if (8..=256).contains(&grid) {
+        Ok(())
+    } else {
+        Err(format!("--grid {grid} must be in [8, 256]").into())
+    }
+}
+
+fn write_to(
+    path: &Option<std::path::PathBuf>,
+    text: &str,
+    out: &mut dyn Write,
+) -> Result<(), Box<dyn std::error::Error>> {
+    match path {
+        Some(p) => std::fs::write(p, text)?,
+        None => out.write_all(text.as_bytes())?,
+    }
+    Ok(())
+}
+
+fn run_fit_steady(
+    args: &FitSteadyArgs,
+    out: &mut dyn Write,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use creep_reference::fit;
+    if !(args.s_max > 0.5 && args.s_max < 1.0) {
+        return Err(format!("--s-max {} must be in (0.5, 1)", args.s_max).into());
+    }
+    let (curves, source) = match &args.from {
+        Some(path) => (
+            fit::read_steady_csv(&std::fs::read_to_string(path)?)?,
+            format!("read from {}", path.display()),
+        ),
+        None => {
+            check_grid(args.grid)?;
+            let mut nus = fit::FIT_NUS.to_vec();
+            nus.extend(fit::CHECK_NUS);
+            let c = fit::steady_curves(&nus, args.grid, args.threads)?;
+            let flat: Vec<_> = c.into_iter().flatten().collect();
+            let csv = format!(
+                "# Steady rolling of the circular contact, boundary elements (creep-reference bem), normalised\n\
+                 # units (a = G = mu P = 1). Grids N = {} and {}; `ext` = Richardson 2 f(N) - f(N/2).\n\
+                 # Generated {} by: creep ref fit steady --grid {} --data FILE\n{}",
+                args.grid / 2,
+                args.grid,
+                today(),
+                args.grid,
+                fit::steady_csv(&flat)
+            );
+            if let Some(p) = &args.data {
+                std::fs::write(p, &csv)?;
+            }
+            (
+                flat,
+                format!("solved at N = {} and {}", args.grid / 2, args.grid),
+            )
+        }
+    };
+    let nodes: Vec<_> = fit::FIT_NUS
+        .iter()
+        .map(|nu| {
+            curves
+                .iter()
+                .find(|c| c.grid == "ext" && c.nu == *nu)
+                .cloned()
+                .ok_or_else(|| format!("no extrapolated curve at node nu = {nu}"))
+        })
+        .collect::<Result<_, _>>()?;
+    let f = fit::fit_steady(&nodes, args.s_max)?;
+    let prov = format!(
+        "Boundary-element curves {source}; fit and table generated {} by\n\
+         `creep ref fit steady --from crates/reference/data/steady_bem.csv --out crates/law/src/steady_table.rs`\n\
+         (the curves themselves: `creep ref fit steady --grid 64 --data crates/reference/data/steady_bem.csv`,\n\
+         grids N = 32 and 64, Richardson extrapolation 2 f(64) - f(32) of C11, x_sat and the creepage at\n\
+         each force ratio; Poisson-ratio nodes {:?}).",
+        today(),
+        fit::FIT_NUS
+    );
+    write_to(&args.out, &fit::rust_table(&f, &prov), out)
+}
+
+fn run_fit_transient(
+    args: &FitTransientArgs,
+    out: &mut dyn Write,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use creep_reference::fit::{self, TransientCase};
+    check_grid(args.grid)?;
+    if !(args.dq > 0.0 && args.dq.is_finite()) {
+        return Err(format!("--dq {} must be finite and > 0", args.dq).into());
+    }
+    if !(1..=100_000).contains(&args.steps) {
+        return Err(format!("--steps {} must be in [1, 100000]", args.steps).into());
+    }
+    let cases: Vec<TransientCase> = [0.3, 0.6, 0.9]
+        .iter()
+        .map(|&r| TransientCase::HoldForce(r))
+        .chain(
+            [0.3, 0.6, 0.9]
+                .iter()
+                .map(|&r| TransientCase::HoldCreepage(r)),
+        )
+        .collect();
+    let c = fit::transient_curves(
+        &args.nu,
+        &cases,
+        args.grid,
+        args.dq,
+        args.steps,
+        args.threads,
+    )?;
+    let flat: Vec<_> = c.into_iter().flatten().collect();
+    let nus: Vec<String> = args.nu.iter().map(f64::to_string).collect();
+    let csv = format!(
+        "# Transient rolling from zero traction, boundary elements (creep-reference bem), normalised\n\
+         # units (a = G = mu P = 1), rolled distance dq = {} a per step, grids N = {} and {}.\n\
+         # Generated {} by: creep ref fit transient --grid {} --dq {} --steps {} --nu {}\n{}",
+        args.dq,
+        args.grid / 2,
+        args.grid,
+        today(),
+        args.grid,
+        args.dq,
+        args.steps,
+        nus.join(","),
+        fit::transient_csv(&flat)
+    );
+    write_to(&args.out, &csv, out)
 }
 
 #[cfg(test)]
@@ -384,6 +597,45 @@ mod tests {
     }
 
     #[test]
+    fn fit_transient_and_refit_run_on_small_grids() {
+        let s = run_args(&[
+            "fit",
+            "transient",
+            "--grid",
+            "8",
+            "--dq",
+            "0.25",
+            "--steps",
+            "2",
+            "--nu",
+            "0.25",
+        ])
+        .unwrap();
+        let curves = creep_reference::fit::read_transient_csv(&s).unwrap();
+        assert_eq!(curves.len(), 12);
+        assert!(curves.iter().all(|c| c.rolled.len() == 2));
+        // Refit from the checked-in steady curves reproduces the checked-in table's numbers.
+        let data = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../reference/data/steady_bem.csv"
+        );
+        let table = run_args(&["fit", "steady", "--from", data]).unwrap();
+        let checked_in = include_str!("../../law/src/steady_table.rs");
+        // Every number of the constants, in order (insensitive to rustfmt's layout).
+        let consts = |t: &str| -> Vec<f64> {
+            t.lines()
+                .filter(|l| !l.trim_start().starts_with("//"))
+                .flat_map(|l| {
+                    l.split(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == '-'))
+                })
+                .filter_map(|w| w.parse::<f64>().ok())
+                .collect()
+        };
+        assert!(consts(checked_in).len() > 50);
+        assert_eq!(consts(&table), consts(checked_in));
+    }
+
+    #[test]
     fn bad_inputs_are_errors_not_panics() {
         assert!(call(&with("steady", &["--creepage", "1e-4", "--grid", "2"])).is_err());
         assert!(
@@ -395,6 +647,9 @@ mod tests {
         );
         assert!(call(&with("transient", &["--step", "1e-5", "--steps", "3"])).is_err());
         assert!(call(&with("mindlin", &["--amplitude", "1.5"])).is_err());
+        assert!(run_args(&["fit", "steady", "--grid", "4"]).is_err());
+        assert!(run_args(&["fit", "steady", "--s-max", "1.5"]).is_err());
+        assert!(run_args(&["fit", "transient", "--dq", "0"]).is_err());
         let mut v = with("steady", &["--creepage", "1e-4"]);
         v[2] = "-1".into(); // a < 0
         assert!(call(&v).is_err());

@@ -7,7 +7,8 @@ use std::hint::black_box;
 
 use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::{
-    CreepState, Material, MindlinState, PairMaterial, Surface, Vec2, Vec3, hertz, kalker,
+    CreepModel, CreepState, Material, MindlinState, PairMaterial, SteadyLaw, Surface, Vec2, Vec3,
+    hertz, kalker, steady_law,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -142,5 +143,65 @@ fn bench_kinematics(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bench_updates, bench_kinematics);
+/// The steady laws side by side (run: `cargo bench -p creep-law --bench law -- steady_law`):
+/// Kalker's F_ss and the fitted law, from `nu` each call and with the coefficients precomputed,
+/// forward and inverse; and the creep update of each tier in steady rolling.
+fn bench_steady_laws(c: &mut Criterion) {
+    let pair = pair();
+    let nu = pair.nu;
+    // A spread of force ratios, so that no branch predictor or constant folding helps.
+    let ss: Vec<f64> = (0..64).map(|i| (i as f64 + 0.5) / 64.0).collect();
+    let mut i = 0usize;
+    let mut next = move || {
+        i = (i + 1) & 63;
+        i
+    };
+    c.bench_function("steady_law/kuhn_fss_nu", |b| {
+        b.iter(|| kalker::steady_creepage_n(black_box(ss[next()]), black_box(nu)))
+    });
+    c.bench_function("steady_law/fitted_nu", |b| {
+        b.iter(|| steady_law::fitted_creepage_n(black_box(ss[next()]), black_box(nu)))
+    });
+    let kuhn = SteadyLaw::new(CreepModel::Kuhn, nu);
+    let fitted = SteadyLaw::new(CreepModel::Fitted, nu);
+    c.bench_function("steady_law/kuhn_fss_c11_given", |b| {
+        b.iter(|| kalker::steady_creepage_n_c11(black_box(ss[next()]), black_box(pair.c11)))
+    });
+    c.bench_function("steady_law/fitted_precomputed", |b| {
+        b.iter(|| black_box(&fitted).creepage_n(black_box(ss[next()])))
+    });
+    let xk: Vec<f64> = ss.iter().map(|&s| kuhn.creepage_n(s)).collect();
+    let xf: Vec<f64> = ss.iter().map(|&s| fitted.creepage_n(s)).collect();
+    c.bench_function("steady_law/kuhn_inverse", |b| {
+        b.iter(|| black_box(&kuhn).force_ratio(black_box(xk[next()])))
+    });
+    c.bench_function("steady_law/fitted_inverse", |b| {
+        b.iter(|| black_box(&fitted).force_ratio(black_box(xf[next()])))
+    });
+    let p = 1.0;
+    let a = hertz::contact_radius(&pair, p);
+    let dr = a * 1e-3;
+    for model in CreepModel::ALL {
+        let law = SteadyLaw::new(model, nu);
+        let xi = law.creepage_for_force(0.6 * pair.mu * p, pair.mu * p, pair.g, a);
+        let mut st = CreepState::new();
+        st.update_model(&pair, model, p, Vec2::ZERO, Vec2::ZERO);
+        for _ in 0..20_000 {
+            st.update_model(&pair, model, p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0));
+        }
+        c.bench_function(&format!("steady_law/creep_update_{}", model.name()), |b| {
+            b.iter(|| {
+                st.update_model(
+                    black_box(&pair),
+                    black_box(model),
+                    black_box(p),
+                    black_box(Vec2::new(xi * dr, 0.0)),
+                    black_box(Vec2::new(dr, 0.0)),
+                )
+            })
+        });
+    }
+}
+
+criterion_group!(benches, bench_updates, bench_kinematics, bench_steady_laws);
 criterion_main!(benches);

@@ -18,11 +18,19 @@
 //! displacement of one step is therefore capped at that unloading displacement,
 //! `2 delta_CM(|Q|/2)` (Mindlin & Deresiewicz 1953 unloading; `delta_CM` Mindlin's loading curve),
 //! which is inactive whenever `F_ss |du_roll| <= |Q| / (8 G* a)` — all ordinary DEM steps.
+//!
+//! Tiers ([`CreepModel`], one setting): [`CreepState::update`] is Kuhn's rule as above (the
+//! talk's model). [`CreepState::update_model`] takes the model: `Kuhn` (identical to `update`),
+//! `Fitted` (the same rule with the boundary-element-fitted steady law of
+//! [`crate::steady_law`] in place of `F_ss`) and `FittedTransient` (the fitted law with the
+//! relaxed creep rate of [`crate::transient_law`], whose lag state lives in [`CreepState`]).
 
 use crate::hertz;
 use crate::kalker;
 use crate::material::PairMaterial;
 use crate::mindlin::{MindlinState, MindlinStep};
+use crate::steady_law::{CreepModel, SteadyLaw};
+use crate::transient_law;
 use crate::vector::Vec2;
 
 /// What one creep-friction update did.
@@ -36,7 +44,9 @@ pub struct CreepStep {
     pub creep_displacement: Vec2,
     /// Energy dissipated by Cattaneo-Mindlin micro-slip and gross slip [J] (>= 0).
     pub slip_dissipation: f64,
-    /// Energy dissipated by creep, `|Q| F_ss |du_roll|` [J] (>= 0).
+    /// Energy dissipated by creep, `Q . du_creep` [J]: `|Q| F_ss |du_roll|` >= 0 for Kuhn's rule
+    /// and the fitted tier; for the transient tier it can be slightly negative for a step in
+    /// which the force turns faster than the lagged creep rate follows.
     pub creep_dissipation: f64,
     /// Energy added by simplifying an over-full load memory [J] (>= 0, see
     /// [`MindlinStep::truncation_energy`]).
@@ -51,11 +61,14 @@ impl CreepStep {
     }
 }
 
-/// State of one creep-friction contact: its Cattaneo-Mindlin load history. `Default` is a virgin,
-/// open contact.
+/// State of one creep-friction contact: its Cattaneo-Mindlin load history and, for
+/// [`CreepModel::FittedTransient`], the lagged creep rate. `Default` is a virgin, open contact.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CreepState {
     mindlin: MindlinState,
+    /// Lag state `[phi_1, phi_2]` of [`crate::transient_law`] [-] (zero unless the transient
+    /// tier is used).
+    lag: [Vec2; 2],
 }
 
 impl CreepState {
@@ -77,9 +90,27 @@ impl CreepState {
     }
 
     /// Mutable access to the Cattaneo-Mindlin state (e.g. to rotate it with the tangent basis).
+    /// Prefer [`CreepState::transform`], which also rotates the transient tier's lagged rate.
     #[inline]
     pub fn mindlin_mut(&mut self) -> &mut MindlinState {
         &mut self.mindlin
+    }
+
+    /// Lag state `[phi_1, phi_2]` of the transient tier [-] (slip per unit rolling distance;
+    /// `phi_2` is the lagged creep rate, see [`crate::transient_law`]).
+    #[inline]
+    pub fn lag(&self) -> [Vec2; 2] {
+        self.lag
+    }
+
+    /// Applies the linear map `m` (row-major, e.g. a rotation of the tangent basis) to every
+    /// vector of the state: the Cattaneo-Mindlin memory ([`MindlinState::transform`]) and the
+    /// lagged creep rate.
+    pub fn transform(&mut self, m: [[f64; 2]; 2]) {
+        self.mindlin.transform(m);
+        for v in &mut self.lag {
+            *v = Vec2::new(m[0][0] * v.x + m[0][1] * v.y, m[1][0] * v.x + m[1][1] * v.y);
+        }
     }
 
     /// One step of Kuhn's rule: normal force `p` [N] at the end of the step (Hertz gives `a`),
@@ -106,27 +137,106 @@ impl CreepState {
         du_disp: Vec2,
         du_roll: Vec2,
     ) -> CreepStep {
+        self.update_model_with_radius(pair, CreepModel::Kuhn, p, a, du_disp, du_roll)
+    }
+
+    /// One step of the creep-friction rule with the steady (and transient) law of `model`:
+    /// [`CreepModel::Kuhn`] is exactly [`CreepState::update`]; the fitted tiers replace `F_ss` by
+    /// [`SteadyLaw`]'s fitted law, and [`CreepModel::FittedTransient`] applies the relaxed creep
+    /// rate of [`crate::transient_law`]. Arguments as in [`CreepState::update`]. Switching the
+    /// model of a live contact is allowed (the lag state starts from its last value, zero if
+    /// never used).
+    pub fn update_model(
+        &mut self,
+        pair: &PairMaterial,
+        model: CreepModel,
+        p: f64,
+        du_disp: Vec2,
+        du_roll: Vec2,
+    ) -> CreepStep {
+        let a = hertz::contact_radius(pair, p);
+        self.update_model_with_radius(pair, model, p, a, du_disp, du_roll)
+    }
+
+    /// [`CreepState::update_model`] with the contact radius `a` [m] given.
+    pub fn update_model_with_radius(
+        &mut self,
+        pair: &PairMaterial,
+        model: CreepModel,
+        p: f64,
+        a: f64,
+        du_disp: Vec2,
+        du_roll: Vec2,
+    ) -> CreepStep {
         let roll = du_roll.length();
         let q = self.mindlin.force();
         let q_abs = q.length();
-        let mut creep = 0.0;
-        if roll > 0.0 && roll.is_finite() && q_abs > 0.0 && p > 0.0 && p.is_finite() && a > 0.0 {
+        let open = !(p > 0.0 && p.is_finite() && a > 0.0);
+        let rolling = roll > 0.0 && roll.is_finite();
+        let mut creep_vec = Vec2::ZERO;
+        let mut creep_dissipation = 0.0;
+        if model == CreepModel::FittedTransient && (open || !self.lag.iter().all(|v| v.is_finite()))
+        {
+            self.lag = [Vec2::ZERO; 2];
+        }
+        if rolling && !open {
             let mu_p = pair.mu * p;
-            let f = kalker::steady_creepage_for_force(q_abs, mu_p, pair.g, a, pair.c11);
-            creep = f * roll;
-            let k_t = pair.tangential_stiffness(a);
-            if creep * k_t > q_abs {
-                creep = creep.min(unload_to_zero(q_abs, mu_p, k_t));
-            }
-            if !creep.is_finite() {
-                creep = 0.0;
+            // Steady creep rate of the current force (Kuhn: Kalker's F_ss as in `update`).
+            let f = if q_abs > 0.0 {
+                match model {
+                    CreepModel::Kuhn => {
+                        kalker::steady_creepage_for_force(q_abs, mu_p, pair.g, a, pair.c11)
+                    }
+                    _ => SteadyLaw::new(model, pair.nu).creepage_for_force(q_abs, mu_p, pair.g, a),
+                }
+            } else {
+                0.0
+            };
+            if model == CreepModel::FittedTransient {
+                let target = if q_abs > 0.0 && f.is_finite() {
+                    q * (f / q_abs)
+                } else {
+                    Vec2::ZERO
+                };
+                let s = if mu_p > 0.0 { q_abs / mu_p } else { 0.0 };
+                let (rate, lag) = transient_law::step(
+                    target,
+                    self.lag,
+                    roll,
+                    transient_law::relaxation_length(s, a),
+                );
+                self.lag = lag;
+                let mut c = rate * roll;
+                let creep = c.length();
+                if creep > 0.0 && q_abs > 0.0 {
+                    let k_t = pair.tangential_stiffness(a);
+                    if creep * k_t > q_abs {
+                        c = c * (creep.min(unload_to_zero(q_abs, mu_p, k_t)) / creep);
+                    }
+                }
+                if c.is_finite() {
+                    creep_vec = c;
+                    // Work of Q on the creep displacement: the lagged rate may point away from
+                    // Q for a moment when Q turns, so this can be slightly negative.
+                    creep_dissipation = q.dot(c);
+                }
+            } else if q_abs > 0.0 {
+                // Kuhn's rule (Kalker's F_ss, or the fitted steady law), as in the module doc.
+                let mut creep = f * roll;
+                let k_t = pair.tangential_stiffness(a);
+                if creep * k_t > q_abs {
+                    creep = creep.min(unload_to_zero(q_abs, mu_p, k_t));
+                }
+                if creep.is_finite() && creep > 0.0 {
+                    creep_vec = q * (creep / q_abs);
+                    creep_dissipation = q_abs * creep;
+                }
             }
         }
-        let (du_eff, creep_vec) = if creep > 0.0 {
-            let c = q * (creep / q_abs);
-            (du_disp - c, c)
+        let du_eff = if creep_vec != Vec2::ZERO {
+            du_disp - creep_vec
         } else {
-            (du_disp, Vec2::ZERO)
+            du_disp
         };
         let MindlinStep {
             q: q_new,
@@ -139,7 +249,7 @@ impl CreepState {
             a,
             creep_displacement: creep_vec,
             slip_dissipation,
-            creep_dissipation: q_abs * creep,
+            creep_dissipation,
             truncation_energy,
         }
     }

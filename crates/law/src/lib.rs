@@ -13,10 +13,14 @@ pub mod kinematics;
 pub mod material;
 pub mod mindlin;
 pub mod rolling_torque;
+pub mod steady_law;
+pub mod steady_table;
+pub mod transient_law;
 pub mod vector;
 
 pub use creep::{CreepState, CreepStep};
 pub use error::LawError;
 pub use material::{FrictionCombine, Material, PairMaterial, Surface};
 pub use mindlin::{MindlinState, MindlinStep};
+pub use steady_law::{CreepModel, SteadyLaw};
 pub use vector::{Vec2, Vec3};

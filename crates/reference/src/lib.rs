@@ -30,6 +30,7 @@ pub mod carter;
 pub mod contact;
 pub mod error;
 pub mod fastsim;
+pub mod fit;
 pub mod grid;
 pub mod hertz;
 pub mod influence;
