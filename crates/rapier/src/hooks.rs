@@ -60,6 +60,7 @@ use std::sync::Mutex;
 
 use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::rolling_torque::{RollingInput, RollingModel, RollingState, epsd_rolling_inertia};
+use creep_law::steady_law::SteadyLaw;
 use creep_law::{Material, PairMaterial, Surface, Vec3, hertz, kalker};
 use rapier3d::geometry::NEW_CONTACT_BIT;
 use rapier3d::prelude::*;
@@ -104,6 +105,11 @@ pub struct CreepSettings {
     /// with a contact-torque rolling model are always on.
     /// Default 1e-2 m/s; 0 keeps every hook on.
     pub activation_speed: f64,
+    /// The steady creep law of the slip target: `Kuhn` (Kalker's closed form `F_ss`, the
+    /// talk's model, default) or `Fitted` (creep-law's boundary-element-fitted law, ten times
+    /// more accurate; `FittedTransient` uses the fitted law too, the rigid regime having no
+    /// transient state).
+    pub creep_model: creep_law::CreepModel,
 }
 
 impl Default for CreepSettings {
@@ -112,6 +118,7 @@ impl Default for CreepSettings {
             auto_tolerance: 1e-7,
             anchor_drift_correction: true,
             activation_speed: 1e-2,
+            creep_model: creep_law::CreepModel::Kuhn,
         }
     }
 }
@@ -673,13 +680,16 @@ impl PhysicsHooks for CreepHooks {
             } else {
                 0.0
             };
-            let q_abs = solve_creep_force(q_star.length(), k, mu_p, pair.g * a * a * pair.c11);
-            let gain = k * (1.0 - (q_abs / mu_p).min(0.999)).powf(-2.0 / 3.0)
-                / (pair.g * a * a * pair.c11);
+            let law = SteadyLaw::with_c11(self.settings.creep_model, pair.nu, pair.c11);
+            let creepage = |q: f64| law.creepage_for_force(q, mu_p, pair.g, a);
+            let q_abs = solve_creep_force(q_star.length(), k, mu_p, &creepage);
+            let dq = 1e-6 * mu_p;
+            let gain = k * (creepage((q_abs + dq).min(mu_p)) - creepage((q_abs - dq).max(0.0)))
+                / (2.0 * dq);
             counts.max_loop_gain = counts.max_loop_gain.max(gain);
             let q_used = q_hat * q_abs;
             rec.q_used = q_used;
-            let slip = kalker::steady_creepage(q_abs / mu_p, mu_p, pair.g, a, pair.c11) * roll;
+            let slip = creepage(q_abs) * roll;
             let target = q_hat * slip;
             rec.target = target;
             counts.creep += 1;
@@ -701,42 +711,46 @@ fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
     (t1, d.cross(t1))
 }
 
-/// Solves `q + k F(q) = q_star` for `0 <= q <= mu P` (Newton with bisection safeguard), with
-/// `F(q) = 3 mu P/(G a^2 C11) [1 - (1 - q/(mu P))^(1/3)]` Kalker's steady creepage
-/// (`gac = G a^2 C11` [N]) and `k = m_t |v_roll| / dt` [N]: the force a rolling contact of
-/// effective mass `m_t` transmits when its slip target follows the force it transmits. `F` is
-/// increasing, so the root is unique; beyond `mu P` the contact slides at `mu P`.
-fn solve_creep_force(q_star: f64, k: f64, mu_p: f64, gac: f64) -> f64 {
-    let f = |q: f64| 3.0 * mu_p / gac * (1.0 - (1.0 - (q / mu_p).min(1.0)).cbrt());
+/// Solves `q + k F(q) = q_star` for `0 <= q <= mu P` by the Illinois variant of regula falsi
+/// (bracketed, superlinear), with `F(q)` the steady creepage of the chosen law at force `q`
+/// and `k = m_t |v_roll| / dt` [N]: the force a rolling contact of effective mass `m_t`
+/// transmits when its slip target follows the force it transmits. `F` increases, so the root is
+/// unique; beyond `mu P` the contact slides at `mu P`.
+fn solve_creep_force(q_star: f64, k: f64, mu_p: f64, creepage: &dyn Fn(f64) -> f64) -> f64 {
     let hi0 = q_star.min(mu_p);
     if !(k > 0.0) || !(hi0 > 0.0) {
         return hi0.max(0.0);
     }
-    let h = |q: f64| q + k * f(q) - q_star;
-    if h(hi0) <= 0.0 {
+    let h = |q: f64| q + k * creepage(q) - q_star;
+    let (mut a, mut b) = (0.0, hi0);
+    let (mut fa, mut fb) = (h(a), h(b));
+    if fb <= 0.0 {
         return hi0;
     }
-    let (mut lo, mut hi) = (0.0, hi0);
-    let mut q = hi0 / (1.0 + k / gac); // the linear-theory root as a start
-    for _ in 0..60 {
-        let hq = h(q);
-        if hq > 0.0 {
-            hi = q
+    let mut side = 0i8;
+    for _ in 0..100 {
+        let c = (a * fb - b * fa) / (fb - fa);
+        let fc = h(c);
+        if (b - a).abs() <= 1e-13 * hi0 || fc == 0.0 {
+            return c;
+        }
+        if fc > 0.0 {
+            b = c;
+            fb = fc;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
         } else {
-            lo = q
+            a = c;
+            fa = fc;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
         }
-        let s = (q / mu_p).min(0.999_999);
-        let dh = 1.0 + k / gac * (1.0 - s).powf(-2.0 / 3.0);
-        let mut next = q - hq / dh;
-        if !(next > lo && next < hi) {
-            next = 0.5 * (lo + hi);
-        }
-        if (next - q).abs() <= 1e-14 * hi0 {
-            return next;
-        }
-        q = next;
     }
-    q
+    0.5 * (a + b)
 }
 
 /// Mean spurious change of the separation along `n` caused by a body's contact anchor riding

@@ -89,6 +89,49 @@ fn incline_creep_slip_follows_kalker() {
 }
 
 #[test]
+fn the_fitted_law_is_one_setting_away() {
+    // Same incline with `creep_model = Fitted`: the creep the plugin adds follows creep-law's
+    // BEM-fitted steady law at the incline's Q/(mu P).
+    let theta = 20f64.to_radians();
+    let settings = CreepSettings {
+        creep_model: creep_law::CreepModel::Fitted,
+        ..Default::default()
+    };
+    let (mut wc, bc) = incline(1.0 / 240.0, theta, Fidelity::Coulomb);
+    let (mut wk, bk) = incline(1.0 / 240.0, theta, Fidelity::Creep);
+    wk.hooks = CreepHooks::new(wk.hooks.registry().clone(), settings).unwrap();
+    let measured = rolling_slip(&mut wk, bk, 240) - rolling_slip(&mut wc, bc, 240);
+    let m = f64::from(wk.physics.bodies[bk].mass());
+    let (p, q) = (m * G * theta.cos(), 2.0 / 7.0 * m * G * theta.sin());
+    let pair = PairMaterial::new(
+        &Material::steel(),
+        &Material::steel(),
+        Surface::Plane,
+        Surface::Sphere(0.1),
+    )
+    .unwrap()
+    .with_friction(0.5)
+    .unwrap();
+    let a = hertz::contact_radius(&pair, p);
+    let law = creep_law::steady_law::SteadyLaw::with_c11(
+        creep_law::CreepModel::Fitted,
+        pair.nu,
+        pair.c11,
+    );
+    let expect = law.creepage_for_force(q, 0.5 * p, pair.g, a);
+    let kuhn = kalker::steady_creepage(q / (0.5 * p), 0.5 * p, pair.g, a, pair.c11);
+    println!("fitted: creep {measured:.4e} vs fitted law {expect:.4e} (Kuhn's F_ss {kuhn:.4e})");
+    assert!(
+        (measured / expect - 1.0).abs() < 0.01,
+        "{measured:e} vs {expect:e}"
+    );
+    assert!(
+        (expect / kuhn - 1.0).abs() > 0.005,
+        "the two laws differ at this load"
+    );
+}
+
+#[test]
 fn anchor_drift_correction_stops_the_sinking() {
     let run = |correct: bool| {
         let settings = CreepSettings {
