@@ -271,11 +271,9 @@ fn unload_to_zero(q: f64, mu_p: f64, k_t: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::{Material, Surface};
 
     fn pair() -> PairMaterial {
-        let m = Material::steel();
-        PairMaterial::new(&m, &m, Surface::Sphere(0.01), Surface::Plane).unwrap()
+        crate::material::steel_ball_on_plane()
     }
 
     #[test]

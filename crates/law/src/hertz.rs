@@ -82,11 +82,9 @@ pub fn rayleigh_time_step(material: &Material, radius: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::Surface;
 
     fn pair() -> PairMaterial {
-        let m = Material::steel();
-        PairMaterial::new(&m, &m, Surface::Sphere(0.01), Surface::Plane).unwrap()
+        crate::material::steel_ball_on_plane()
     }
 
     #[test]

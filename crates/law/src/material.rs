@@ -258,6 +258,13 @@ impl PairMaterial {
     }
 }
 
+/// The test fixture of the crate's unit tests: a 10 mm steel sphere on a steel plane.
+#[cfg(test)]
+pub(crate) fn steel_ball_on_plane() -> PairMaterial {
+    let m = Material::steel();
+    PairMaterial::new(&m, &m, Surface::Sphere(0.01), Surface::Plane).expect("valid fixture")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -22,32 +22,13 @@ use std::time::Instant;
 
 use creep_law::Material;
 use creep_rapier::{
-    CreepHooks, CreepMaterial, CreepSettings, CreepWorld, Fidelity, MaterialRegistry,
+    CreepHooks, CreepMaterial, CreepSettings, CreepWorld, Fidelity, MaterialRegistry, clone_physics,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use rapier3d::prelude::*;
 
 const N: usize = 16; // 16^3 = 4,096 balls
 const R: f32 = 0.05;
-
-/// A copy of a Rapier world (fresh pipelines: they hold only workspace).
-fn clone_physics(p: &PhysicsWorld) -> PhysicsWorld {
-    PhysicsWorld {
-        gravity: p.gravity,
-        integration_parameters: p.integration_parameters,
-        physics_pipeline: PhysicsPipeline::new(),
-        collision_pipeline: CollisionPipeline::new(),
-        islands: p.islands.clone(),
-        broad_phase: p.broad_phase.clone(),
-        narrow_phase: p.narrow_phase.clone(),
-        bodies: p.bodies.clone(),
-        colliders: p.colliders.clone(),
-        impulse_joints: p.impulse_joints.clone(),
-        multibody_joints: p.multibody_joints.clone(),
-        soft_bodies: p.soft_bodies.clone(),
-        ccd_solver: p.ccd_solver.clone(),
-    }
-}
 
 /// 4,096 glass balls (5 cm) dropped as a 16^3 lattice into a 1.8 m x 1.8 m box of fixed cuboid
 /// walls, every collider registered, stepped at 1/60 s until settled. Sleeping is off, so the

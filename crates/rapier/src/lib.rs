@@ -30,4 +30,4 @@ pub use hooks::{
     configure_parameters,
 };
 pub use registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
-pub use world::CreepWorld;
+pub use world::{CreepWorld, clone_physics};

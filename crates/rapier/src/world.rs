@@ -85,3 +85,24 @@ impl CreepWorld {
         Ok(self.hooks.counts())
     }
 }
+
+/// A copy of a Rapier world: the same bodies, colliders, joints, contacts and parameters, with
+/// fresh pipelines (they hold only workspace), so that two copies step identically. Used to run
+/// a scene twice from one state (e.g. with and without creep) and by the benchmarks.
+pub fn clone_physics(p: &PhysicsWorld) -> PhysicsWorld {
+    PhysicsWorld {
+        gravity: p.gravity,
+        integration_parameters: p.integration_parameters,
+        physics_pipeline: PhysicsPipeline::new(),
+        collision_pipeline: CollisionPipeline::new(),
+        islands: p.islands.clone(),
+        broad_phase: p.broad_phase.clone(),
+        narrow_phase: p.narrow_phase.clone(),
+        bodies: p.bodies.clone(),
+        colliders: p.colliders.clone(),
+        impulse_joints: p.impulse_joints.clone(),
+        multibody_joints: p.multibody_joints.clone(),
+        soft_bodies: p.soft_bodies.clone(),
+        ccd_solver: p.ccd_solver.clone(),
+    }
+}

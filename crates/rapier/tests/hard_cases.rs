@@ -185,26 +185,6 @@ fn energy(
     e
 }
 
-/// A copy of a Rapier world (its sets and contact state; fresh pipelines, which hold only
-/// workspace).
-fn clone_physics(p: &PhysicsWorld) -> PhysicsWorld {
-    PhysicsWorld {
-        gravity: p.gravity,
-        integration_parameters: p.integration_parameters,
-        physics_pipeline: PhysicsPipeline::new(),
-        collision_pipeline: CollisionPipeline::new(),
-        islands: p.islands.clone(),
-        broad_phase: p.broad_phase.clone(),
-        narrow_phase: p.narrow_phase.clone(),
-        bodies: p.bodies.clone(),
-        colliders: p.colliders.clone(),
-        impulse_joints: p.impulse_joints.clone(),
-        multibody_joints: p.multibody_joints.clone(),
-        soft_bodies: p.soft_bodies.clone(),
-        ccd_solver: p.ccd_solver.clone(),
-    }
-}
-
 /// The same hooks with every registered collider at `Fidelity::Coulomb` (fresh contact store:
 /// the Coulomb path reads none of it).
 fn coulomb_hooks(w: &CreepWorld) -> CreepHooks {

@@ -2,13 +2,11 @@
 //! Mindlin & Deresiewicz (1953) (as written in Johnson 1985, *Contact Mechanics*, §7.2).
 
 use super::*;
-use crate::material::{Material, Surface};
 
 const P: f64 = 100.0;
 
 fn pair() -> PairMaterial {
-    let m = Material::steel();
-    PairMaterial::new(&m, &m, Surface::Sphere(0.01), Surface::Plane).unwrap()
+    crate::material::steel_ball_on_plane()
 }
 
 /// Mindlin's slip displacement `delta_s = 3 mu P / (16 G* a)` [m].
