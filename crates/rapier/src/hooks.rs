@@ -61,7 +61,7 @@ use std::sync::Mutex;
 use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::rolling_torque::{RollingInput, RollingModel, RollingState, epsd_rolling_inertia};
 use creep_law::steady_law::SteadyLaw;
-use creep_law::{Material, PairMaterial, Surface, Vec3, hertz, kalker};
+use creep_law::{PairMaterial, Surface, Vec3, hertz, kalker};
 use rapier3d::geometry::NEW_CONTACT_BIT;
 use rapier3d::prelude::*;
 
@@ -791,29 +791,20 @@ fn rolling_torque(
     dt: f64,
 ) -> Vec3 {
     let a = hertz::contact_radius(pair, p);
-    let inertia = |h: Option<RigidBodyHandle>| {
-        h.and_then(|h| bodies.get(h))
-            .filter(|rb| rb.is_dynamic())
-            .map(|rb| {
+    // Each dynamic sphere contributes its mass, its inertia about a diameter (2/5) m r^2 and its
+    // radius to Ai et al.'s (2011) rolling inertia; walls and fixed bodies contribute nothing.
+    let term = |h: Option<RigidBodyHandle>, s: Surface| {
+        let body = h.and_then(|h| bodies.get(h)).filter(|rb| rb.is_dynamic());
+        match (body, s) {
+            (Some(rb), Surface::Sphere(r)) => {
                 let m = f64::from(rb.mass());
-                // Sphere about a diameter: (2/5) m r^2 (the EPSD inertia of Ai et al. 2011).
-                (m, m)
-            })
-    };
-    let r_of = |s: Surface| {
-        if let Surface::Sphere(r) = s {
-            r
-        } else {
-            f64::INFINITY
+                (m, 0.4 * m * r * r, r)
+            }
+            _ => (f64::INFINITY, f64::INFINITY, 1.0),
         }
     };
-    let (r1, r2) = (r_of(pair.surface_p), r_of(pair.surface_q));
-    let term = |h: Option<RigidBodyHandle>, r: f64| match inertia(h) {
-        Some((m, _)) if r.is_finite() => (m, 0.4 * m * r * r, r),
-        _ => (f64::INFINITY, f64::INFINITY, 1.0),
-    };
-    let (m1, i1, rr1) = term(handles.0, r1);
-    let (m2, i2, rr2) = term(handles.1, r2);
+    let (m1, i1, rr1) = term(handles.0, pair.surface_p);
+    let (m2, i2, rr2) = term(handles.1, pair.surface_q);
     let input = RollingInput {
         p,
         r_star: pair.r_star,
@@ -824,9 +815,4 @@ fn rolling_torque(
         rolling_inertia: epsd_rolling_inertia(m1, i1, rr1, m2, i2, rr2),
     };
     model.torque(&mut rec.rolling, &input).torque
-}
-
-/// A `Material` from the collider's registered material, for code that only has a registry.
-pub fn material_of(registry: &MaterialRegistry, collider: ColliderHandle) -> Option<Material> {
-    registry.get(collider).map(|m| m.material)
 }
