@@ -660,12 +660,18 @@ impl PhysicsHooks for CreepHooks {
             // Local implicit solve of the creep relation (module docs): the force the solver
             // would transmit for a target tau is Q* - (m_t/dt) tau, with
             // Q* = Q_meas + (m_t/dt) tau_prev; tau = F_ss(|Q|/mu P) |v_roll| Q/|Q|.
-            let probe = (q_meas + rec.target.reject(n))
-                .try_normalize()
-                .unwrap_or(Vec3::X);
+            // If the force the solver transmitted opposed last step's target (the demanded force
+            // reversed), that target did negative work: drop it from the estimate instead of
+            // carrying it into this step.
+            let tau_prev = if q_meas.dot(rec.target) < 0.0 {
+                Vec3::ZERO
+            } else {
+                rec.target.reject(n)
+            };
+            let probe = (q_meas + tau_prev).try_normalize().unwrap_or(Vec3::X);
             let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(probe), vf(probe));
             let q_star = if inv_m > 0.0 {
-                q_meas + rec.target.reject(n) * (1.0 / (inv_m * dt))
+                q_meas + tau_prev * (1.0 / (inv_m * dt))
             } else {
                 q_meas
             };
