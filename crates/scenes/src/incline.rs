@@ -49,6 +49,11 @@ pub struct InclineRun {
     pub acceleration: f64,
     /// Slip over the second half, `(dx - R dtheta) / dx` from positions [-].
     pub slip: f64,
+    /// Mean friction force the contact transmitted over the second half (the plugin's record;
+    /// 0 when the plugin kept no record) [N].
+    pub q: f64,
+    /// Mean normal force over the second half (idem) [N].
+    pub p: f64,
 }
 
 /// The incline measured with Coulomb and with creep-friction, and the closed forms.
@@ -62,9 +67,9 @@ pub struct InclineResult {
     pub acceleration_expected: f64,
     /// Creep slip measured: creep run minus Coulomb run [-].
     pub creepage_measured: f64,
-    /// Kalker's `F_ss(Q/(mu P))` [-].
+    /// Kalker's `F_ss(Q/(mu P))` at the measured `Q` and `P` [-].
     pub creepage_expected: f64,
-    /// `Q / (mu P)` the incline demands [-].
+    /// `Q / (mu P)` the contact transmitted (measured) [-].
     pub q_over_mu_p: f64,
 }
 
@@ -91,6 +96,7 @@ fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneErr
     let steps = (p.duration / p.dt).round() as usize;
     let mut meter = RollingMeter::default();
     let mut x0 = 0.0;
+    let (mut q_sum, mut p_sum, mut n) = (0.0, 0.0, 0usize);
     for i in 0..steps {
         w.step()?;
         let b = &w.physics.bodies[ball];
@@ -99,13 +105,23 @@ fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneErr
             meter = RollingMeter::default();
         }
         meter.update(*b.rotation(), Vector::Z);
+        if i > steps / 2 {
+            for (_, rec) in w.hooks.records() {
+                q_sum += rec.q_used.length();
+                p_sum += rec.p;
+                n += 1;
+            }
+        }
     }
     let b = &w.physics.bodies[ball];
     let dx = f64::from(b.translation().x) - x0;
     let t = steps as f64 * p.dt;
+    let n = n.max(1) as f64;
     Ok(InclineRun {
         acceleration: f64::from(b.linvel().x) / t,
         slip: (dx + meter.angle * p.radius) / dx,
+        q: q_sum / n,
+        p: p_sum / n,
     })
 }
 
@@ -124,8 +140,15 @@ pub fn run(p: &InclineParams) -> Result<InclineResult, SceneError> {
     }
     let coulomb = run_one(p, Fidelity::Coulomb)?;
     let creep = run_one(p, Fidelity::Creep)?;
+    // The force the contact transmits: (2/7) m g sin(theta) when rolling without slip; with
+    // creep the rotation lags and it is smaller (by about the creepage), so the measured force
+    // is used where the plugin recorded one.
     let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
-    let (pn, q) = (m * G * p.theta.cos(), 2.0 / 7.0 * m * G * p.theta.sin());
+    let (pn, q) = if creep.q > 0.0 && creep.p > 0.0 {
+        (creep.p, creep.q)
+    } else {
+        (m * G * p.theta.cos(), 2.0 / 7.0 * m * G * p.theta.sin())
+    };
     let pair = PairMaterial::new(
         &p.material,
         &p.material,
