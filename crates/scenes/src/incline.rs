@@ -4,8 +4,9 @@
 //! also slips forward by Kalker's steady creepage `F_ss(Q/(mu P))` per unit rolled distance.
 //! The incline is a fixed flat cuboid with the gravity tilted by `theta`.
 
-use creep_law::{Material, PairMaterial, Surface, hertz, kalker};
-use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld, Fidelity};
+use creep_law::steady_law::SteadyLaw;
+use creep_law::{CreepModel, Material, PairMaterial, Surface, hertz};
+use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld, Fidelity, StepCounts};
 use rapier3d::prelude::*;
 
 use crate::measure::{RollingMeter, SceneError, positive};
@@ -26,6 +27,8 @@ pub struct InclineParams {
     pub dt: f64,
     /// Duration [s]; slip is measured over the second half.
     pub duration: f64,
+    /// The plugin's steady creep law (and the one the expectation uses).
+    pub creep_model: CreepModel,
 }
 
 impl Default for InclineParams {
@@ -38,6 +41,7 @@ impl Default for InclineParams {
                 .unwrap_or_else(|_| Material::steel()),
             dt: 1.0 / 240.0,
             duration: 1.0,
+            creep_model: CreepModel::Kuhn,
         }
     }
 }
@@ -54,6 +58,8 @@ pub struct InclineRun {
     pub q: f64,
     /// Mean normal force over the second half (idem) [N].
     pub p: f64,
+    /// What the plugin did in the last step.
+    pub counts: StepCounts,
 }
 
 /// The incline measured with Coulomb and with creep-friction, and the closed forms.
@@ -67,14 +73,19 @@ pub struct InclineResult {
     pub acceleration_expected: f64,
     /// Creep slip measured: creep run minus Coulomb run [-].
     pub creepage_measured: f64,
-    /// Kalker's `F_ss(Q/(mu P))` at the measured `Q` and `P` [-].
+    /// The steady creep law's creepage (`params.creep_model`; Kalker's `F_ss` for `Kuhn`) at
+    /// the measured `Q` and `P` [-].
     pub creepage_expected: f64,
     /// `Q / (mu P)` the contact transmitted (measured) [-].
     pub q_over_mu_p: f64,
 }
 
 fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneError> {
-    let mut w = CreepWorld::new(p.dt as f32, CreepSettings::default())?;
+    let settings = CreepSettings {
+        creep_model: p.creep_model,
+        ..Default::default()
+    };
+    let mut w = CreepWorld::new(p.dt as f32, settings)?;
     w.physics.gravity = Vector::new((G * p.theta.sin()) as f32, (-G * p.theta.cos()) as f32, 0.0);
     let mat = CreepMaterial::new(p.material).with_fidelity(fidelity);
     let mu = p.material.friction() as f32;
@@ -97,8 +108,9 @@ fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneErr
     let mut meter = RollingMeter::default();
     let mut x0 = 0.0;
     let (mut q_sum, mut p_sum, mut n) = (0.0, 0.0, 0usize);
+    let mut counts = StepCounts::default();
     for i in 0..steps {
-        w.step()?;
+        counts = w.step()?;
         let b = &w.physics.bodies[ball];
         if i == steps / 2 {
             x0 = f64::from(b.translation().x);
@@ -122,6 +134,7 @@ fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneErr
         slip: (dx + meter.angle * p.radius) / dx,
         q: q_sum / n,
         p: p_sum / n,
+        counts,
     })
 }
 
@@ -161,7 +174,8 @@ pub fn run(p: &InclineParams) -> Result<InclineResult, SceneError> {
         creep,
         acceleration_expected: 5.0 / 7.0 * G * p.theta.sin(),
         creepage_measured: creep.slip - coulomb.slip,
-        creepage_expected: kalker::steady_creepage(q / (mu * pn), mu * pn, pair.g, a, pair.c11),
+        creepage_expected: SteadyLaw::with_c11(p.creep_model, pair.nu, pair.c11)
+            .creepage_for_force(q, mu * pn, pair.g, a),
         q_over_mu_p: q / (mu * pn),
     })
 }

@@ -14,6 +14,29 @@ fn incline_rolls_at_five_sevenths_and_creeps_by_kalker() {
     );
     assert!(acc_err.abs() < 1e-3, "{acc_err}");
     assert!(creep_err.abs() < 0.01, "{creep_err}");
+    let counts = r.creep.counts;
+    assert_eq!(counts.creep, 1);
+    assert!(counts.creep_power > 0.0);
+    assert!(counts.max_loop_gain < 1.0);
+}
+
+#[test]
+fn the_fitted_law_is_one_setting_away() {
+    // The same incline with `creep_model = Fitted`: the plugin follows creep-law's BEM-fitted
+    // steady law, which differs from Kuhn's F_ss at this load by more than the tolerance.
+    let kuhn = incline::run(&incline::InclineParams::default()).unwrap();
+    let p = incline::InclineParams {
+        creep_model: creep_law::CreepModel::Fitted,
+        ..Default::default()
+    };
+    let r = incline::run(&p).unwrap();
+    let err = r.creepage_measured / r.creepage_expected - 1.0;
+    println!(
+        "fitted: creep {:.4e} vs fitted law {:.4e} (Kuhn's F_ss {:.4e})",
+        r.creepage_measured, r.creepage_expected, kuhn.creepage_expected
+    );
+    assert!(err.abs() < 0.01, "{err}");
+    assert!((r.creepage_expected / kuhn.creepage_expected - 1.0).abs() > 0.005);
 }
 
 #[test]
@@ -45,6 +68,7 @@ fn free_rolling_has_no_creep_resistance() {
         r.creep_speed, r.coulomb_speed
     );
     assert!(rel.abs() < 1e-4, "{rel}");
+    assert!((r.coulomb_speed - r.v0).abs() < 1e-2, "{}", r.coulomb_speed);
 }
 
 #[test]
