@@ -1,5 +1,5 @@
 //! Hertz's normal contact of elastic spheres (Hertz 1882; Johnson 1985, *Contact Mechanics*, §4.2,
-//! eqs. 4.22-4.24) and the Rayleigh time step of a particle.
+//! §4.2) and the Rayleigh time step of a particle.
 //!
 //! All functions take the pair's effective radius `R*` [m] and modulus `E*` [Pa] through a
 //! [`PairMaterial`]; forces are in N, lengths in m. Non-positive loads or overlaps give zero (an
@@ -8,7 +8,7 @@
 use crate::material::{Material, PairMaterial};
 
 /// Contact radius `a = (3 P R* / (4 E*))^(1/3)` [m] for normal force `p` [N] (Johnson 1985,
-/// eq. 4.22). Zero for `p <= 0`.
+/// §4.2). Zero for `p <= 0`.
 #[inline]
 pub fn contact_radius(pair: &PairMaterial, p: f64) -> f64 {
     if p > 0.0 {
@@ -19,7 +19,7 @@ pub fn contact_radius(pair: &PairMaterial, p: f64) -> f64 {
 }
 
 /// Normal force `P = (4/3) E* sqrt(R*) delta^(3/2)` [N] for overlap `delta` [m] (Johnson 1985,
-/// eq. 4.23). Zero for `delta <= 0`.
+/// §4.2). Zero for `delta <= 0`.
 #[inline]
 pub fn normal_force(pair: &PairMaterial, delta: f64) -> f64 {
     if delta > 0.0 {
@@ -30,14 +30,14 @@ pub fn normal_force(pair: &PairMaterial, delta: f64) -> f64 {
 }
 
 /// Overlap (approach of distant points) `delta = a^2 / R* = (3 P / (4 E* sqrt(R*)))^(2/3)` [m] for
-/// normal force `p` [N] (Johnson 1985, eq. 4.23 inverted). Zero for `p <= 0`.
+/// normal force `p` [N] (Johnson 1985, §4.2, inverted). Zero for `p <= 0`.
 #[inline]
 pub fn overlap(pair: &PairMaterial, p: f64) -> f64 {
     let a = contact_radius(pair, p);
     a * a / pair.r_star
 }
 
-/// Contact radius from the overlap: `a = sqrt(R* delta)` [m] (Johnson 1985, eq. 4.23).
+/// Contact radius from the overlap: `a = sqrt(R* delta)` [m] (Johnson 1985, §4.2).
 #[inline]
 pub fn contact_radius_from_overlap(pair: &PairMaterial, delta: f64) -> f64 {
     if delta > 0.0 {
@@ -111,7 +111,7 @@ mod tests {
 
     #[test]
     fn hertz_textbook_number() {
-        // Johnson (1985) eq. 4.22 written out: a^3 = 3 P R / (4 E*) for a 10 mm steel ball on a
+        // Johnson (1985, §4.2) written out: a^3 = 3 P R / (4 E*) for a 10 mm steel ball on a
         // steel flat at 100 N: E* = E / (2 (1 - nu^2)).
         let m = Material::steel();
         let e_star = m.young_modulus() / (2.0 * (1.0 - 0.29f64 * 0.29));

@@ -1,6 +1,6 @@
 //! Kuhn & Bagi's objective contact kinematics: the relative (sliding) and rolling velocities of
 //! two bodies at their contact (Kuhn & Bagi 2004, "Contact rolling and deformation in granular
-//! media", Int. J. Solids Struct. 41, 5793-5820, eqs. 9-16; the talk, slide "Eulerian kinematics
+//! media", Int. J. Solids Struct. 41, 5793-5820; the talk, slide "Eulerian kinematics
 //! of a moving contact").
 //!
 //! Bodies p and q (p is Rapier's collider1); unit normal `n` from p to q; contact point `c`.

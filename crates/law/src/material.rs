@@ -162,13 +162,12 @@ impl FrictionCombine {
 
 /// Combined properties of a contacting pair p, q (p is Rapier's collider1).
 ///
-/// * Hertz (Johnson 1985, *Contact Mechanics*, eqs. 4.22-4.23): `1/R* = 1/R_p + 1/R_q`,
+/// * Hertz (Johnson 1985, *Contact Mechanics*, §4.2): `1/R* = 1/R_p + 1/R_q`,
 ///   `1/E* = (1 - nu_p^2)/E_p + (1 - nu_q^2)/E_q`.
-/// * Mindlin (1949; Johnson 1985, eq. 7.42 generalised to two bodies, e.g. Thornton 2015,
-///   *Granular Dynamics, Contact Mechanics and Particle System Simulations*, §2.3):
+/// * Mindlin (1949; Johnson 1985, ch. 7; generalised to two dissimilar bodies as DEM codes do):
 ///   `1/G* = (2 - nu_p)/G_p + (2 - nu_q)/G_q`, so the initial tangential stiffness is `8 G* a`.
 /// * Kalker's combined modulus and Poisson ratio for quasi-identical bodies (Kalker 1990,
-///   *Three-dimensional elastic bodies in rolling contact*, §1.4): `2/G = 1/G_p + 1/G_q`,
+///   *Three-dimensional elastic bodies in rolling contact*): `2/G = 1/G_p + 1/G_q`,
 ///   `nu = (G/2) (nu_p/G_p + nu_q/G_q)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PairMaterial {

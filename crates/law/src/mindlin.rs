@@ -10,21 +10,24 @@
 //! normal force density `E* (a^2 - x^2) / R*` and slips by Coulomb's law, so its tangential
 //! displacement `u(x)` obeys `|u(x)| <= L(x) = kappa (a^2 - x^2)` with
 //! `kappa = mu E* / (4 G* R*)`. The tangential force is `Q = 2 * 4 G* * integral_0^a u(x) dx`.
-//! Heß & Popov proved this mapping *exact* for the Cattaneo-Mindlin problem of axisymmetric
-//! profiles under arbitrary histories of normal and (collinear) tangential load (Popov & Heß 2015,
-//! §5.4-5.6), so at constant `P` it reproduces Mindlin & Deresiewicz (1953) loading, unloading and
-//! reloading with their memory exactly, and under varying `P` it is the rule we follow and test
-//! (new springs enter with zero displacement, leaving springs release theirs; e.g. proportional
-//! loading `Q/P = const < mu` is slip-free with `dQ = 8 G* a d delta`, Mindlin & Deresiewicz 1953,
-//! §7).
+//! Popov & Heß (2015, ch. 5) show that this mapping reproduces the Cattaneo-Mindlin problem of
+//! axisymmetric profiles under histories of normal and (collinear) tangential load; the unit
+//! tests confirm it here to rounding: at constant `P` it reproduces Mindlin & Deresiewicz (1953)
+//! loading, unloading and reloading with their memory, and under varying `P` it is the rule we
+//! follow and test (new springs enter with zero displacement, leaving springs release theirs;
+//! e.g. proportional loading `Q/P = const < mu` is slip-free with `dQ = 8 G* a d delta`, as
+//! Mindlin & Deresiewicz 1953 found).
 //!
 //! # The algorithm
 //! The spring field `u(x)` is held exactly, as a short list of *pieces* (annuli of the 3-D
-//! contact), each of the form `u(x) = c` (stuck) or `u(x) = L(x) e + c` (`|e| = 1`; at the slip
-//! limit when `c = 0`). Each update (i) shifts the limits for the new contact radius, (ii) adds the
-//! displacement increment to every spring, (iii) finds in closed form, per piece, the radius that
-//! divides sticking from slipping springs (`L` decreases outwards, so the slipping part is always
-//! the outer end of a piece), and (iv) sets the slipping springs onto the limit. Every step is
+//! contact), each of the form `u(x) = s(x) beta + c` with the depth `s = a^2 - x^2` (so the
+//! limit is `kappa s`; a piece at the slip limit has `c = 0`, `|beta| = kappa`; a stuck piece
+//! `beta = 0`; springs that entered while `a` grew carry `beta = du / d(a^2)`). Each update
+//! (i) rewrites the pieces for the new contact radius (`s` shifts uniformly with `a^2`),
+//! (ii) adds the displacement increment to every spring, (iii) finds in closed form, per piece,
+//! the radius that divides sticking from slipping springs (the depth decreases outwards, so the
+//! slipping part is always the outer end of a piece), and (iv) sets the slipping springs onto the
+//! limit. Every step is
 //! integrated along the exact branch, so at constant `P` the closed forms are reproduced to
 //! rounding whatever the step size. For collinear paths the slip direction of a piece is exact;
 //! when the path turns, the springs of one slipping piece are given one common direction (that of
@@ -77,7 +80,7 @@ fn int_s(a: f64, x1: f64, x2: f64) -> f64 {
 }
 
 /// `integral_{x1}^{x2} s^2 dx` [m^5] by 3-point Gauss-Legendre quadrature (exact for the quartic
-/// `s^2`; Abramowitz & Stegun 1964, eq. 25.4.29), free of cancellation like [`int_s`].
+/// `s^2`; Abramowitz & Stegun 1964, §25.4), free of cancellation like [`int_s`].
 #[inline]
 fn int_s2(a: f64, x1: f64, x2: f64) -> f64 {
     const R: f64 = 0.774_596_669_241_483_4; // sqrt(3/5)

@@ -74,7 +74,7 @@ impl Vec3 {
         (l.is_finite() && l > f64::MIN_POSITIVE).then(|| self * (1.0 / l))
     }
     /// An orthonormal tangent basis `(t1, t2)` with `t1 x t2 = self` for a unit vector `self`
-    /// (Duff et al. 2017, "Building an orthonormal basis, revisited", JCGT 6(1), listing 3).
+    /// (Duff et al. 2017, "Building an orthonormal basis, revisited", JCGT 6(1)).
     pub fn tangent_basis(self) -> (Self, Self) {
         let sign = 1.0_f64.copysign(self.z);
         let a = -1.0 / (sign + self.z);
