@@ -17,6 +17,9 @@ pub enum RunCommand {
         /// Incline angle [degrees].
         #[arg(long, default_value_t = 20.0)]
         theta_deg: f64,
+        /// Material of ball and incline (`steel` with mu = 0.5, `glass`, `rubber`: G = 1 MPa).
+        #[arg(long, value_enum, default_value_t = MaterialName::Steel)]
+        material: MaterialName,
         /// Time step [s].
         #[arg(long, default_value_t = 1.0 / 240.0)]
         dt: f64,
@@ -44,19 +47,40 @@ pub enum RunCommand {
     CueBall,
 }
 
+/// Built-in materials (creep-law's presets).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MaterialName {
+    /// Steel, with mu = 0.5.
+    Steel,
+    /// Soda-lime glass.
+    Glass,
+    /// Soft rubber (G = 1 MPa, mu = 0.9).
+    Rubber,
+}
+
 /// Runs one scenario.
 pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
     match cmd {
-        RunCommand::Incline { theta_deg, dt } => {
-            let p = incline::InclineParams {
+        RunCommand::Incline {
+            theta_deg,
+            material,
+            dt,
+        } => {
+            let mut p = incline::InclineParams {
                 theta: theta_deg.to_radians(),
                 dt: *dt,
                 ..Default::default()
             };
+            match material {
+                MaterialName::Steel => {}
+                MaterialName::Glass => p.material = Material::glass(),
+                MaterialName::Rubber => p.material = Material::rubber(),
+            }
             let r = incline::run(&p)?;
             writeln!(
                 out,
-                "incline {theta_deg} deg, 0.1 m steel ball, mu = 0.5, dt = {dt:.5} s; Q/(mu P) = {:.3}",
+                "incline {theta_deg} deg, 0.1 m {material:?} ball, mu = {}, dt = {dt:.5} s; Q/(mu P) = {:.3}",
+                p.material.friction(),
                 r.q_over_mu_p
             )?;
             writeln!(
@@ -190,6 +214,7 @@ pub fn tour(out: &mut dyn Write) -> Res {
     run(
         &RunCommand::Incline {
             theta_deg: 20.0,
+            material: MaterialName::Steel,
             dt: 1.0 / 240.0,
         },
         out,
