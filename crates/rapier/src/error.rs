@@ -31,6 +31,26 @@ pub enum PluginError {
         /// The valid range, in words.
         why: &'static str,
     },
+    /// Compliant regime: the time step exceeds the safe fraction of the Rayleigh time step.
+    #[error(
+        "dt = {dt} s exceeds {fraction} x the Rayleigh time step {rayleigh} s of the compliant \
+         spheres (explicit DEM; lower dt or set CompliantSettings::rayleigh_check)"
+    )]
+    RayleighTimeStep {
+        /// Time step [s].
+        dt: f64,
+        /// Smallest Rayleigh time step of the compliant balls [s].
+        rayleigh: f64,
+        /// Largest accepted dt / T_R [-].
+        fraction: f64,
+    },
+    /// Compliant regime: the pair's combined restitution (Rapier's `Collider::restitution`
+    /// with its combine rule) is outside [0.01, 1].
+    #[error(
+        "restitution {0} of a compliant pair is outside [0.01, 1] (set Collider::restitution; \
+         Rapier's default is 0)"
+    )]
+    Restitution(f64),
     /// A material or contact-law parameter was refused by creep-law.
     #[error(transparent)]
     Law(#[from] LawError),

@@ -348,7 +348,7 @@ impl CreepHooks {
             let Some(co) = colliders.get(handle) else {
                 continue;
             };
-            let on = mat.fidelity == Fidelity::Creep
+            let on = matches!(mat.fidelity, Fidelity::Creep | Fidelity::Compliant)
                 || matches!(mat.rolling, RollingResistance::Torque(_))
                 || v_act == 0.0
                 || co.parent().and_then(|h| bodies.get(h)).is_some_and(|rb| {
@@ -527,12 +527,13 @@ fn apply_rolling_impulse(bodies: &mut RigidBodySet, rec: &ContactRecord, dt: f64
     }
 }
 
-/// The lower of two fidelities (Coulomb < Auto < Creep).
+/// The lower of two fidelities (Coulomb < Auto < Creep < Compliant).
 fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
     use Fidelity::*;
     match (a, b) {
         (Coulomb, _) | (_, Coulomb) => Coulomb,
         (Auto, _) | (_, Auto) => Auto,
+        (Compliant, Compliant) => Compliant,
         _ => Creep,
     }
 }
@@ -553,6 +554,12 @@ impl PhysicsHooks for CreepHooks {
             counts.coulomb_unregistered += n_contacts;
             return;
         };
+        // --- Compliant regime (crate::compliant applies this pair's forces itself). ---
+        if pair_fidelity(m1.fidelity, m2.fidelity) == Fidelity::Compliant {
+            rigid.solver_contacts.clear();
+            return;
+        }
+        // --- end compliant ---
         let surfaces = (
             colliders.get(c1).and_then(surface_of),
             colliders.get(c2).and_then(surface_of),

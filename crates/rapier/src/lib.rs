@@ -19,11 +19,15 @@
 #![forbid(unsafe_code)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod compliant;
 pub mod error;
 pub mod hooks;
 pub mod registry;
 pub mod world;
 
+pub use compliant::{
+    CompliantCounts, CompliantEnergy, CompliantRegime, CompliantSettings, RayleighCheck,
+};
 pub use error::PluginError;
 pub use hooks::{
     ContactKey, ContactStore, CreepHooks, CreepSettings, StepCounts, check_parameters,

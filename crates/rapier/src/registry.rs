@@ -18,6 +18,10 @@ pub enum Fidelity {
     /// `F_ss(1) |v_roll|` is below `tolerance` [m/s] is left to Coulomb.
     #[default]
     Auto,
+    /// Compliant (soft-sphere DEM) contact: a pair whose two colliders are both `Compliant`
+    /// leaves Rapier's contact solve; [`crate::compliant`] applies Hertz-Mindlin-creep forces.
+    /// Paired with any other fidelity it counts as `Creep`.
+    Compliant,
 }
 
 /// Contact-torque rolling resistance (the talk's other category), per collider.

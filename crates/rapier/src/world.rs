@@ -5,6 +5,7 @@
 
 use rapier3d::prelude::*;
 
+use crate::compliant::{CompliantRegime, CompliantSettings};
 use crate::error::PluginError;
 use crate::hooks::{CreepHooks, CreepSettings, StepCounts, configure_parameters};
 use crate::registry::{CreepMaterial, MaterialRegistry};
@@ -15,6 +16,9 @@ pub struct CreepWorld {
     pub physics: PhysicsWorld,
     /// The creep hooks (materials, settings, per-contact state, counts).
     pub hooks: CreepHooks,
+    /// The compliant (DEM) regime: forces of the pairs whose colliders are both
+    /// `Fidelity::Compliant` (inactive without such colliders).
+    pub compliant: CompliantRegime,
 }
 
 impl CreepWorld {
@@ -28,6 +32,18 @@ impl CreepWorld {
         Ok(Self {
             physics,
             hooks: CreepHooks::new(MaterialRegistry::new(), settings)?,
+            compliant: CompliantRegime::new(CompliantSettings::default())?,
+        })
+    }
+
+    /// A world from a Rapier world and hooks (e.g. a [`clone_physics`] copy stepped with other
+    /// hooks), with a fresh compliant regime (default settings, no contact history).
+    pub fn from_parts(physics: PhysicsWorld, hooks: CreepHooks) -> Result<Self, PluginError> {
+        crate::hooks::check_parameters(&physics.integration_parameters)?;
+        Ok(Self {
+            physics,
+            hooks,
+            compliant: CompliantRegime::new(CompliantSettings::default())?,
         })
     }
 
@@ -80,7 +96,16 @@ impl CreepWorld {
             .begin_step(&self.physics.integration_parameters)?;
         self.hooks
             .update_activation(&self.physics.bodies, &mut self.physics.colliders);
+        let w = &mut self.physics;
+        self.compliant.begin_step(
+            self.hooks.registry(),
+            &w.integration_parameters,
+            &mut w.bodies,
+            &w.colliders,
+            &w.narrow_phase,
+        )?;
         self.physics.step_with_events(&self.hooks, &());
+        self.compliant.end_step(&mut self.physics.bodies);
         self.hooks.end_step(&mut self.physics.bodies);
         Ok(self.hooks.counts())
     }

@@ -1,0 +1,688 @@
+//! The compliant (soft-sphere DEM) regime: per pair, the plugin takes the contact out of
+//! Rapier's contact solve (the hook clears its solver contacts) and applies, each step, the
+//! contact forces and torques itself. Rapier keeps broad phase, narrow phase and integration.
+//!
+//! # The contact law (all in f64)
+//! Bodies p (the narrow phase's collider1) and q, unit normal `n` from p to q, overlap `delta`,
+//! contact point `c` in the middle of the overlap (DESIGN §2 conventions).
+//! * Normal: Hertz `P_e = (4/3) E* sqrt(R*) delta^(3/2)` (Johnson 1985, §4.2) plus the damping
+//!   of Tsuji et al. (1992), `alpha sqrt(m* k_H) delta^(1/4) delta_dot`, with `alpha` chosen so
+//!   that the impact rebounds with the pair's restitution `e` exactly (see [`damping`]); the
+//!   total is never attractive (`P >= 0`).
+//! * Tangential: Cattaneo-Mindlin with Kuhn's creep term, creep-law's [`CreepState`], fed
+//!   `du_disp = v_disp dt` and `du_roll = v_roll dt` (Kuhn & Bagi 2004 rates, creep-law
+//!   [`contact_rates`]) at the contact radius `a = sqrt(R* delta)`; its Coulomb limit is
+//!   `mu P_e` (creep-law's spring row carries `mu` times the Hertz pressure).
+//!   [`CompliantSettings::creep`] = false feeds no rolling displacement: plain Coulomb-Mindlin.
+//! * The tangential history lives in a tangent basis `(t1, t2)` carried by the contact: each
+//!   step the basis turns with the normal (the smallest rotation taking the last normal to the
+//!   new one) and about the normal with the pair's mean spin `(w_p + w_q) . n / 2`, then is
+//!   re-orthonormalised. The stored 2-D force therefore follows the contact as a rigid body and
+//!   needs no re-projection.
+//! * Optional contact-torque rolling resistance (creep-law `rolling_torque`), from the
+//!   colliders' [`RollingResistance`].
+//! * Walls (cuboid faces, half-spaces) are the same law with an infinite radius on the wall side
+//!   (`Surface::Plane`); a sphere over a cuboid's edge or corner meets it along the line to the
+//!   closest point.
+//!
+//! Friction and restitution of a pair are the colliders' own (`Collider::friction`,
+//! `Collider::restitution`) combined by Rapier's combine rules, so Rapier's defaults apply: the
+//! default restitution 0 is refused (`MIN_RESTITUTION <= e <= 1`, [`PluginError::Restitution`]):
+//! set it on the colliders.
+//!
+//! # Stepping
+//! [`CompliantRegime::begin_step`] (before `PhysicsPipeline::step`) computes the geometry of
+//! every candidate pair from the *current* poses, the forces with the current velocities, and
+//! adds them to the bodies' user forces, saving these first; [`CompliantRegime::end_step`]
+//! (after the step) restores the saved user forces exactly. Forces at `x_n` with Rapier's
+//! velocity-then-position update are symplectic Euler when
+//! `IntegrationParameters::num_solver_iterations == 1`; with `k` substeps Rapier applies the
+//! frozen force in each substep (still first order, not symplectic): use 1 for DEM scenes.
+//! Measured on the elastic sphere-wall impact at 300 steps per contact: energy error 2.6e-5
+//! and rebound 1.0000 with 1 substep, 9.3e-3 and 1.0047 with 2, 1.4e-2 and 1.0070 with 4
+//! (Rapier's default).
+//!
+//! Candidate pairs are the narrow phase's contact pairs (broad-phase AABB overlaps with the
+//! prediction margin) of the last step. A contact cannot start unseen as long as the pair's
+//! relative displacement in one step stays below the prediction distance (default 2 mm per
+//! length unit): with DEM steps (a fraction of the Rayleigh time, micro-seconds for mm
+//! particles) that is a relative speed of hundreds of m/s.
+//!
+//! # Time step
+//! Explicit: `dt` must be a fraction of the smallest Rayleigh time step `T_R` of the compliant
+//! balls (creep-law `hertz::rayleigh_time_step`, Li, Xu & Thornton 2005).
+//! [`CompliantSettings::rayleigh_fraction`] (default 0.2) sets the fraction; above it
+//! `begin_step` returns [`PluginError::RayleighTimeStep`], or with
+//! [`RayleighCheck::Warn`] sets [`CompliantCounts::rayleigh_exceeded`] instead.
+//!
+//! # f32
+//! rapier3d is f32: poses and velocities are rounded to 24 bits; the contact law runs in f64
+//! from the f32 poses. Measured (`cargo test -p creep-rapier --test compliant -- --nocapture`,
+//! test `f32_resolution_against_step_size`; an aluminium sphere of radius 0.1 m hitting a wall
+//! at 0.2 m/s, overlap 49 um): with the centre meeting the wall at y = 0.1 m (f32 spacing, ulp,
+//! 7.5e-9 m) the energy error of the impact is 3.8e-4, 1.3e-3, 6.7e-4 and 4.8e-3 at 100, 300,
+//! 1000 and 4000 steps per contact (per-step displacement `v dt` = 257, 86, 26 and 6 ulp) and
+//! the contact duration is off by +1.3 % at 4000 steps; with the centre meeting the wall at
+//! y = 0 the same impact conserves energy to 2.6e-5 and 2.9e-6 at 300 and 4000 steps. The error
+//! is the rounding of `x + v dt` to the ulp of `x`: it grows as the step shrinks, and with the
+//! distance from the origin (ulp ~ 6e-8 |x|). Rule of thumb: f32 is adequate while the
+//! per-step displacement is >= ~100 ulp and the overlap >= ~1e3 ulp of the coordinates. That
+//! holds for impacts (these tests), not for quasi-static granular tests: a 5 cm triaxial box
+//! (ulp 3.7e-9 m) of 3 mm glass spheres at 100 kPa has overlaps of ~0.75 um (200 ulp: about
+//! 1 % noise on the contact forces) and interior particles that move far less than one ulp
+//! per step at inertial numbers below 1e-3, so their motion is lost to rounding. Such scenes
+//! need rapier3d-f64: rapier publishes it as a separate crate with the same API (`Real = f64`);
+//! the plugin would need a cargo feature choosing `rapier3d` or `rapier3d-f64` (renamed to one
+//! dependency name), its `f32` casts at the engine boundary (`v3`, `vf`, `f64::from(..)` of
+//! `Real` values, `as f32`) made generic over `Real`, and the f32-only tests adjusted; the
+//! contact laws (creep-law) are already f64.
+
+pub mod damping;
+mod geometry;
+
+use std::collections::HashMap;
+
+use creep_law::kinematics::{BodyMotion, contact_rates};
+use creep_law::rolling_torque::{RollingInput, RollingState, epsd_rolling_inertia};
+use creep_law::{CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz};
+use rapier3d::prelude::*;
+
+pub use damping::{
+    MIN_RESTITUTION, alpha_without_cutoff, damping_coefficient, restitution_for_damping,
+};
+
+use crate::error::PluginError;
+use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
+use geometry::{Frame, Touch};
+
+/// Default largest `dt / T_R` (Rayleigh time step) [-]; DEM practice is 0.1-0.3.
+pub const DEFAULT_RAYLEIGH_FRACTION: f64 = 0.2;
+
+/// What to do when `dt` exceeds the safe fraction of the Rayleigh time step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RayleighCheck {
+    /// Return [`PluginError::RayleighTimeStep`] (default).
+    #[default]
+    Error,
+    /// Step anyway and flag it in [`CompliantCounts::rayleigh_exceeded`].
+    Warn,
+    /// Do not check.
+    Off,
+}
+
+/// Settings of the compliant regime.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CompliantSettings {
+    /// Largest `dt / T_R` accepted [-], in (0, 1]; default [`DEFAULT_RAYLEIGH_FRACTION`].
+    pub rayleigh_fraction: f64,
+    /// What exceeding it does.
+    pub rayleigh_check: RayleighCheck,
+    /// Kuhn's creep term on (default) or off (plain Coulomb-Mindlin).
+    pub creep: bool,
+    /// Steady (and transient) creep law of the creep term (default Kuhn's, Kalker's `F_ss`).
+    pub creep_model: CreepModel,
+}
+
+impl Default for CompliantSettings {
+    fn default() -> Self {
+        Self {
+            rayleigh_fraction: DEFAULT_RAYLEIGH_FRACTION,
+            rayleigh_check: RayleighCheck::Error,
+            creep: true,
+            creep_model: CreepModel::Kuhn,
+        }
+    }
+}
+
+impl CompliantSettings {
+    /// Validates the settings.
+    pub fn validate(&self) -> Result<(), PluginError> {
+        if !(self.rayleigh_fraction > 0.0 && self.rayleigh_fraction <= 1.0) {
+            return Err(PluginError::Setting {
+                name: "rayleigh_fraction",
+                value: self.rayleigh_fraction,
+                why: "must be in (0, 1] [-]",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Energy bookkeeping of the compliant contacts [J]. The elastic terms are the current stored
+/// energies; the others accumulate from the creation of the regime (or [`CompliantRegime::reset_energy`]).
+/// Balance: work of the contact forces = change of `elastic()` + `dissipated()`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CompliantEnergy {
+    /// Elastic energy in the Hertz normal springs, `(8/15) E* sqrt(R*) delta^(5/2)` summed [J].
+    pub normal_elastic: f64,
+    /// Elastic energy in the Cattaneo-Mindlin tangential springs (creep-law
+    /// `MindlinState::elastic_energy`) summed [J].
+    pub tangential_elastic: f64,
+    /// Dissipated by the normal damping, `sum (P - P_e) delta_dot dt` [J].
+    pub damping: f64,
+    /// Dissipated by micro-slip and gross slip (creep-law `CreepStep::slip_dissipation`) [J].
+    pub slip: f64,
+    /// Dissipated by creep (`CreepStep::creep_dissipation`) [J].
+    pub creep: f64,
+    /// Dissipated by contact-torque rolling resistance (`RollingStep::dissipation`) [J].
+    pub rolling: f64,
+    /// Added by simplifying over-full Mindlin memories (`CreepStep::truncation_energy`) [J].
+    pub truncation: f64,
+}
+
+impl CompliantEnergy {
+    /// Stored elastic energy [J].
+    pub fn elastic(&self) -> f64 {
+        self.normal_elastic + self.tangential_elastic
+    }
+    /// Net dissipated energy [J] (dissipation minus truncation energy).
+    pub fn dissipated(&self) -> f64 {
+        self.damping + self.slip + self.creep + self.rolling - self.truncation
+    }
+}
+
+/// What the compliant regime did in the last step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CompliantCounts {
+    /// Touching compliant contacts (overlap > 0).
+    pub contacts: usize,
+    /// Of which at the Coulomb limit (`|Q| >= mu P_e`, gross sliding).
+    pub sliding: usize,
+    /// Of which creeping (a non-zero creep displacement this step).
+    pub creeping: usize,
+    /// Compliant pairs skipped: shapes other than ball, cuboid, half-space, or two walls.
+    pub unsupported: usize,
+    /// Smallest Rayleigh time step of the compliant balls [s] (infinite if none).
+    pub rayleigh_time_step: f64,
+    /// Whether `dt > rayleigh_fraction T_R` (only with [`RayleighCheck::Warn`]).
+    pub rayleigh_exceeded: bool,
+    /// Largest `|v| dt` of a body with a compliant collider this step [m]. A contact cannot
+    /// start unseen while twice this stays below `IntegrationParameters::prediction_distance()`
+    /// (the broad phase pairs colliders closer than it).
+    pub max_step_displacement: f64,
+}
+
+/// State of one compliant contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CompliantContact {
+    /// Cattaneo-Mindlin memory and creep state; its 2-D vectors are in `(t1, t2)`.
+    pub state: CreepState,
+    /// First tangent of the contact-following basis [-].
+    pub t1: Vec3,
+    /// Second tangent, `n x t1` [-].
+    pub t2: Vec3,
+    /// Unit normal from p to q [-].
+    pub normal: Vec3,
+    /// Contact point [m].
+    pub point: Vec3,
+    /// Overlap [m].
+    pub overlap: f64,
+    /// Normal force on q (along `n`) [N], damping included.
+    pub normal_force: f64,
+    /// Tangential force on p from q, world frame [N].
+    pub tangential_force: Vec3,
+    /// Contact-torque rolling state.
+    pub rolling: RollingState,
+    /// Whether the contact slid (Coulomb limit) this step.
+    pub sliding: bool,
+    generation: u64,
+}
+
+/// Key of a compliant contact: the collider pair, in the narrow phase's order (balls, cuboids
+/// and half-spaces are convex: one contact per pair).
+pub type PairKey = (ColliderHandle, ColliderHandle);
+
+/// The compliant regime: per-contact state, the forces it added, its energy totals.
+#[derive(Debug, Clone)]
+pub struct CompliantRegime {
+    settings: CompliantSettings,
+    contacts: HashMap<PairKey, CompliantContact>,
+    generation: u64,
+    saved: Vec<(RigidBodyHandle, Vector, Vector)>,
+    energy: CompliantEnergy,
+    counts: CompliantCounts,
+    alpha_cache: Vec<(f64, f64)>,
+}
+
+impl CompliantRegime {
+    /// A regime with the given settings.
+    pub fn new(settings: CompliantSettings) -> Result<Self, PluginError> {
+        settings.validate()?;
+        Ok(Self {
+            settings,
+            contacts: HashMap::new(),
+            generation: 0,
+            saved: Vec::new(),
+            energy: CompliantEnergy::default(),
+            counts: CompliantCounts::default(),
+            alpha_cache: Vec::new(),
+        })
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &CompliantSettings {
+        &self.settings
+    }
+    /// Replaces the settings (validated).
+    pub fn set_settings(&mut self, settings: CompliantSettings) -> Result<(), PluginError> {
+        settings.validate()?;
+        self.settings = settings;
+        Ok(())
+    }
+    /// Energy totals (elastic terms as of the last [`CompliantRegime::begin_step`]).
+    pub fn energy(&self) -> CompliantEnergy {
+        self.energy
+    }
+    /// Zeroes the accumulated dissipation.
+    pub fn reset_energy(&mut self) {
+        let e = self.energy;
+        self.energy = CompliantEnergy {
+            normal_elastic: e.normal_elastic,
+            tangential_elastic: e.tangential_elastic,
+            ..CompliantEnergy::default()
+        };
+    }
+    /// What the last step did.
+    pub fn counts(&self) -> CompliantCounts {
+        self.counts
+    }
+    /// The live contacts.
+    pub fn contacts(&self) -> impl Iterator<Item = (&PairKey, &CompliantContact)> {
+        self.contacts.iter()
+    }
+
+    /// The smallest Rayleigh time step [s] over the registered `Compliant` balls
+    /// (`f64::INFINITY` if there are none).
+    pub fn rayleigh_time_step(registry: &MaterialRegistry, colliders: &ColliderSet) -> f64 {
+        let mut t_min = f64::INFINITY;
+        for (&h, m) in registry.iter() {
+            if m.fidelity != Fidelity::Compliant {
+                continue;
+            }
+            if let Some(ball) = colliders.get(h).and_then(|c| c.shape().as_ball()) {
+                let t = hertz::rayleigh_time_step(&m.material, f64::from(ball.radius));
+                if t > 0.0 {
+                    t_min = t_min.min(t);
+                }
+            }
+        }
+        t_min
+    }
+
+    fn alpha(&mut self, e: f64) -> Result<f64, PluginError> {
+        if let Some(&(_, a)) = self.alpha_cache.iter().find(|(ee, _)| *ee == e) {
+            return Ok(a);
+        }
+        let a = damping_coefficient(e)?;
+        if self.alpha_cache.len() > 64 {
+            self.alpha_cache.clear();
+        }
+        self.alpha_cache.push((e, a));
+        Ok(a)
+    }
+
+    /// Call before `PhysicsPipeline::step`: checks the time step against the Rayleigh time,
+    /// computes every compliant contact's force from the current poses and velocities and adds
+    /// it to the bodies' user forces and torques (saving them for [`CompliantRegime::end_step`]).
+    /// Without `Compliant` colliders in the registry it does nothing.
+    pub fn begin_step(
+        &mut self,
+        registry: &MaterialRegistry,
+        params: &IntegrationParameters,
+        bodies: &mut RigidBodySet,
+        colliders: &ColliderSet,
+        narrow_phase: &NarrowPhase,
+    ) -> Result<CompliantCounts, PluginError> {
+        self.end_step(bodies); // a missed end_step must not leave forces behind
+        self.generation += 1;
+        self.counts = CompliantCounts {
+            rayleigh_time_step: f64::INFINITY,
+            ..CompliantCounts::default()
+        };
+        if !registry
+            .iter()
+            .any(|(_, m)| m.fidelity == Fidelity::Compliant)
+        {
+            self.contacts.clear();
+            self.energy.normal_elastic = 0.0;
+            self.energy.tangential_elastic = 0.0;
+            return Ok(self.counts);
+        }
+        let dt = f64::from(params.dt);
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(PluginError::TimeStep(params.dt));
+        }
+        let t_r = Self::rayleigh_time_step(registry, colliders);
+        self.counts.rayleigh_time_step = t_r;
+        for (&h, m) in registry.iter() {
+            if m.fidelity != Fidelity::Compliant {
+                continue;
+            }
+            if let Some(rb) = colliders
+                .get(h)
+                .and_then(|c| c.parent())
+                .and_then(|b| bodies.get(b))
+            {
+                let d = f64::from(rb.linvel().length()) * dt;
+                self.counts.max_step_displacement = self.counts.max_step_displacement.max(d);
+            }
+        }
+        if dt > self.settings.rayleigh_fraction * t_r {
+            match self.settings.rayleigh_check {
+                RayleighCheck::Error => {
+                    return Err(PluginError::RayleighTimeStep {
+                        dt,
+                        rayleigh: t_r,
+                        fraction: self.settings.rayleigh_fraction,
+                    });
+                }
+                RayleighCheck::Warn => self.counts.rayleigh_exceeded = true,
+                RayleighCheck::Off => {}
+            }
+        }
+
+        let mut accum: HashMap<RigidBodyHandle, (Vec3, Vec3)> = HashMap::new();
+        let mut normal_elastic = 0.0;
+        let mut tangential_elastic = 0.0;
+        for pair in narrow_phase.contact_pairs() {
+            let (c1, c2) = (pair.collider1, pair.collider2);
+            let (Some(m1), Some(m2)) = (registry.get(c1), registry.get(c2)) else {
+                continue;
+            };
+            if m1.fidelity != Fidelity::Compliant || m2.fidelity != Fidelity::Compliant {
+                continue;
+            }
+            let (Some(co1), Some(co2)) = (colliders.get(c1), colliders.get(c2)) else {
+                continue;
+            };
+            let Some(touch) = touch_of(co1, co2) else {
+                self.counts.unsupported += 1;
+                continue;
+            };
+            if !(touch.overlap > 0.0) {
+                continue; // open: the record is swept below, the memory is lost
+            }
+            let (Some(s1), Some(s2)) = (surface(co1), surface(co2)) else {
+                self.counts.unsupported += 1;
+                continue;
+            };
+            let mu = f64::from(CoefficientCombineRule::combine(
+                co1.friction(),
+                co2.friction(),
+                co1.friction_combine_rule(),
+                co2.friction_combine_rule(),
+            ));
+            let e = f64::from(CoefficientCombineRule::combine(
+                co1.restitution(),
+                co2.restitution(),
+                co1.restitution_combine_rule(),
+                co2.restitution_combine_rule(),
+            ));
+            let pm = PairMaterial::new(&m1.material, &m2.material, s1, s2)
+                .and_then(|p| p.with_friction(mu));
+            let Ok(pm) = pm else {
+                self.counts.unsupported += 1;
+                continue;
+            };
+            let alpha = self.alpha(e)?;
+            let (h1, h2) = (co1.parent(), co2.parent());
+            let b1 = h1.and_then(|h| bodies.get(h));
+            let b2 = h2.and_then(|h| bodies.get(h));
+            let inv_m = |b: Option<&RigidBody>| match b {
+                Some(rb) if rb.is_dynamic() && rb.mass() > 0.0 => 1.0 / f64::from(rb.mass()),
+                _ => 0.0,
+            };
+            let inv_sum = inv_m(b1) + inv_m(b2);
+            if !(inv_sum > 0.0) {
+                continue;
+            }
+            let m_star = 1.0 / inv_sum;
+            let n = touch.normal;
+            let c = touch.point;
+            let p_motion = motion(b1, c - n, s1);
+            let q_motion = motion(b2, c + n, s2);
+            let rates = contact_rates(&p_motion, &q_motion, c, n);
+            let delta_dot = -(q_motion.velocity_at(c) - p_motion.velocity_at(c)).dot(n);
+
+            // Contact record and its tangent basis, carried with the contact.
+            let generation = self.generation;
+            let spin = 0.5 * (p_motion.angular_velocity + q_motion.angular_velocity).dot(n);
+            let rec = self.contacts.entry((c1, c2)).or_insert_with(|| {
+                let (t1, _) = n.tangent_basis();
+                CompliantContact {
+                    state: CreepState::new(),
+                    t1,
+                    t2: n.cross(t1),
+                    normal: n,
+                    point: c,
+                    overlap: 0.0,
+                    normal_force: 0.0,
+                    tangential_force: Vec3::ZERO,
+                    rolling: RollingState::default(),
+                    sliding: false,
+                    generation,
+                }
+            });
+            let t1 = rotate_to(rec.t1, rec.normal, n);
+            let t1 = rotate_about(t1, n, spin * dt);
+            let Some(t1) = t1.reject(n).try_normalize() else {
+                continue;
+            };
+            let t2 = n.cross(t1);
+
+            // Normal force: Hertz + Tsuji damping tuned to e, never attractive.
+            let delta = touch.overlap;
+            let p_el = hertz::normal_force(&pm, delta);
+            let k_h = 4.0 / 3.0 * pm.e_star * pm.r_star.sqrt();
+            let damp = alpha * (m_star * k_h).sqrt() * delta.sqrt().sqrt();
+            let p_tot = (p_el + damp * delta_dot).max(0.0);
+            self.energy.damping += (p_tot - p_el) * delta_dot * dt;
+
+            // Tangential force: Cattaneo-Mindlin with Kuhn's creep term.
+            let a = hertz::contact_radius_from_overlap(&pm, delta);
+            let du_disp = Vec2::from_basis(rates.v_disp * dt, t1, t2);
+            let du_roll = if self.settings.creep {
+                Vec2::from_basis(rates.v_roll * dt, t1, t2)
+            } else {
+                Vec2::ZERO
+            };
+            let step = rec.state.update_model_with_radius(
+                &pm,
+                self.settings.creep_model,
+                p_el,
+                a,
+                du_disp,
+                du_roll,
+            );
+            self.energy.slip += step.slip_dissipation;
+            self.energy.creep += step.creep_dissipation;
+            self.energy.truncation += step.truncation_energy;
+            let q_world = step.q.to_3d(t1, t2);
+            let sliding = pm.mu.is_finite() && step.q.length() >= (1.0 - 1e-9) * pm.mu * p_el;
+
+            // Contact-torque rolling resistance (on q; -M on p).
+            let rolling = match (m1.rolling, m2.rolling) {
+                (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
+                _ => None,
+            };
+            let mut torque_q = Vec3::ZERO;
+            if let Some(model) = rolling {
+                let term = |b: Option<&RigidBody>, s: Surface| match (b, s) {
+                    (Some(rb), Surface::Sphere(r)) if rb.is_dynamic() => {
+                        let m = f64::from(rb.mass());
+                        (m, 0.4 * m * r * r, r)
+                    }
+                    _ => (f64::INFINITY, f64::INFINITY, 1.0),
+                };
+                let (ma, ia, ra) = term(b1, s1);
+                let (mb, ib, rb_) = term(b2, s2);
+                let input = RollingInput {
+                    p: p_tot,
+                    r_star: pm.r_star,
+                    k_n: hertz::normal_stiffness(&pm, delta),
+                    w_roll: rates.w_roll,
+                    normal: n,
+                    dt,
+                    rolling_inertia: epsd_rolling_inertia(ma, ia, ra, mb, ib, rb_),
+                };
+                let r = model.torque(&mut rec.rolling, &input);
+                torque_q = r.torque;
+                self.energy.rolling += r.dissipation;
+            }
+
+            rec.t1 = t1;
+            rec.t2 = t2;
+            rec.normal = n;
+            rec.point = c;
+            rec.overlap = delta;
+            rec.normal_force = p_tot;
+            rec.tangential_force = q_world;
+            rec.sliding = sliding;
+            rec.generation = generation;
+            normal_elastic += hertz::normal_energy(&pm, delta);
+            tangential_elastic += rec.state.mindlin().elastic_energy(&pm);
+            self.counts.contacts += 1;
+            self.counts.sliding += usize::from(sliding);
+            self.counts.creeping += usize::from(step.creep_displacement != Vec2::ZERO);
+
+            // Forces at the contact point, equal and opposite.
+            let f_p = q_world - n * p_tot;
+            for (b, h, f, m) in [(b1, h1, f_p, -torque_q), (b2, h2, -f_p, torque_q)] {
+                let (Some(rb), Some(h)) = (b, h) else {
+                    continue;
+                };
+                if !rb.is_dynamic() {
+                    continue;
+                }
+                let arm = c - v3(rb.center_of_mass());
+                let e = accum.entry(h).or_insert((Vec3::ZERO, Vec3::ZERO));
+                e.0 += f;
+                e.1 += arm.cross(f) + m;
+            }
+        }
+        let g = self.generation;
+        self.contacts.retain(|_, r| r.generation == g);
+        self.energy.normal_elastic = normal_elastic;
+        self.energy.tangential_elastic = tangential_elastic;
+
+        for (h, (f, m)) in accum {
+            if let Some(rb) = bodies.get_mut(h) {
+                self.saved.push((h, rb.user_force(), rb.user_torque()));
+                rb.add_force(vf(f), true);
+                rb.add_torque(vf(m), true);
+            }
+        }
+        Ok(self.counts)
+    }
+
+    /// Call after `PhysicsPipeline::step`: puts back the user forces and torques the bodies had
+    /// before [`CompliantRegime::begin_step`] (exactly: reset, then the saved values).
+    pub fn end_step(&mut self, bodies: &mut RigidBodySet) {
+        for (h, f, m) in self.saved.drain(..) {
+            if let Some(rb) = bodies.get_mut(h) {
+                rb.reset_forces(false);
+                rb.reset_torques(false);
+                rb.add_force(f, false);
+                rb.add_torque(m, false);
+            }
+        }
+    }
+}
+
+fn v3(v: Vector) -> Vec3 {
+    Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
+}
+
+fn vf(v: Vec3) -> Vector {
+    Vector::new(v.x as f32, v.y as f32, v.z as f32)
+}
+
+fn surface(co: &Collider) -> Option<Surface> {
+    crate::registry::surface_of(co)
+}
+
+/// Centre of a collider in f64 [m].
+fn centre(co: &Collider) -> Vec3 {
+    Frame::of(co.position()).t
+}
+
+/// Geometry of a supported pair (ball-ball, wall-ball, ball-wall), normal from collider 1 to 2.
+fn touch_of(co1: &Collider, co2: &Collider) -> Option<Touch> {
+    let wall = |co: &Collider, ball_centre: Vec3, r: f64| {
+        let frame = Frame::of(co.position());
+        if let Some(cub) = co.shape().as_cuboid() {
+            geometry::cuboid_sphere(&frame, v3(cub.half_extents), ball_centre, r)
+        } else if let Some(hs) = co.shape().as_halfspace() {
+            geometry::halfspace_sphere(&frame, v3(hs.normal), ball_centre, r)
+        } else {
+            None
+        }
+    };
+    match (co1.shape().as_ball(), co2.shape().as_ball()) {
+        (Some(b1), Some(b2)) => geometry::sphere_sphere(
+            centre(co1),
+            f64::from(b1.radius),
+            centre(co2),
+            f64::from(b2.radius),
+        ),
+        (None, Some(b2)) => wall(co1, centre(co2), f64::from(b2.radius)),
+        (Some(b1), None) => wall(co2, centre(co1), f64::from(b1.radius)).map(Touch::flipped),
+        (None, None) => None,
+    }
+}
+
+/// Motion of a body at the contact (a missing body is at rest at `fallback`).
+fn motion(body: Option<&RigidBody>, fallback: Vec3, surface: Surface) -> BodyMotion {
+    match body {
+        Some(rb) => BodyMotion {
+            position: v3(rb.center_of_mass()),
+            velocity: v3(rb.linvel()),
+            angular_velocity: v3(rb.angvel()),
+            surface,
+        },
+        None => BodyMotion {
+            position: fallback,
+            velocity: Vec3::ZERO,
+            angular_velocity: Vec3::ZERO,
+            surface,
+        },
+    }
+}
+
+/// `v` turned by the smallest rotation taking the unit vector `from` to the unit vector `to`
+/// (Rodrigues' formula; identity when they coincide, any half turn when opposite).
+fn rotate_to(v: Vec3, from: Vec3, to: Vec3) -> Vec3 {
+    let axis = from.cross(to);
+    let s = axis.length();
+    let c = from.dot(to);
+    if !(s > 1e-15) {
+        return if c >= 0.0 { v } else { -v };
+    }
+    let k = axis * (1.0 / s);
+    v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
+}
+
+/// `v` turned by `angle` [rad] about the unit `axis` (Rodrigues).
+fn rotate_about(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
+    if angle == 0.0 {
+        return v;
+    }
+    let (s, c) = angle.sin_cos();
+    v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn basis_rotation() {
+        let n0 = Vec3::Z;
+        let n1 = Vec3::new(0.0, 0.6, 0.8);
+        let t = rotate_to(Vec3::Y, n0, n1);
+        assert!(t.dot(n1).abs() < 1e-15 && (t.length() - 1.0).abs() < 1e-15);
+        assert!((rotate_to(Vec3::X, n0, n1) - Vec3::X).length() < 1e-15);
+        let r = rotate_about(Vec3::X, Vec3::Z, std::f64::consts::FRAC_PI_2);
+        assert!((r - Vec3::Y).length() < 1e-15);
+    }
+}
