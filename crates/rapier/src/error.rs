@@ -51,6 +51,14 @@ pub enum PluginError {
          Rapier's default is 0)"
     )]
     Restitution(f64),
+    /// Compliant regime: `IntegrationParameters::num_solver_iterations` must be 1 (the contact
+    /// forces are computed once per step; with substeps Rapier re-applies them frozen, which is
+    /// not symplectic and gains or loses ~1 % of an impact's energy).
+    #[error(
+        "the compliant (DEM) regime needs num_solver_iterations = 1 (got {0}): set \
+         IntegrationParameters::num_solver_iterations = 1 and use a smaller dt instead"
+    )]
+    CompliantSubsteps(usize),
     /// A material or contact-law parameter was refused by creep-law.
     #[error(transparent)]
     Law(#[from] LawError),

@@ -475,6 +475,22 @@ fn rayleigh_time_step_is_checked() {
 }
 
 #[test]
+fn substeps_other_than_one_are_refused() {
+    let glass = Material::glass();
+    let r = 1e-3;
+    let mut w = world(0.1 * creep_law::hertz::rayleigh_time_step(&glass, r));
+    w.physics.integration_parameters.num_solver_iterations = 4;
+    w.insert(
+        RigidBodyBuilder::dynamic(),
+        ball(r, &glass, 0.5, 0.5),
+        compliant(glass),
+    );
+    assert!(matches!(w.step(), Err(PluginError::CompliantSubsteps(4))));
+    w.physics.integration_parameters.num_solver_iterations = 1;
+    assert!(w.step().is_ok());
+}
+
+#[test]
 fn user_forces_are_restored_exactly() {
     let glass = Material::glass();
     let (r, v) = (0.01, 1.0);
