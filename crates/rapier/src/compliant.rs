@@ -82,7 +82,7 @@ mod geometry;
 
 use std::collections::HashMap;
 
-use creep_law::kinematics::{BodyMotion, contact_rates};
+use creep_law::kinematics::contact_rates;
 use creep_law::rolling_torque::{RollingInput, RollingState, epsd_rolling_inertia};
 use creep_law::{CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz};
 use rapier3d::prelude::*;
@@ -92,6 +92,7 @@ pub use damping::{
 };
 
 use crate::error::PluginError;
+use crate::hooks::{body_motion as motion, v3, vf};
 use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
 use geometry::{Frame, Touch};
 
@@ -594,14 +595,6 @@ impl CompliantRegime {
     }
 }
 
-fn v3(v: Vector) -> Vec3 {
-    Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
-}
-
-fn vf(v: Vec3) -> Vector {
-    Vector::new(v.x as f32, v.y as f32, v.z as f32)
-}
-
 fn surface(co: &Collider) -> Option<Surface> {
     crate::registry::surface_of(co)
 }
@@ -633,24 +626,6 @@ fn touch_of(co1: &Collider, co2: &Collider) -> Option<Touch> {
         (None, Some(b2)) => wall(co1, centre(co2), f64::from(b2.radius)),
         (Some(b1), None) => wall(co2, centre(co1), f64::from(b1.radius)).map(Touch::flipped),
         (None, None) => None,
-    }
-}
-
-/// Motion of a body at the contact (a missing body is at rest at `fallback`).
-fn motion(body: Option<&RigidBody>, fallback: Vec3, surface: Surface) -> BodyMotion {
-    match body {
-        Some(rb) => BodyMotion {
-            position: v3(rb.center_of_mass()),
-            velocity: v3(rb.linvel()),
-            angular_velocity: v3(rb.angvel()),
-            surface,
-        },
-        None => BodyMotion {
-            position: fallback,
-            velocity: Vec3::ZERO,
-            angular_velocity: Vec3::ZERO,
-            surface,
-        },
     }
 }
 

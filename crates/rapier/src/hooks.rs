@@ -417,22 +417,23 @@ impl CreepHooks {
     }
 }
 
-fn v3(v: Vector) -> Vec3 {
+/// A Rapier (f32) vector in creep-law's f64 vector.
+pub(crate) fn v3(v: Vector) -> Vec3 {
     Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
 }
 
-fn vf(v: Vec3) -> Vector {
+/// A creep-law f64 vector rounded to Rapier's f32.
+pub(crate) fn vf(v: Vec3) -> Vector {
     Vector::new(v.x as f32, v.y as f32, v.z as f32)
 }
 
 /// Motion of a body at the contact (a missing body is at rest at `fallback`).
-fn motion(
-    bodies: &RigidBodySet,
-    handle: Option<RigidBodyHandle>,
+pub(crate) fn body_motion(
+    body: Option<&RigidBody>,
     fallback: Vec3,
     surface: Surface,
 ) -> BodyMotion {
-    match handle.and_then(|h| bodies.get(h)) {
+    match body {
         Some(rb) => BodyMotion {
             position: v3(rb.center_of_mass()),
             velocity: v3(rb.linvel()),
@@ -446,6 +447,16 @@ fn motion(
             surface,
         },
     }
+}
+
+/// [`body_motion`] of a body of `bodies` by handle.
+fn motion(
+    bodies: &RigidBodySet,
+    handle: Option<RigidBodyHandle>,
+    fallback: Vec3,
+    surface: Surface,
+) -> BodyMotion {
+    body_motion(handle.and_then(|h| bodies.get(h)), fallback, surface)
 }
 
 /// Inverse effective mass of a contact between the unit directions `t` and `u` at `point`:
