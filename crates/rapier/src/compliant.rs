@@ -80,8 +80,6 @@
 pub mod damping;
 mod geometry;
 
-use std::collections::HashMap;
-
 use creep_law::kinematics::contact_rates;
 use creep_law::rolling_torque::{RollingInput, RollingState, epsd_rolling_inertia};
 use creep_law::{CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz};
@@ -92,7 +90,7 @@ pub use damping::{
 };
 
 use crate::error::PluginError;
-use crate::hooks::{body_motion as motion, v3, vf};
+use crate::hooks::{FastMap, body_motion as motion, v3, vf};
 use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
 use geometry::{Frame, Touch};
 
@@ -226,6 +224,13 @@ pub struct CompliantContact {
     pub rolling: RollingState,
     /// Whether the contact slid (Coulomb limit) this step.
     pub sliding: bool,
+    /// Creep displacement of the step over the sliding displacement `|du_disp|` [-] (0 without
+    /// creep; Kuhn's rule feeds `du_disp` minus the creep displacement to Cattaneo-Mindlin).
+    pub creep_ratio: f64,
+    /// Sliding velocity `v_disp` of the step (Kuhn & Bagi), world frame [m/s].
+    pub v_disp: Vec3,
+    /// Rolling velocity `v_roll` of the step (Kuhn & Bagi), world frame [m/s].
+    pub v_roll: Vec3,
     generation: u64,
 }
 
@@ -237,7 +242,9 @@ pub type PairKey = (ColliderHandle, ColliderHandle);
 #[derive(Debug, Clone)]
 pub struct CompliantRegime {
     settings: CompliantSettings,
-    contacts: HashMap<PairKey, CompliantContact>,
+    contacts: FastMap<PairKey, CompliantContact>,
+    /// Force and torque per body of the step (reused to avoid allocating every step).
+    accum: FastMap<RigidBodyHandle, (Vec3, Vec3)>,
     generation: u64,
     saved: Vec<(RigidBodyHandle, Vector, Vector)>,
     energy: CompliantEnergy,
@@ -251,7 +258,8 @@ impl CompliantRegime {
         settings.validate()?;
         Ok(Self {
             settings,
-            contacts: HashMap::new(),
+            contacts: FastMap::default(),
+            accum: FastMap::default(),
             generation: 0,
             saved: Vec::new(),
             energy: CompliantEnergy::default(),
@@ -387,15 +395,24 @@ impl CompliantRegime {
             }
         }
 
-        let mut accum: HashMap<RigidBodyHandle, (Vec3, Vec3)> = HashMap::new();
+        let mut accum = std::mem::take(&mut self.accum);
+        accum.clear();
         let mut normal_elastic = 0.0;
         let mut tangential_elastic = 0.0;
         for pair in narrow_phase.contact_pairs() {
             let (c1, c2) = (pair.collider1, pair.collider2);
             let (Some(m1), Some(m2)) = (registry.get(c1), registry.get(c2)) else {
+                let compliant = |c| {
+                    registry
+                        .get(c)
+                        .is_some_and(|m| m.fidelity == Fidelity::Compliant)
+                };
+                if compliant(c1) || compliant(c2) {
+                    self.counts.unsupported += 1; // an unregistered partner: passed through
+                }
                 continue;
             };
-            if m1.fidelity != Fidelity::Compliant || m2.fidelity != Fidelity::Compliant {
+            if m1.fidelity != Fidelity::Compliant && m2.fidelity != Fidelity::Compliant {
                 continue;
             }
             let (Some(co1), Some(co2)) = (colliders.get(c1), colliders.get(c2)) else {
@@ -466,6 +483,9 @@ impl CompliantRegime {
                     tangential_force: Vec3::ZERO,
                     rolling: RollingState::default(),
                     sliding: false,
+                    creep_ratio: 0.0,
+                    v_disp: Vec3::ZERO,
+                    v_roll: Vec3::ZERO,
                     generation,
                 }
             });
@@ -544,6 +564,16 @@ impl CompliantRegime {
             rec.normal_force = p_tot;
             rec.tangential_force = q_world;
             rec.sliding = sliding;
+            let slid = du_disp.length();
+            rec.creep_ratio = if slid > 0.0 {
+                step.creep_displacement.length() / slid
+            } else if step.creep_displacement != Vec2::ZERO {
+                f64::INFINITY
+            } else {
+                0.0
+            };
+            rec.v_disp = rates.v_disp;
+            rec.v_roll = rates.v_roll;
             rec.generation = generation;
             normal_elastic += hertz::normal_energy(&pm, delta);
             tangential_elastic += rec.state.mindlin().elastic_energy(&pm);
@@ -571,13 +601,14 @@ impl CompliantRegime {
         self.energy.normal_elastic = normal_elastic;
         self.energy.tangential_elastic = tangential_elastic;
 
-        for (h, (f, m)) in accum {
+        for (&h, &(f, m)) in &accum {
             if let Some(rb) = bodies.get_mut(h) {
                 self.saved.push((h, rb.user_force(), rb.user_torque()));
                 rb.add_force(vf(f), true);
                 rb.add_torque(vf(m), true);
             }
         }
+        self.accum = accum;
         Ok(self.counts)
     }
 

@@ -231,7 +231,11 @@ impl std::hash::Hasher for KeyHasher {
     }
 }
 
-type KeyMap<V> = HashMap<ContactKey, V, std::hash::BuildHasherDefault<KeyHasher>>;
+/// A hash map with [`KeyHasher`] (handles and contact keys are small integers: SipHash's
+/// protection against adversarial keys is not needed, its cost is).
+pub(crate) type FastMap<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<KeyHasher>>;
+
+type KeyMap<V> = FastMap<ContactKey, V>;
 
 /// Contact records keyed by [`ContactKey`], swept of the contacts not seen in a step.
 #[derive(Debug, Clone, Default)]
@@ -348,7 +352,20 @@ impl CreepHooks {
             let Some(co) = colliders.get(handle) else {
                 continue;
             };
-            let on = matches!(mat.fidelity, Fidelity::Creep | Fidelity::Compliant)
+            if mat.fidelity == Fidelity::Compliant {
+                // Out of Rapier's contact solve altogether (no solver contacts, no hook), so its
+                // pairs keep Rapier's contact recycling: the compliant regime needs only the
+                // narrow phase's pair list, and computes the geometry itself.
+                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS;
+                if (flags != co.active_hooks() || co.solver_groups() != InteractionGroups::none())
+                    && let Some(co) = colliders.get_mut(handle)
+                {
+                    co.set_active_hooks(flags);
+                    co.set_solver_groups(InteractionGroups::none());
+                }
+                continue;
+            }
+            let on = mat.fidelity == Fidelity::Creep
                 || matches!(mat.rolling, RollingResistance::Torque(_))
                 || v_act == 0.0
                 || co.parent().and_then(|h| bodies.get(h)).is_some_and(|rb| {
@@ -538,13 +555,14 @@ fn apply_rolling_impulse(bodies: &mut RigidBodySet, rec: &ContactRecord, dt: f64
     }
 }
 
-/// The lower of two fidelities (Coulomb < Auto < Creep < Compliant).
+/// The lower of two fidelities (Coulomb < Auto < Creep), except that a `Compliant` collider
+/// makes the pair compliant (it takes part in no Rapier contact solve).
 fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
     use Fidelity::*;
     match (a, b) {
         (Coulomb, _) | (_, Coulomb) => Coulomb,
         (Auto, _) | (_, Auto) => Auto,
-        (Compliant, Compliant) => Compliant,
+        (Compliant, _) | (_, Compliant) => Compliant,
         _ => Creep,
     }
 }
@@ -566,7 +584,7 @@ impl PhysicsHooks for CreepHooks {
             return;
         };
         // --- Compliant regime (crate::compliant applies this pair's forces itself). ---
-        if pair_fidelity(m1.fidelity, m2.fidelity) == Fidelity::Compliant {
+        if m1.fidelity == Fidelity::Compliant || m2.fidelity == Fidelity::Compliant {
             rigid.solver_contacts.clear();
             return;
         }

@@ -2,8 +2,6 @@
 //! `user_data`, which bevy_rapier uses for its `Entity`), so the same core serves plain Rapier
 //! and Bevy.
 
-use std::collections::HashMap;
-
 use creep_law::{Material, Surface};
 use rapier3d::prelude::{Collider, ColliderHandle};
 
@@ -18,9 +16,11 @@ pub enum Fidelity {
     /// `F_ss(1) |v_roll|` is below `tolerance` [m/s] is left to Coulomb.
     #[default]
     Auto,
-    /// Compliant (soft-sphere DEM) contact: a pair whose two colliders are both `Compliant`
-    /// leaves Rapier's contact solve; [`crate::compliant`] applies Hertz-Mindlin-creep forces.
-    /// Paired with any other fidelity it counts as `Creep`.
+    /// Compliant (soft-sphere DEM) contact: the collider takes part in no Rapier contact solve
+    /// (the plugin sets its solver groups to none and its hook off, so its pairs keep Rapier's
+    /// contact recycling); [`crate::compliant`] applies Hertz-Mindlin-creep forces to every pair
+    /// it forms. Both colliders of a pair must be registered (an unregistered partner is passed
+    /// through and counted in `CompliantCounts::unsupported`).
     Compliant,
 }
 
@@ -70,7 +70,7 @@ impl CreepMaterial {
 /// Materials keyed by collider handle.
 #[derive(Debug, Clone, Default)]
 pub struct MaterialRegistry {
-    map: HashMap<ColliderHandle, CreepMaterial>,
+    map: crate::hooks::FastMap<ColliderHandle, CreepMaterial>,
 }
 
 impl MaterialRegistry {
