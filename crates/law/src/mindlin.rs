@@ -33,9 +33,24 @@
 //! when the path turns, the springs of one slipping piece are given one common direction (that of
 //! their summed trial force) — the one approximation, which vanishes as steps get small.
 //! Pieces are merged when equal; a contact keeps at most [`MAX_PIECES`] (see `merge`: two pieces
-//! at the slip limit become one along their summed force, or else the narrowest inner piece is
-//! absorbed into its outer neighbour extended inwards; both keep `|u| <= L`, and any energy the
-//! simplification removes is booked as dissipation).
+//! at the slip limit become one along their summed force, or else the narrowest pair whose
+//! least-squares fit stays within the limit becomes that fit, or as a last resort an inner piece
+//! is absorbed into its outer neighbour extended inwards; all keep `|u| <= L`, and any energy the
+//! simplification removes is booked as dissipation, any it adds as `truncation_energy`).
+//!
+//! # Energy under varying `P`
+//! The balance `work = stored + slip_dissipation - truncation_energy` holds with the work
+//! `sum Q_mid . du` to within the step size (first order; second order where no spring changes
+//! between sticking and slipping), for any `mu` including `+inf`. Within a step `a^2` is taken
+//! linear in time, like the displacement, and three rules follow from it. Springs entering the
+//! contact always get a piece of their own, `u = (a^2 - x^2) du / d(a^2)` (when the memory is
+//! full, the spare slot holds it until `merge` makes room; extending the outermost piece
+//! outwards instead gave them that piece's `c`, which after a small `d(a^2)` is huge: energy no
+//! work paid for, orders of magnitude more than the work at large `mu`). Springs leaving the
+//! contact release the energy they had when they left, not at the start of the step. And the
+//! slip of a step is booked at the force the springs had while slipping, `(F_on + kappa s) / 2`
+//! (see `Onset`), not at the end-of-step limit, which misses the fall of the limit as `a`
+//! shrinks. At constant `P` all three reduce to the exact Mindlin-Deresiewicz bookkeeping.
 //!
 //! Conventions: `Q` is the tangential force on body p from body q [N]; the displacement increment
 //! `du` is `du_disp = du_q - du_p` [m] in the tangent plane, so a stuck contact has `dQ = k_t du`
@@ -98,7 +113,9 @@ pub struct MindlinStep {
     /// Contact radius used [m].
     pub a: f64,
     /// Energy dissipated by micro-slip and gross slip in the step [J] (>= 0): slip of each spring
-    /// times its force at the end of the step, plus the energy of springs that left the contact.
+    /// times its force while it slipped (at constant `P` the force at the end of the step), plus
+    /// the energy springs had when they left the contact, plus any energy a merge of the memory
+    /// removed.
     pub slip_dissipation: f64,
     /// Energy the springs gained when the memory was over [`MAX_PIECES`] and had to be
     /// simplified by the last-resort rule [J] (>= 0; zero in all but rare, long 2-D histories).
@@ -114,7 +131,9 @@ pub struct MindlinState {
     a: f64,
     /// Number of pieces in use.
     n: usize,
-    pieces: [Piece; MAX_PIECES],
+    /// The pieces, inner to outer. Between updates `n <= MAX_PIECES`; the spare slot holds the
+    /// springs that enter the contact during an update until `merge` has made room for them.
+    pieces: [Piece; MAX_PIECES + 1],
     /// Tangential force after the last update [N].
     q: Vec2,
 }
@@ -209,15 +228,25 @@ impl MindlinState {
         let a2_old = a_old * a_old;
         let a2 = a * a;
 
-        // (i) Springs that left the contact release their energy.
+        // (i) Springs that left the contact release their energy, with the displacement they had
+        //     when they left: the one at x left when a(t)^2 = x^2, i.e. (with a^2 linear over the
+        //     step, as for entering springs below) after the fraction s_old / (a_old^2 - a^2) of
+        //     the step, so it had moved by du s_old / (a_old^2 - a^2) more: beta + du / (-da2).
+        //     Booking the displacement at the start of the step instead leaves the work that the
+        //     mid-step force did on them unaccounted, an energy error of first order in the step.
         if a < a_old {
+            let extra = du * (1.0 / (a2_old - a2));
             let mut x_lo = 0.0;
             let mut keep = 0;
             for i in 0..self.n {
                 let p = self.pieces[i];
                 if p.x_hi > a {
                     let from = if x_lo > a { x_lo } else { a };
-                    dissipated += 4.0 * pair.g_star * piece_u2(&p, a_old, from, p.x_hi);
+                    let mut leaving = p;
+                    if (p.beta + extra).is_finite() {
+                        leaving.beta += extra;
+                    }
+                    dissipated += 4.0 * pair.g_star * piece_u2(&leaving, a_old, from, p.x_hi);
                 }
                 if x_lo < a {
                     keep = i + 1;
@@ -237,24 +266,23 @@ impl MindlinState {
         }
         // Springs entering during the step: the one at x entered when a(t)^2 = x^2 and, with the
         // displacement linear in a^2 over the step, took du (a^2 - x^2) / da2, i.e. beta = du / da2.
+        // They always get a piece of their own (the spare slot when the memory is full; `merge`
+        // then makes room): giving them the outermost piece's field extended outwards instead
+        // would let them enter with that piece's `c` (after a small `da2`, `c = du - beta da2`
+        // with a huge `beta`), energy that no work paid for.
         if da2 > 0.0 {
-            let entering = Piece {
+            self.pieces[self.n] = Piece {
                 x_hi: a,
                 beta: du * (1.0 / da2),
                 c: Vec2::ZERO,
             };
-            if self.n < MAX_PIECES {
-                self.pieces[self.n] = entering;
-                self.n += 1;
-            } else {
-                self.pieces[self.n - 1].x_hi = a;
-            }
+            self.n += 1;
         }
 
         // (iii)-(iv) Return-map every piece: it splits into a stuck inner part and a slipping
         // outer part. Pieces that only stick or only slip are updated in place; a split needs
         // a scratch list.
-        let mut cuts = [0.0f64; MAX_PIECES];
+        let mut cuts = [0.0f64; MAX_PIECES + 1];
         let mut splits = 0;
         let mut x_lo = 0.0;
         for (p, cut_out) in self.pieces[..self.n].iter().zip(cuts.iter_mut()) {
@@ -263,8 +291,16 @@ impl MindlinState {
             *cut_out = cut;
             x_lo = p.x_hi.max(x_lo);
         }
+        // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let slip = |p: &Piece, cut: f64, dissipated: &mut f64| {
-            let (e, work) = slip_piece(p, kappa, a, cut, p.x_hi);
+            let onset = if da2 == 0.0 {
+                Onset::Constant
+            } else if p.x_hi > a_old {
+                Onset::Entering
+            } else {
+                Onset::Shifted(da2)
+            };
+            let (e, work) = slip_piece(p, kappa, a, cut, p.x_hi, onset);
             *dissipated += 8.0 * pair.g_star * work;
             Piece {
                 x_hi: p.x_hi,
@@ -283,7 +319,7 @@ impl MindlinState {
             }
             merge(&mut self.pieces, self.n, a, kappa)
         } else {
-            let mut out = [Piece::default(); 2 * MAX_PIECES];
+            let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
             let mut m = 0;
             let mut x_lo = 0.0;
             for (p, &cut) in self.pieces[..self.n].iter().zip(cuts.iter()) {
@@ -390,11 +426,40 @@ fn stick_radius(p: &Piece, kappa: f64, a2: f64) -> f64 {
     if r2 > 0.0 { r2.sqrt() } else { 0.0 }
 }
 
+/// The force at which `slip_piece` books the slip of a spring over one step.
+///
+/// A spring that slips during a step first reaches its limit (at the force `F_on`) and then
+/// slides along it to the end-of-step limit `kappa s`; with the limit linear in time over the
+/// step (`a^2` linear, as for entering and leaving springs) and a steady displacement rate, its
+/// slip rate is constant, so the slip work is `(F_on + kappa s) / 2` times the slip (the
+/// trapezoidal rule, exact for the linear force). `F_on` is the start-of-step limit
+/// `kappa s_old` for a spring that was at the limit, or the displacement where a stuck spring
+/// met the limit; we take `min(kappa s_old, e . u_trial)`: exact for the first case; for the
+/// second the true value lies between the displacements at the start and the end of the step,
+/// so the error is one step's displacement on the springs that change from sticking to slipping
+/// (a band one step wide while the slip zone is wide: second order overall; the whole slip band
+/// when it is thinner than a step, at large `mu`: first order). Booking at the end-of-step limit
+/// alone is first order wrong whenever the limit moves and wrong by the whole slip work when the
+/// slip band is thinner than a step (a spring stuck at `u` and met by the falling limit slides
+/// from `u` down to `kappa s`); booking at `kappa s_old` instead overshoots as much.
+#[derive(Debug, Clone, Copy)]
+enum Onset {
+    /// Constant limit (`da2 = 0`, constant P): `F_on = kappa s`, the end-of-step limit, which is
+    /// the exact Mindlin-Deresiewicz booking.
+    Constant,
+    /// Springs that entered during the step: their limit rose from 0 (`F_on = 0`).
+    Entering,
+    /// Springs in contact before the step, whose depth changed by `da2` [m^2]:
+    /// `F_on = min(kappa (s - da2), e . u_trial)`.
+    Shifted(f64),
+}
+
 /// Puts the springs `x1 < x <= x2` of a trial piece onto the slip limit `u = kappa s e`. Returns
 /// their common slip direction `e` (that of their summed trial displacement) and
-/// `integral kappa s (e . u_trial - kappa s) dx` [m^3]: the slip work divided by `8 G*` (force
-/// density `4 G* kappa s` times slip, two halves).
-fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64) -> (Vec2, f64) {
+/// `integral (F_on + kappa s) / 2 (e . u_trial - kappa s) dx` [m^3] (see [`Onset`] for `F_on`):
+/// the slip work divided by `8 G*` (the force density is `4 G*` times the displacement-valued
+/// `F`, and there are two halves).
+fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> (Vec2, f64) {
     let is = int_s(a, x1, x2);
     let is2 = int_s2(a, x1, x2);
     let trial = p.beta * is + p.c * (x2 - x1);
@@ -404,8 +469,60 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64) -> (Vec2, f64) {
     } else {
         Vec2::new(1.0, 0.0)
     };
-    let work = kappa * (e.dot(p.beta) * is2 + e.dot(p.c) * is) - kappa * kappa * is2;
+    // Along e the trial displacement is b0 + b1 s, the slip (b0 + (b1 - kappa) s).
+    let (b0, b1) = (e.dot(p.c), e.dot(p.beta));
+    let work = match onset {
+        Onset::Constant => kappa * (b1 * is2 + b0 * is - kappa * is2),
+        Onset::Entering => 0.5 * kappa * (b1 * is2 + b0 * is - kappa * is2),
+        Onset::Shifted(da2) => shifted_slip_work(kappa, a, (x1, x2), (b0, b1), da2, (is, is2)),
+    };
     (e, if work > 0.0 { work } else { 0.0 })
+}
+
+/// `integral (F_on + kappa s) / 2 (b0 + (b1 - kappa) s) dx` [m^3] over `x1 < x <= x2` for
+/// [`Onset::Shifted`]: `F_on = min(kappa (s - da2), b0 + b1 s)`, where `b0 + b1 s` is the trial
+/// displacement along the slip direction; `is`, `is2` are `int_s`, `int_s2` over the annulus.
+/// Kept out of line so that the constant-`P` path stays small.
+#[inline(never)]
+fn shifted_slip_work(
+    kappa: f64,
+    a: f64,
+    (x1, x2): (f64, f64),
+    (b0, b1): (f64, f64),
+    da2: f64,
+    (is, is2): (f64, f64),
+) -> f64 {
+    // F_on = min(kappa (s - da2), b0 + b1 s): two lines crossing at
+    // s_x = (b0 + kappa da2) / (kappa - b1); split there if inside the annulus.
+    let s_x = (b0 + kappa * da2) / (kappa - b1);
+    let r2 = a * a - s_x;
+    let split = if r2 > x1 * x1 && r2 < x2 * x2 {
+        r2.sqrt().clamp(x1, x2)
+    } else {
+        x2
+    };
+    let mut w = 0.0;
+    for (y1, y2) in [(x1, split), (split, x2)] {
+        if y2 <= y1 {
+            continue;
+        }
+        let sm = depth(a, 0.5 * (y1 + y2));
+        let (m0, m1) = if kappa * (sm - da2) <= b0 + b1 * sm {
+            (-kappa * da2, kappa)
+        } else {
+            (b0, b1)
+        };
+        // (F_on + kappa s) / 2 = g0 + g1 s; slip = h0 + h1 s.
+        let (g0, g1) = (0.5 * m0, 0.5 * (m1 + kappa));
+        let (h0, h1) = (b0, b1 - kappa);
+        let (js, js2) = if y1 == x1 && y2 == x2 {
+            (is, is2)
+        } else {
+            (int_s(a, y1, y2), int_s2(a, y1, y2))
+        };
+        w += g0 * h0 * (y2 - y1) + (g0 * h1 + g1 * h0) * js + g1 * h1 * js2;
+    }
+    w
 }
 
 /// Merges equal neighbours and drops empty pieces in place, then enforces [`MAX_PIECES`].
@@ -442,7 +559,7 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
         let mut best_cos = f64::NEG_INFINITY;
         for i in 0..n - 1 {
             let (p, q) = (&out[i], &out[i + 1]);
-            if p.c == Vec2::ZERO && q.c == Vec2::ZERO {
+            if at_limit(p, kappa) && at_limit(q, kappa) {
                 let cos = p.beta.dot(q.beta);
                 if cos > best_cos {
                     best_cos = cos;
@@ -471,7 +588,7 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
         }
         // Otherwise the least-squares merge (force-preserving, energy-non-increasing) of the
         // narrowest neighbour pair whose merged field stays within the limit.
-        let mut order = [(0.0f64, 0usize); 2 * MAX_PIECES];
+        let mut order = [(0.0f64, 0usize); 2 * (MAX_PIECES + 1)];
         let mut lo = 0.0;
         for i in 0..n - 1 {
             order[i] = (out[i + 1].x_hi - lo, i);
@@ -551,6 +668,15 @@ fn least_squares_piece(p: &Piece, q: &Piece, a: f64, lo: f64) -> Piece {
             c: m0 * (1.0 / s0),
         }
     }
+}
+
+/// Whether a piece is at the slip limit, `u = kappa s e` (`c = 0`, `|beta| = kappa`, as
+/// `slip_piece` leaves it). `c = 0` alone does not say so: springs that have just entered the
+/// contact also have `c = 0`, with any `|beta| < kappa`, and setting them onto the limit would
+/// give them energy that no work paid for.
+#[inline]
+fn at_limit(p: &Piece, kappa: f64) -> bool {
+    p.c == Vec2::ZERO && p.beta.length_squared() >= kappa * kappa * (1.0 - 1e-9)
 }
 
 /// Whether two pieces hold the same field to rounding (so they can be one).

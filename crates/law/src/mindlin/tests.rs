@@ -339,3 +339,224 @@ fn opening_contact_and_bad_inputs() {
     assert!(step.q.is_finite());
     assert!(step.q.length() <= pair.mu * P * (1.0 + 1e-12));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Varying normal force: a contact radius that oscillates as a sine (a DEM contact under a
+// vibrating load) while a tangential displacement is applied.
+
+/// Relative amplitude of the radius oscillation `a(t) = a0 (1 + EPS sin(2 pi t))`, `t` in cycles.
+const EPS: f64 = 0.3;
+/// Number of radius cycles of every sine history.
+const CYCLES: usize = 5;
+/// Half-period (in radius cycles) of the back-and-forth displacement path: a multiple of the
+/// step for every steps-per-cycle used, so that its turning points fall on step boundaries.
+const HALF_PERIOD: f64 = 0.3;
+
+/// A tangential displacement path `U(t) = dir * f(t)` [m], `t` in radius cycles.
+#[derive(Clone, Copy)]
+enum Path {
+    /// `f = amp t / CYCLES`: monotone.
+    Monotone,
+    /// `f`: a triangle wave between 0 and `amp`, rising first, half-period [`HALF_PERIOD`].
+    BackAndForth,
+}
+
+impl Path {
+    fn f(self, amp: f64, t: f64) -> f64 {
+        match self {
+            Path::Monotone => amp * t / CYCLES as f64,
+            Path::BackAndForth => {
+                let k = (t / HALF_PERIOD).floor();
+                let r = t / HALF_PERIOD - k;
+                amp * if k as i64 % 2 == 0 { r } else { 1.0 - r }
+            }
+        }
+    }
+}
+
+/// `a(t) = a0 (1 + EPS sin(2 pi t))` [m].
+fn sine_radius(a0: f64, t: f64) -> f64 {
+    a0 * (1.0 + EPS * (2.0 * std::f64::consts::PI * t).sin())
+}
+
+/// Tangential force of the MDR spring row at `mu = inf`, computed independently of the piece
+/// machinery (Popov & Heß 2015, ch. 5: `Q = 8 G* integral_0^a u(x) dx`, a spring keeps the
+/// displacement it accumulated since it last entered the contact, springs enter with zero
+/// displacement): `u(x, t) = f(t) - f(t_e(x))`, with `t_e(x)` the last time before `t` at which
+/// the radius grew through `x` (or 0 for springs in contact since the start; the contact starts
+/// virgin at `a0`, `f(0) = 0`). For `x = a0 (1 + EPS sin phi)`, `phi` in `[-pi/2, pi/2]`, the
+/// rising crossings are at `t = phi / (2 pi) + k`; springs with `x <= a0 (1 - EPS)` never left.
+/// So `Q / (8 G*) = a_min f(t) + integral (f(t) - f(t_e)) a0 EPS cos(phi) dphi` over
+/// `-pi/2 < phi <= asin((a(t)/a0 - 1)/EPS)`, by composite Simpson with `phi = 0` (where `t_e`
+/// stops being clamped at 0) as a node. Returns `Q / (8 G* |dir|)` [m^2].
+fn no_slip_force(a0: f64, path: Path, amp: f64, t: f64) -> f64 {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let a_min = a0 * (1.0 - EPS);
+    let ft = path.f(amp, t);
+    let y = ((sine_radius(a0, t) / a0 - 1.0) / EPS).clamp(-1.0, 1.0);
+    let phi_hi = y.asin();
+    let integrand = |phi: f64| {
+        let tau = phi / (2.0 * PI);
+        let k = (t - tau).floor();
+        let te = (tau + k).max(0.0);
+        (ft - path.f(amp, te)) * a0 * EPS * phi.cos()
+    };
+    let simpson = |lo: f64, hi: f64| {
+        if hi <= lo {
+            return 0.0;
+        }
+        let n = 20_000;
+        let h = (hi - lo) / n as f64;
+        let mut s = integrand(lo) + integrand(hi);
+        for i in 1..n {
+            s += if i % 2 == 1 { 4.0 } else { 2.0 } * integrand(lo + i as f64 * h);
+        }
+        s * h / 3.0
+    };
+    a_min * ft + simpson(-FRAC_PI_2, phi_hi.min(0.0)) + simpson(0.0, phi_hi)
+}
+
+/// Runs one sine history: returns (work by the trapezoidal rule, its scale sum |Q_mid| |du|,
+/// stored energy at the end, summed slip dissipation, summed truncation energy, the largest
+/// |Q - Q_ref| / max |Q_ref| against [`no_slip_force`]).
+fn run_sine(mu: f64, spc: usize, path: Path) -> (f64, f64, f64, f64, f64, f64) {
+    let pair = pair().with_friction(mu).unwrap();
+    let a0 = hertz::contact_radius(&pair, P);
+    // Half of Mindlin's slip distance at mu = 0.3: partial slip for the smallest mu.
+    let amp = 0.5 * 3.0 * 0.3 * P / (16.0 * pair.g_star * a0);
+    let dir = Vec2::new(0.6, 0.8);
+    let mut st = MindlinState::new();
+    st.update_with_radius(&pair, a0, Vec2::ZERO);
+    let stored_0 = st.elastic_energy(&pair);
+    let (mut work, mut scale, mut slip, mut trunc) = (0.0, 0.0, 0.0, 0.0);
+    let (mut err, mut q_max): (f64, f64) = (0.0, 0.0);
+    let n = spc * CYCLES;
+    for i in 1..=n {
+        let (t0, t1) = ((i - 1) as f64 / spc as f64, i as f64 / spc as f64);
+        let du = dir * (path.f(amp, t1) - path.f(amp, t0));
+        let q0 = st.force();
+        let step = st.update_with_radius(&pair, sine_radius(a0, t1), du);
+        let q_mid = (q0 + step.q) * 0.5;
+        work += q_mid.dot(du);
+        scale += q_mid.length() * du.length();
+        slip += step.slip_dissipation;
+        trunc += step.truncation_energy;
+        if i % (spc / 10) == 0 {
+            let q_ref = dir * (8.0 * pair.g_star * no_slip_force(a0, path, amp, t1));
+            err = err.max((step.q - q_ref).length());
+            q_max = q_max.max(q_ref.length());
+        }
+    }
+    let stored = st.elastic_energy(&pair) - stored_0;
+    (work, scale, stored, slip, trunc, err / q_max)
+}
+
+/// First-order bound on the energy-balance residual of a sine history, as a fraction of the
+/// work scale `sum |Q_mid| |du|`, times the steps per radius cycle: the same bound as the
+/// property test `closed_cycles_dissipate`. The trapezoidal work is second order; the first-order
+/// terms are the slip of the springs that change from sticking to slipping within a step (booked
+/// at an onset force known to within one step's displacement, see `Onset`) and of the springs
+/// that meet the falling limit just before they leave. Measured: at most 0.072 / steps.
+const BALANCE_PER_STEP: f64 = 0.2;
+
+#[test]
+fn sine_radius_history_energy_balance() {
+    // A DEM contact under a vibrating load: a(t) = a0 (1 +- 0.3), 5 cycles, while the surfaces
+    // are displaced monotonically or back and forth. Before the fix the balance failed by up to
+    // 1e6 times the work at mu = 1000 (springs entering a full memory took the outer piece's
+    // field, with its huge c after a small da2).
+    for mu in [0.3, 3.0, 30.0, 1000.0, f64::INFINITY] {
+        for spc in [50, 200, 500] {
+            for (name, path) in [
+                ("monotone", Path::Monotone),
+                ("back-and-forth", Path::BackAndForth),
+            ] {
+                let (work, scale, stored, slip, trunc, _) = run_sine(mu, spc, path);
+                let residual = (work - stored - slip + trunc) / scale;
+                println!(
+                    "sine a(t), mu={mu}, {spc} steps/cycle, {name}: work {work:.3e} J, slip \
+                     {slip:.3e} J, stored {stored:.3e} J, truncation {trunc:.1e} J, residual \
+                     {residual:.2e} of sum |Q||du|"
+                );
+                let tol = BALANCE_PER_STEP / spc as f64;
+                assert!(
+                    residual.abs() <= tol,
+                    "mu={mu} spc={spc} {name}: residual {residual:e} > {tol:e}"
+                );
+                // The energy released by slip and by leaving springs was paid for by the work.
+                assert!(
+                    slip <= work + tol * scale,
+                    "mu={mu} spc={spc} {name}: slip {slip:e} > work {work:e}"
+                );
+                assert!(
+                    trunc <= tol * scale,
+                    "mu={mu} spc={spc} {name}: truncation {trunc:e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn sine_radius_history_matches_no_slip_closed_form() {
+    // mu = inf: no spring slips, each keeps what it accumulated since it entered, which
+    // `no_slip_force` integrates independently. The tolerance covers the MAX_PIECES memory: the
+    // exact field f(t) - f(t_e(x)) is not piecewise linear in the depth, so the least-squares
+    // merges approximate it (measured <= 8.2e-4 of max |Q|, 3e-5 for the monotone path at 200
+    // steps and more). mu = 1000 only slips in a band at the edge that vanishes as mu grows and
+    // must stay as close (before the fix: 2 % off in an impact).
+    for mu in [1000.0, f64::INFINITY] {
+        for spc in [50, 200, 500] {
+            for (name, path) in [
+                ("monotone", Path::Monotone),
+                ("back-and-forth", Path::BackAndForth),
+            ] {
+                let err = run_sine(mu, spc, path).5;
+                println!(
+                    "sine a(t), mu={mu}, {spc} steps/cycle, {name}: max |Q - Q_no_slip| = \
+                     {err:.2e} max |Q_no_slip|"
+                );
+                assert!(err <= 2e-3, "mu={mu} spc={spc} {name}: {err:e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn springs_entering_a_full_memory_enter_unstrained() {
+    // Growing the contact without tangential motion adds springs with zero displacement
+    // (Popov & Heß 2015, ch. 5): Q and the stored energy cannot change (a merge may only move
+    // energy into the dissipation), however deep the memory.
+    let pair = pair();
+    let ds = delta_s(&pair, P);
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    let dir = Vec2::new(0.6, -0.8);
+    let mut d = 0.0;
+    for k in 0..12 {
+        // Nested cycles at a slowly varying load fill the memory.
+        let target = if k % 2 == 0 { 0.9 } else { -0.9 } * ds * 0.7f64.powi(k);
+        st.update(&pair, P * (1.0 - 0.01 * k as f64), dir * (target - d));
+        d = target;
+    }
+    assert_eq!(st.memory_depth(), MAX_PIECES);
+    let p0 = P * (1.0 - 0.01 * 11.0);
+    for i in 1..=20 {
+        let q0 = st.force();
+        let e0 = st.elastic_energy(&pair);
+        let step = st.update(&pair, p0 * (1.0 + 0.05 * i as f64), Vec2::ZERO);
+        let e1 = st.elastic_energy(&pair);
+        assert!(
+            (step.q - q0).length() <= 1e-12 * q0.length(),
+            "step {i}: Q {:?} -> {:?}",
+            q0,
+            step.q
+        );
+        assert!(
+            (e1 + step.slip_dissipation - step.truncation_energy - e0).abs() <= 1e-12 * e0,
+            "step {i}: energy {e0:e} -> {e1:e} + slip {:e}",
+            step.slip_dissipation
+        );
+        assert!(st.memory_depth() <= MAX_PIECES);
+    }
+}
