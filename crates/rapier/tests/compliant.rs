@@ -28,10 +28,10 @@ use creep_rapier::{
 };
 use rapier3d::prelude::*;
 
-/// Friction of the sticking runs: high enough that micro-slip is small at v_t / v_n <= 0.1,
-/// low enough for creep-law's spring row to book slip correctly (see the report: from mu ~ 10
-/// on it books more slip dissipation than the work done).
-const MU_STICK: f64 = 3.0;
+/// Friction of the sticking runs: high enough that micro-slip is small up to v_t / v_n = 0.2
+/// (at mu = 3 the edge slip put v_t / v_n = 0.2 1.4 % off the no-slip law; creep-law's memory
+/// now books the slip of large-mu contacts correctly under varying P).
+const MU_STICK: f64 = 30.0;
 
 fn alloy() -> Material {
     let (e, nu) = (70e9, 0.33);
@@ -404,10 +404,10 @@ fn oblique_impact_gross_sliding_and_sticking() {
         assert!((om / om_expect - 1.0).abs() < 0.01);
         assert!(imp.energy_error < 1e-3, "energy error {}", imp.energy_error);
     }
-    // Sticking: mu = 3 and a small tangential speed (v_t / v_n far below 7 mu): Mindlin's
+    // Sticking: mu = 30 and a small tangential speed (v_t / v_n far below 7 mu): Mindlin's
     // no-slip law, integrated independently above (`no_slip_reference`). The edge of a Hertz
-    // contact always micro-slips, more so as v_t / v_n grows: asserted within 1 % up to
-    // v_t / v_n = 0.05, printed at 0.1 and 0.2.
+    // contact always micro-slips, more so as v_t / v_n grows: measured within 0.47 % up to
+    // v_t / v_n = 0.2, asserted within 1 %.
     for ratio in [0.02, 0.05, 0.1, 0.2] {
         let v_t = ratio * v_n;
         let (mut w, h, t_c) = sphere_on_wall(&ox, r, v_n, v_t, 1.0, MU_STICK, 1000.0);
@@ -434,10 +434,8 @@ fn oblique_impact_gross_sliding_and_sticking() {
         // (to the arm's R - delta/2, below 0.2 %).
         assert!((m * r * dv / (0.4 * m * r * r * om) - 1.0).abs() < 2e-3);
         assert!(imp.energy_error < 1e-3, "energy error {}", imp.energy_error);
-        if ratio <= 0.05 {
-            assert!((dv / dv_ref - 1.0).abs() < 0.01, "dv {dv} vs {dv_ref}");
-            assert!((om / om_ref - 1.0).abs() < 0.01);
-        }
+        assert!((dv / dv_ref - 1.0).abs() < 0.01, "dv {dv} vs {dv_ref}");
+        assert!((om / om_ref - 1.0).abs() < 0.01);
     }
 }
 
