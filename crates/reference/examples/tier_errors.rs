@@ -5,11 +5,9 @@
 //! grid-searches the transient tier's `beta` and `l` (ORDER lags in series; `rel` minimises the
 //! largest ratio to Kuhn's rule's error instead of the largest error); `-- show BETA L0 L1 ORDER`
 //! prints model/BEM pairs along the nu = 0.25 curves.
-#[path = "../tests/common/tiers.rs"]
-mod tiers;
-
 use creep_law::{CreepModel, MindlinState, SteadyLaw, Vec2};
 use creep_reference::fit::{TransientCase, TransientCurve};
+use creep_reference::tiers;
 
 fn main() {
     if std::env::args().nth(1).as_deref() == Some("show") {
@@ -17,12 +15,16 @@ fn main() {
             .skip(2)
             .map(|s| s.parse().unwrap())
             .collect();
-        let steady = tiers::steady_ext();
-        for c in tiers::transient("32").iter().filter(|c| c.nu == 0.25) {
+        let steady = tiers::steady_ext().unwrap();
+        for c in tiers::transient("32")
+            .unwrap()
+            .iter()
+            .filter(|c| c.nu == 0.25)
+        {
             let r = match c.case {
                 TransientCase::HoldForce(r) | TransientCase::HoldCreepage(r) => r,
             };
-            let xi_ss = tiers::steady_creepage(&steady, c.nu, r);
+            let xi_ss = tiers::steady_creepage(&steady, c.nu, r).unwrap();
             let m = run(c, xi_ss, a[0], a[1], a[2], a[3] as usize);
             let mut line = String::new();
             for i in (1..64).step_by(4) {
@@ -42,7 +44,7 @@ fn main() {
         tune();
         return;
     }
-    let steady = tiers::steady_ext();
+    let steady = tiers::steady_ext().unwrap();
     println!("Steady, vs BEM (grid-extrapolated 2 N64 - N32):\n");
     println!("| nu | Kuhn creepage err (s<=0.98) | fitted | Kuhn Q err (any xi) | fitted |");
     println!("|---|---|---|---|---|");
@@ -59,13 +61,20 @@ fn main() {
         );
     }
     for grid in ["32", "16"] {
-        println!("\nTransient, vs BEM N={grid} (max error, see tests/common/tiers.rs):\n");
+        println!(
+            "\nTransient, vs BEM N={grid} (max error, see creep_reference::tiers::transient_error):\n"
+        );
         println!("| nu | case | Kuhn | fitted | fitted-transient |");
         println!("|---|---|---|---|---|");
-        for c in tiers::transient(grid) {
+        for c in tiers::transient(grid).unwrap() {
             let e: Vec<String> = CreepModel::ALL
                 .iter()
-                .map(|&m| format!("{:.1} %", 100.0 * tiers::transient_error(m, &c, &steady)))
+                .map(|&m| {
+                    format!(
+                        "{:.1} %",
+                        100.0 * tiers::transient_error(m, &c, &steady).unwrap()
+                    )
+                })
                 .collect();
             println!(
                 "| {} | {} | {} |",
@@ -80,7 +89,7 @@ fn main() {
 /// The transient tier with parameters `(beta, l0, l1)` through a BEM case (same protocol as
 /// `tiers::model_transient`, the creep step of `creep_law::transient_law` inlined).
 fn run(c: &TransientCurve, xi_ss: f64, beta: f64, l0: f64, l1: f64, order: usize) -> Vec<f64> {
-    let pair = tiers::pair(c.nu);
+    let pair = tiers::pair(c.nu).unwrap();
     let p = 1.0;
     let a = creep_law::hertz::contact_radius(&pair, p);
     let scale = a * a;
@@ -142,8 +151,8 @@ fn run(c: &TransientCurve, xi_ss: f64, beta: f64, l0: f64, l1: f64, order: usize
 
 /// Grid search of `(beta, l0, l1)` minimising the largest transient error over the N=32 curves.
 fn tune() {
-    let steady = tiers::steady_ext();
-    let curves = tiers::transient("32");
+    let steady = tiers::steady_ext().unwrap();
+    let curves = tiers::transient("32").unwrap();
     let order: usize = std::env::args()
         .nth(2)
         .and_then(|s| s.parse().ok())
@@ -151,26 +160,16 @@ fn tune() {
     let relative = std::env::args().nth(3).is_some();
     let kuhn: Vec<f64> = curves
         .iter()
-        .map(|c| tiers::transient_error(CreepModel::Kuhn, c, &steady))
+        .map(|c| tiers::transient_error(CreepModel::Kuhn, c, &steady).unwrap())
         .collect();
     let err = |beta: f64, l0: f64, l1: f64| -> f64 {
         let mut worst: f64 = 0.0;
         for (ci, c) in curves.iter().enumerate() {
-            let mut this: f64 = 0.0;
-            let r = match c.case {
-                TransientCase::HoldForce(r) | TransientCase::HoldCreepage(r) => r,
-            };
-            let xi_ss = tiers::steady_creepage(&steady, c.nu, r);
+            let r = tiers::case_ratio(c.case);
+            let xi_ss = tiers::steady_creepage(&steady, c.nu, r).unwrap();
             let m = run(c, xi_ss, beta, l0, l1, order);
-            for (i, &v) in m.iter().enumerate() {
-                // Same measure as `tiers::transient_error`.
-                let d = match c.case {
-                    TransientCase::HoldForce(_) if i == 0 => continue,
-                    TransientCase::HoldForce(_) => v / xi_ss - c.creepage[i] / c.steady_creepage,
-                    TransientCase::HoldCreepage(_) => (v - c.force[i]) / r,
-                };
-                this = this.max(d.abs());
-            }
+            // Same measure as `tiers::transient_error`.
+            let this = tiers::transient_stats(c, &m, xi_ss).max;
             worst = worst.max(if relative { this / kuhn[ci] } else { this });
         }
         worst

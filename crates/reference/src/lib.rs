@@ -37,5 +37,6 @@ pub mod influence;
 pub mod kalker_linear;
 pub mod material;
 pub mod mindlin;
+pub mod tiers;
 
 pub use error::RefError;

@@ -5,17 +5,15 @@
 //! tables: `cargo run --release -p creep-reference --example tier_errors`). One small live
 //! boundary-element check keeps the tables honest.
 
-mod common;
-
-use common::tiers;
 use creep_law::{CreepModel, SteadyLaw, kalker};
 use creep_reference::bem::{SolverOptions, SteadySolver};
 use creep_reference::contact::CircularContact;
 use creep_reference::fit::{STEADY_RATIOS, TransientCase};
+use creep_reference::tiers;
 
 #[test]
 fn steady_fitted_law_meets_the_issue_bounds_and_kuhn_does_not() {
-    let curves = tiers::steady_ext();
+    let curves = tiers::steady_ext().unwrap();
     assert_eq!(curves.len(), 8, "5 node and 3 check Poisson ratios");
     for c in &curves {
         let (fx, fq) = tiers::steady_errors(CreepModel::Fitted, c);
@@ -42,7 +40,7 @@ fn steady_fitted_law_meets_the_issue_bounds_and_kuhn_does_not() {
 
 #[test]
 fn issue_figures_for_kuhns_steady_law() {
-    for c in &tiers::steady_ext() {
+    for c in &tiers::steady_ext().unwrap() {
         let kuhn = SteadyLaw::new(CreepModel::Kuhn, c.nu);
         // F_ss over-estimates the creepage at every force but the smallest (where it is Kalker's
         // C11, within 0.4 % of the boundary elements), the most near full slip.
@@ -90,12 +88,12 @@ fn issue_figures_for_kuhns_steady_law() {
 
 #[test]
 fn transient_tier_is_at_least_twice_as_good_as_kuhns_rule() {
-    let steady = tiers::steady_ext();
-    let curves = tiers::transient("32");
+    let steady = tiers::steady_ext().unwrap();
+    let curves = tiers::transient("32").unwrap();
     assert_eq!(curves.len(), 18);
     for c in &curves {
-        let kuhn = tiers::transient_error(CreepModel::Kuhn, c, &steady);
-        let tr = tiers::transient_error(CreepModel::FittedTransient, c, &steady);
+        let kuhn = tiers::transient_error(CreepModel::Kuhn, c, &steady).unwrap();
+        let tr = tiers::transient_error(CreepModel::FittedTransient, c, &steady).unwrap();
         // Measured: held force Kuhn 44-46 %, transient tier 10-16 %; held creepage Kuhn
         // 7-10 %, transient tier 1-4 %. The worst ratio is 2.6.
         assert!(
@@ -116,7 +114,7 @@ fn transient_tier_is_at_least_twice_as_good_as_kuhns_rule() {
 fn issue_figures_for_the_transients() {
     // At held force the exact creep rate starts near 60 % of the steady one and reaches it
     // within one and a half contact radii (sooner at higher force).
-    for c in tiers::transient("32") {
+    for c in tiers::transient("32").unwrap() {
         if let TransientCase::HoldForce(r) = c.case {
             let shape: Vec<f64> = c.creepage.iter().map(|x| x / c.steady_creepage).collect();
             assert!(shape[1] > 0.55 && shape[1] < 0.65, "{r}: {}", shape[1]);
@@ -129,14 +127,14 @@ fn issue_figures_for_the_transients() {
 
 #[test]
 fn transient_tier_has_the_steady_limit_and_kuhns_start() {
-    let steady = tiers::steady_ext();
-    for c in tiers::transient("32") {
+    let steady = tiers::steady_ext().unwrap();
+    for c in tiers::transient("32").unwrap() {
         let r = match c.case {
             TransientCase::HoldForce(r) | TransientCase::HoldCreepage(r) => r,
         };
-        let xi = tiers::steady_creepage(&steady, c.nu, r);
-        let m = tiers::model_transient(CreepModel::FittedTransient, &c, xi);
-        let f = tiers::model_transient(CreepModel::Fitted, &c, xi);
+        let xi = tiers::steady_creepage(&steady, c.nu, r).unwrap();
+        let m = tiers::model_transient(CreepModel::FittedTransient, &c, xi).unwrap();
+        let f = tiers::model_transient(CreepModel::Fitted, &c, xi).unwrap();
         let law = SteadyLaw::new(CreepModel::Fitted, c.nu);
         match c.case {
             TransientCase::HoldForce(_) => {
