@@ -1,0 +1,93 @@
+//! The per-collider creep material: a Bevy component that mirrors creep-rapier's
+//! [`creep_rapier::CreepMaterial`] one to one.
+
+use bevy::prelude::*;
+use creep_law::Material;
+use creep_law::rolling_torque::RollingModel;
+use creep_rapier::{Fidelity, RollingResistance};
+
+/// Opts a collider entity (one with a bevy_rapier3d `Collider`) in to creep-friction.
+///
+/// - `material`: shear modulus G [Pa], Poisson's ratio nu [-] and density rho [kg/m^3]
+///   (creep-law's validated [`Material`]). The friction coefficient mu is **not** taken from the
+///   material: the collider's bevy_rapier3d `Friction` component supplies it (Rapier's combine
+///   rule applies; Rapier's default is 0.5), so Coulomb and creep-friction see the same mu.
+/// - `fidelity`: Coulomb (Rapier's own response), `Auto` (creep where its slip speed bound
+///   exceeds [`creep_rapier::CreepSettings::auto_tolerance`]) or `Creep` (always). A pair uses
+///   the lower of its two colliders' (Coulomb < Auto < Creep).
+/// - `rolling`: contact-torque rolling resistance (Ai et al. 2011 types A, B, C), the other
+///   category of rolling resistance, for comparison; a pair uses the first collider's that is
+///   not `None`.
+///
+/// Density: when the entity has no `ColliderMassProperties`, the plugin gives the collider
+/// `ColliderMassProperties::Density(rho)` from this material; a `ColliderMassProperties` of
+/// your own wins.
+///
+/// Shapes: a ball is a sphere, a cuboid or half-space a plane (its faces). Any other shape
+/// (capsule, cylinder, mesh, a ball with non-uniform scale) draws a warning and stays Coulomb.
+/// Both colliders of a pair need a `CreepMaterial`; a contact with a collider that has none
+/// draws a warning (once per collider) and stays Coulomb.
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct CreepMaterial {
+    /// Elastic properties (G [Pa], nu [-]) and density [kg/m^3].
+    pub material: Material,
+    /// Requested fidelity.
+    pub fidelity: Fidelity,
+    /// Contact-torque rolling resistance.
+    pub rolling: RollingResistance,
+}
+
+impl CreepMaterial {
+    /// A material with `Fidelity::Auto` and no rolling torque.
+    pub fn new(material: Material) -> Self {
+        Self {
+            material,
+            fidelity: Fidelity::Auto,
+            rolling: RollingResistance::None,
+        }
+    }
+    /// Steel (creep-law's [`Material::steel`]), `Fidelity::Auto`.
+    pub fn steel() -> Self {
+        Self::new(Material::steel())
+    }
+    /// Glass (creep-law's [`Material::glass`]), `Fidelity::Auto`.
+    pub fn glass() -> Self {
+        Self::new(Material::glass())
+    }
+    /// Rubber (creep-law's [`Material::rubber`]), `Fidelity::Auto`.
+    pub fn rubber() -> Self {
+        Self::new(Material::rubber())
+    }
+    /// This material with another fidelity.
+    pub fn with_fidelity(mut self, fidelity: Fidelity) -> Self {
+        self.fidelity = fidelity;
+        self
+    }
+    /// This material with a contact-torque rolling model.
+    pub fn with_rolling(mut self, model: RollingModel) -> Self {
+        self.rolling = RollingResistance::Torque(model);
+        self
+    }
+    /// The density rho [kg/m^3], as the `f32` Rapier uses.
+    pub fn density(&self) -> f32 {
+        self.material.density() as f32
+    }
+    /// The same material in creep-rapier's form (what the plugin registers).
+    pub fn to_rapier(&self) -> creep_rapier::CreepMaterial {
+        creep_rapier::CreepMaterial {
+            material: self.material,
+            fidelity: self.fidelity,
+            rolling: self.rolling,
+        }
+    }
+}
+
+impl From<creep_rapier::CreepMaterial> for CreepMaterial {
+    fn from(m: creep_rapier::CreepMaterial) -> Self {
+        Self {
+            material: m.material,
+            fidelity: m.fidelity,
+            rolling: m.rolling,
+        }
+    }
+}

@@ -1,0 +1,316 @@
+//! The plugin's resource: creep-rapier's hooks (materials, settings, per-contact state), the map
+//! between Bevy entities and Rapier collider handles, the last step's counts, and the warnings
+//! the plugin gave.
+
+use std::collections::{HashMap, HashSet};
+use std::fmt;
+
+use bevy::prelude::*;
+use creep_rapier::hooks::ContactRecord;
+use creep_rapier::{
+    CompliantCounts, CompliantRegime, CompliantSettings, ContactKey, CreepHooks, CreepSettings,
+    MaterialRegistry, PluginError, StepCounts,
+};
+use rapier3d::prelude::{ColliderHandle, ColliderSet};
+
+/// Why the plugin warned. Every warning is also logged once with Bevy's `warn!`; the list is
+/// kept in [`CreepFriction::warnings`] so that an app (or a test) can inspect it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CreepWarning {
+    /// `CreepFrictionPlugin` was added a second time; the second one (and its configuration)
+    /// is ignored.
+    PluginAddedTwice,
+    /// `RapierPhysicsPlugin::<CreepPhysicsHooks>` is not in the app (and the plugin was not told
+    /// that custom hooks delegate to [`crate::CreepPhysicsHooks`]): Rapier never calls the creep
+    /// hook and every contact stays Coulomb.
+    HooksNotInstalled,
+    /// A context's integration parameters did not suit the plugin (`FrictionModel::Coulomb`
+    /// and no contact clustering are required); `configured` says whether the plugin set them
+    /// (otherwise the context stays Coulomb).
+    Parameters {
+        /// The context entity.
+        context: Entity,
+        /// What was wrong.
+        error: PluginError,
+        /// Whether the plugin fixed it.
+        configured: bool,
+    },
+    /// A collider without `CreepMaterial` touches one with it: that contact stays Coulomb.
+    MissingMaterial {
+        /// The collider entity without a material.
+        entity: Entity,
+    },
+    /// `CreepMaterial` on an entity without a bevy_rapier3d `Collider`: nothing to do.
+    NoCollider {
+        /// The entity.
+        entity: Entity,
+    },
+    /// `CreepMaterial` on a collider whose shape creep-law does not model (only balls, and
+    /// cuboids and half-spaces as planes, are): it stays Coulomb.
+    UnsupportedShape {
+        /// The collider entity.
+        entity: Entity,
+        /// Rapier's shape type.
+        shape: String,
+    },
+    /// `CreepMaterial` on a collider of another Rapier context than the one the plugin serves
+    /// (the default context): it stays Coulomb.
+    OtherContext {
+        /// The collider entity.
+        entity: Entity,
+    },
+    /// More than one Rapier step ran in one schedule run (`TimestepMode` with `substeps > 1`, or
+    /// `Interpolated` catching up): the contact state and the rolling torque are updated once
+    /// per run, not once per step, so creep is approximate. Use `substeps: 1` (and run the
+    /// physics in `FixedUpdate` for a fixed rate).
+    StepsPerRun {
+        /// Steps in that run.
+        steps: usize,
+    },
+    /// The plugin's settings were refused; the defaults are used.
+    InvalidSettings {
+        /// What was wrong.
+        error: PluginError,
+    },
+    /// The plugin could not start a step (e.g. a zero or infinite time step): it stays Coulomb.
+    Step {
+        /// What was wrong.
+        error: PluginError,
+    },
+}
+
+impl fmt::Display for CreepWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::PluginAddedTwice => write!(
+                f,
+                "creep-friction: CreepFrictionPlugin was added twice; the second one and its \
+                 configuration are ignored"
+            ),
+            Self::HooksNotInstalled => write!(
+                f,
+                "creep-friction: RapierPhysicsPlugin::<CreepPhysicsHooks> is not in the app, so \
+                 Rapier never calls the creep hook and every contact stays Coulomb (add it, or \
+                 delegate from your own hooks to CreepPhysicsHooks and use \
+                 CreepFrictionPlugin::with_custom_hooks())"
+            ),
+            Self::Parameters {
+                context,
+                error,
+                configured,
+            } => {
+                if *configured {
+                    write!(
+                        f,
+                        "creep-friction: context {context}: {error}; the plugin set \
+                         FrictionModel::Coulomb and contact_clustering = false"
+                    )
+                } else {
+                    write!(
+                        f,
+                        "creep-friction: context {context}: {error}; its contacts stay Coulomb"
+                    )
+                }
+            }
+            Self::MissingMaterial { entity } => write!(
+                f,
+                "creep-friction: collider {entity} has no CreepMaterial but touches one that \
+                 has: those contacts stay Coulomb (give it a CreepMaterial, with \
+                 Fidelity::Coulomb to keep it Coulomb and silence this)"
+            ),
+            Self::NoCollider { entity } => write!(
+                f,
+                "creep-friction: entity {entity} has a CreepMaterial but no Collider: ignored"
+            ),
+            Self::UnsupportedShape { entity, shape } => write!(
+                f,
+                "creep-friction: collider {entity} is a {shape}; creep-friction models balls \
+                 (and cuboids and half-spaces as planes) only: it stays Coulomb"
+            ),
+            Self::OtherContext { entity } => write!(
+                f,
+                "creep-friction: collider {entity} belongs to another Rapier context than the \
+                 default one the plugin serves: it stays Coulomb"
+            ),
+            Self::StepsPerRun { steps } => write!(
+                f,
+                "creep-friction: {steps} Rapier steps ran in one schedule run (substeps > 1 or \
+                 Interpolated catching up); the plugin updates its state once per run, so \
+                 creep is approximate: use TimestepMode::Fixed {{ substeps: 1, .. }}"
+            ),
+            Self::InvalidSettings { error } => write!(
+                f,
+                "creep-friction: invalid settings: {error}; the defaults are used"
+            ),
+            Self::Step { error } => {
+                write!(
+                    f,
+                    "creep-friction: cannot step: {error}; contacts stay Coulomb"
+                )
+            }
+        }
+    }
+}
+
+/// How many "missing material" warnings are given before the plugin stops looking for more.
+pub const MAX_MISSING_MATERIAL_WARNINGS: usize = 16;
+
+/// The plugin's resource: creep-rapier's [`CreepHooks`] for the default Rapier context, with
+/// the settings ([`CreepFriction::settings`]) and the last step's counts
+/// ([`CreepFriction::counts`]: contacts by path, power dissipated by creep).
+#[derive(Resource)]
+pub struct CreepFriction {
+    pub(crate) hooks: CreepHooks,
+    /// The compliant (DEM) regime of the pairs whose colliders are both `Fidelity::Compliant`.
+    pub(crate) compliant: CompliantRegime,
+    /// Registered collider -> its entity (guards against handles of another context).
+    pub(crate) entities: HashMap<ColliderHandle, Entity>,
+    /// Entity -> its registered collider.
+    pub(crate) handles: HashMap<Entity, ColliderHandle>,
+    /// Entities with a `CreepMaterial` whose collider does not exist yet.
+    pub(crate) pending: HashSet<Entity>,
+    /// Colliders whose material was removed: their hook flag is cleared before the next step.
+    pub(crate) unhook: Vec<ColliderHandle>,
+    /// Colliders that left the compliant regime: their solver groups (which creep-rapier sets
+    /// to none for compliant colliders) are restored before the next step.
+    pub(crate) restore_groups: Vec<(ColliderHandle, Entity)>,
+    /// A step was started by the plugin and the hook may act.
+    pub(crate) armed: bool,
+    pub(crate) counts: StepCounts,
+    pub(crate) steps: u64,
+    pub(crate) warnings: Vec<CreepWarning>,
+    pub(crate) warned: HashSet<WarnKey>,
+    pub(crate) missing_warned: usize,
+    pub(crate) configure_parameters: bool,
+    pub(crate) warn_missing_material: bool,
+}
+
+/// What a warning is about, to give each one once.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub(crate) enum WarnKey {
+    Global(&'static str),
+    Entity(&'static str, Entity),
+}
+
+impl CreepFriction {
+    pub(crate) fn new(
+        settings: CreepSettings,
+        compliant: CompliantSettings,
+        configure_parameters: bool,
+        warn_missing_material: bool,
+    ) -> Result<Self, PluginError> {
+        Ok(Self {
+            hooks: CreepHooks::new(MaterialRegistry::new(), settings)?,
+            compliant: CompliantRegime::new(compliant)?,
+            entities: HashMap::new(),
+            handles: HashMap::new(),
+            pending: HashSet::new(),
+            unhook: Vec::new(),
+            restore_groups: Vec::new(),
+            armed: false,
+            counts: StepCounts::default(),
+            steps: 0,
+            warnings: Vec::new(),
+            warned: HashSet::new(),
+            missing_warned: 0,
+            configure_parameters,
+            warn_missing_material,
+        })
+    }
+
+    /// The plugin-wide settings (creep-rapier's [`CreepSettings`]).
+    pub fn settings(&self) -> &CreepSettings {
+        self.hooks.settings()
+    }
+
+    /// Replaces the settings. The materials stay; the per-contact memory (last force and slip
+    /// target of each contact) starts afresh. A refused setting is a typed error and changes
+    /// nothing.
+    pub fn set_settings(&mut self, settings: CreepSettings) -> Result<(), PluginError> {
+        let registry = self.hooks.registry().clone();
+        self.hooks = CreepHooks::new(registry, settings)?;
+        Ok(())
+    }
+
+    /// The compliant regime (settings, per-contact state, energy totals).
+    pub fn compliant(&self) -> &CompliantRegime {
+        &self.compliant
+    }
+
+    /// Replaces the compliant regime's settings (a refused setting is a typed error and changes
+    /// nothing).
+    pub fn set_compliant_settings(
+        &mut self,
+        settings: CompliantSettings,
+    ) -> Result<(), PluginError> {
+        self.compliant.set_settings(settings)
+    }
+
+    /// What the compliant regime did in the last Rapier step (contacts, sliding, creeping,
+    /// Rayleigh time step).
+    pub fn compliant_counts(&self) -> CompliantCounts {
+        self.compliant.counts()
+    }
+
+    /// What the plugin did in the last Rapier step: contacts by path (Coulomb for each reason,
+    /// creep, rolling torque), the power dissipated by creep `sum Q . v_disp` [W], the largest
+    /// loop gain, and how many registered colliders had their hook on.
+    pub fn counts(&self) -> StepCounts {
+        self.counts
+    }
+
+    /// Number of Rapier steps the plugin has taken part in.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// The warnings given so far (each also logged once with `warn!`).
+    pub fn warnings(&self) -> &[CreepWarning] {
+        &self.warnings
+    }
+
+    /// The Rapier collider handle registered for a collider entity.
+    pub fn collider_handle(&self, entity: Entity) -> Option<ColliderHandle> {
+        self.handles.get(&entity).copied()
+    }
+
+    /// The collider entity registered for a Rapier collider handle.
+    pub fn collider_entity(&self, handle: ColliderHandle) -> Option<Entity> {
+        self.entities.get(&handle).copied()
+    }
+
+    /// Number of registered colliders.
+    pub fn registered(&self) -> usize {
+        self.handles.len()
+    }
+
+    /// The creep-rapier hooks (registry, settings, per-contact records).
+    pub fn hooks(&self) -> &CreepHooks {
+        &self.hooks
+    }
+
+    /// Copies of the live per-contact records (force used, slip target, normal force, bodies;
+    /// world frame, on collider 1; creep-rapier's [`ContactRecord`]).
+    pub fn contacts(&self) -> Vec<(ContactKey, ContactRecord)> {
+        self.hooks.records()
+    }
+
+    /// Whether both colliders of a pair are this plugin's (not handles of another context that
+    /// happen to be equal): a registered handle must carry its entity in `user_data`.
+    pub(crate) fn owns(&self, colliders: &ColliderSet, handle: ColliderHandle) -> bool {
+        match self.entities.get(&handle) {
+            Some(e) => colliders
+                .get(handle)
+                .is_some_and(|c| c.user_data as u64 == e.to_bits()),
+            None => true,
+        }
+    }
+
+    /// Records and logs a warning, once per key.
+    pub(crate) fn warn(&mut self, key: WarnKey, warning: CreepWarning) {
+        if self.warned.insert(key) {
+            warn!("{warning}");
+            self.warnings.push(warning);
+        }
+    }
+}
