@@ -1,7 +1,12 @@
 //! The `creep` command-line tool: creep-friction contact laws and references, headless.
+mod bench_cmd;
+mod figure_cmd;
 mod law_cmd;
+mod plot;
 mod ref_cmd;
+mod report_cmd;
 mod run_cmd;
+mod triaxial_cmd;
 
 use clap::{Parser, Subcommand};
 
@@ -29,6 +34,17 @@ enum Command {
     /// Reference solutions (closed forms, FASTSIM, boundary elements) as CSV.
     #[command(subcommand, name = "ref")]
     Ref(ref_cmd::RefCommand),
+    /// The speed-against-error report: REPORT.md, CSVs and plots (`report [--quick] [--out DIR]`).
+    Report(report_cmd::ReportArgs),
+    /// The talk's figures as CSV, SVG and PNG (e.g. `figure rolling-effect --out figures`).
+    #[command(subcommand)]
+    Figure(figure_cmd::FigureCommand),
+    /// The talk's drained triaxial test of 4,096 spheres (compliant regime), Coulomb-Mindlin
+    /// against creep-friction from the same packing: CSVs, plots, SUMMARY.md.
+    Triaxial(triaxial_cmd::TriaxialArgs),
+    /// Benchmarks (particle-steps per second of the DEM packing).
+    #[command(subcommand)]
+    Bench(bench_cmd::BenchCommand),
 }
 
 fn main() -> std::process::ExitCode {
@@ -42,6 +58,10 @@ fn main() -> std::process::ExitCode {
         Some(Command::Run(cmd)) => run_cmd::run(cmd, &mut out),
         Some(Command::Law(cmd)) => law_cmd::run(cmd, &mut out),
         Some(Command::Ref(cmd)) => ref_cmd::run(cmd, &mut out),
+        Some(Command::Report(args)) => report_cmd::run(args, &mut out),
+        Some(Command::Figure(cmd)) => figure_cmd::run(cmd, &mut out),
+        Some(Command::Triaxial(args)) => triaxial_cmd::run(args, &mut out),
+        Some(Command::Bench(cmd)) => bench_cmd::run(cmd, &mut out),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -11,5 +11,7 @@ pub mod free_rolling;
 pub mod friction_drive;
 pub mod incline;
 mod measure;
+pub mod rolling_effect;
+pub mod triaxial;
 
 pub use measure::{RollingMeter, SceneError};

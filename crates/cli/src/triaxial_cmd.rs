@@ -1,0 +1,294 @@
+//! `creep triaxial [--quick] [--out DIR] [--config FILE]`: the talk's drained triaxial test
+//! (creep-scenes `triaxial`), sheared with Coulomb-Mindlin and with creep-friction from the same
+//! packing; writes CSVs, plots and a summary.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use creep_scenes::triaxial::{
+    CSV_HEADER, ShearRun, ShearSummary, Specimen, TriaxialParams, compact, shear,
+};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::plot::{LineChart, Series};
+
+type Res = Result<(), Box<dyn std::error::Error>>;
+
+/// The built-in defaults (the repository's `assets/triaxial.conf`).
+const DEFAULTS: &str = include_str!("../../../assets/triaxial.conf");
+
+/// Arguments of `creep triaxial`.
+#[derive(Debug, clap::Args)]
+pub struct TriaxialArgs {
+    /// Smoke-test size: 343 spheres, 10 % strain at I = 5e-3 (seconds; not quasi-static).
+    #[arg(long)]
+    quick: bool,
+    /// Output directory (CSVs, SVG/PNG plots, SUMMARY.md).
+    #[arg(long, default_value = "triaxial")]
+    out: PathBuf,
+    /// Parameters file (`key = value` lines, the form of assets/triaxial.conf); default: the
+    /// built-in copy of assets/triaxial.conf.
+    #[arg(long)]
+    config: Option<PathBuf>,
+}
+
+fn bar(len: u64, what: &str) -> ProgressBar {
+    let pb = ProgressBar::new(len);
+    pb.set_style(
+        ProgressStyle::with_template(
+            "{msg:>26} [{elapsed_precise}] {wide_bar} {percent:>3}% ({eta})",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    pb.set_message(what.to_string());
+    pb
+}
+
+/// Runs the test.
+pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
+    let text = match &args.config {
+        Some(path) => {
+            std::fs::read_to_string(path).map_err(|e| format!("reading {}: {e}", path.display()))?
+        }
+        None => DEFAULTS.to_string(),
+    };
+    let mut params = TriaxialParams::from_conf(&text)?;
+    if args.quick {
+        let q = TriaxialParams::quick();
+        params.n_per_side = q.n_per_side;
+        params.inertial_number = q.inertial_number;
+        params.axial_strain = q.axial_strain;
+        params.rows_per_percent = q.rows_per_percent;
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("creating {}: {e}", args.out.display()))?;
+    let n = params.n_per_side.pow(3);
+    let m = params.material;
+    let header = format!(
+        "Drained triaxial compression, compliant regime (creep-rapier), Coulomb-Mindlin vs creep-friction\n\
+         {n} spheres, radius uniform in [{:.3e}, {:.3e}] m; G = {:.3e} Pa, nu = {}, rho = {} kg/m^3, mu = {}, e = {}\n\
+         confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R)",
+        params.radius * (1.0 - params.radius_spread),
+        params.radius * (1.0 + params.radius_spread),
+        m.shear_modulus(),
+        m.poisson_ratio(),
+        m.density(),
+        params.mu,
+        params.restitution,
+        params.confining_pressure,
+        params.strain_rate(),
+        params.inertial_number,
+        params.axial_strain * 100.0,
+        params.time_step(),
+        params.rayleigh_fraction,
+    );
+    writeln!(out, "{header}")?;
+    if args.quick {
+        writeln!(
+            out,
+            "--quick: a smoke test (inertial number above the quasi-static 1e-3), not a result"
+        )?;
+    }
+
+    let t0 = Instant::now();
+    let mut specimen = Specimen::generate(params)?;
+    let pb = bar(1000, "isotropic compaction");
+    let summary = compact(&mut specimen, 2_000_000, &mut |f| {
+        pb.set_position((f * 1000.0) as u64)
+    })?;
+    pb.finish();
+    let t_compact = t0.elapsed().as_secs_f64();
+    let mut lines = vec![header.clone(), String::new()];
+    lines.push(format!(
+        "Compaction (frictionless): {} steps in {t_compact:.1} s ({:.3e} particle-steps/s); solid fraction {:.4}, coordination {:.2}; p from walls {:.4e} Pa, from contacts {:.4e} Pa ({:+.2} %)",
+        summary.steps,
+        n as f64 * summary.steps as f64 / t_compact,
+        summary.solid_fraction,
+        summary.coordination,
+        summary.p_walls,
+        summary.p_contacts,
+        (summary.p_contacts / summary.p_walls - 1.0) * 100.0
+    ));
+    writeln!(out, "{}", lines.last().unwrap_or(&String::new()))?;
+
+    let mut runs: Vec<(ShearRun, f64)> = Vec::new();
+    for creep in [false, true] {
+        let label = if creep {
+            "shear, creep-friction"
+        } else {
+            "shear, Coulomb-Mindlin"
+        };
+        let pb = bar(1000, label);
+        let t = Instant::now();
+        let run = shear(&specimen, creep, &mut |f| {
+            pb.set_position((f * 1000.0) as u64)
+        })?;
+        pb.finish();
+        let secs = t.elapsed().as_secs_f64();
+        let name = if creep { "creep" } else { "coulomb" };
+        write_csv(&args.out.join(format!("triaxial_{name}.csv")), &run)?;
+        runs.push((run, secs));
+    }
+
+    let sums: Vec<ShearSummary> = runs.iter().map(|(r, _)| r.summary()).collect();
+    lines.push(String::new());
+    lines.push("| | Coulomb-Mindlin | creep-friction |".into());
+    lines.push("|---|---|---|".into());
+    let row = |name: &str, f: &dyn Fn(&ShearSummary) -> String| {
+        format!("| {name} | {} | {} |", f(&sums[0]), f(&sums[1]))
+    };
+    lines.push(row("peak q/p", &|s| format!("{:.4}", s.peak_q_over_p)));
+    lines.push(row("peak friction angle [deg]", &|s| {
+        format!("{:.2}", s.peak_friction_angle_deg)
+    }));
+    lines.push(row("axial strain at peak [%]", &|s| {
+        format!("{:.2}", s.peak_axial_strain * 100.0)
+    }));
+    lines.push(row("max dilatancy rate -d eps_v/d eps_a", &|s| {
+        format!("{:.4}", s.max_dilatancy_rate)
+    }));
+    lines.push(row("dilatancy angle [deg]", &|s| {
+        format!("{:.2}", s.dilatancy_angle_deg)
+    }));
+    lines.push(row("final volumetric strain [%]", &|s| {
+        format!("{:.3}", s.final_volumetric_strain * 100.0)
+    }));
+    lines.push(row("final q/p", &|s| format!("{:.4}", s.final_q_over_p)));
+    lines.push(row(
+        "share of contacts sliding / rolling / creeping",
+        &|s| {
+            format!(
+                "{:.3} / {:.3} / {:.3}",
+                s.mean_shares[0], s.mean_shares[1], s.mean_shares[2]
+            )
+        },
+    ));
+    let run_row = |name: &str, f: &dyn Fn(&ShearRun, f64) -> String| {
+        format!(
+            "| {name} | {} | {} |",
+            f(&runs[0].0, runs[0].1),
+            f(&runs[1].0, runs[1].1)
+        )
+    };
+    lines.push(run_row(
+        "contact vs wall stress, largest gap [%]",
+        &|r, _| format!("{:.2}", r.max_stress_mismatch * 100.0),
+    ));
+    lines.push(run_row("energy dissipated by slip / creep [J]", &|r, _| {
+        format!("{:.3e} / {:.3e}", r.slip_dissipation, r.creep_dissipation)
+    }));
+    lines.push(run_row("steps, run time", &|r, secs| {
+        format!("{}, {secs:.1} s", r.steps)
+    }));
+    lines.push(run_row("particle-steps per second", &|r, secs| {
+        format!("{:.3e}", n as f64 * r.steps as f64 / secs)
+    }));
+    let d_phi = sums[1].peak_friction_angle_deg - sums[0].peak_friction_angle_deg;
+    let d_psi = sums[1].dilatancy_angle_deg - sums[0].dilatancy_angle_deg;
+    lines.push(String::new());
+    lines.push(format!(
+        "Creep-friction changes the peak friction angle by {d_phi:+.2} deg and the dilatancy angle by {d_psi:+.2} deg (the talk: \"a minimal effect of creep-friction\" in a dense packing)."
+    ));
+    for l in &lines[lines.len() - 16..] {
+        writeln!(out, "{l}")?;
+    }
+    std::fs::write(args.out.join("SUMMARY.md"), lines.join("\n") + "\n")?;
+    plots(&args.out, &runs)?;
+    writeln!(
+        out,
+        "wrote {}/{{triaxial_coulomb.csv, triaxial_creep.csv, SUMMARY.md, triaxial_q_over_p.*, triaxial_volumetric.*, triaxial_contacts.*}}",
+        args.out.display()
+    )?;
+    Ok(())
+}
+
+fn write_csv(path: &Path, run: &ShearRun) -> Res {
+    let mut text = String::from(CSV_HEADER);
+    text.push('\n');
+    for r in &run.rows {
+        text.push_str(&r.csv());
+        text.push('\n');
+    }
+    std::fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()))?;
+    Ok(())
+}
+
+fn plots(dir: &Path, runs: &[(ShearRun, f64)]) -> Res {
+    let label = |r: &ShearRun| {
+        if r.creep {
+            "creep-friction"
+        } else {
+            "Coulomb-Mindlin"
+        }
+    };
+    let curve = |r: &ShearRun, f: &dyn Fn(&creep_scenes::triaxial::TriaxialRow) -> f64| {
+        r.rows
+            .iter()
+            .filter(|row| row.axial_strain > 0.0)
+            .map(|row| (row.axial_strain * 100.0, f(row)))
+            .collect::<Vec<_>>()
+    };
+    let mut q = LineChart::new(
+        "Drained triaxial compression: stress ratio",
+        "axial strain [%]",
+        "q / p [-]",
+    );
+    let mut v = LineChart::new(
+        "Drained triaxial compression: volume change",
+        "axial strain [%]",
+        "volumetric strain [%] (compression positive)",
+    );
+    let mut c = LineChart::new(
+        "Ball-ball contacts by state",
+        "axial strain [%]",
+        "share of contacts [-]",
+    );
+    for (i, (r, _)) in runs.iter().enumerate() {
+        let mut s = Series::line(label(r), curve(r, &|row| row.q_over_p)).color(i);
+        let mut sv =
+            Series::line(label(r), curve(r, &|row| row.volumetric_strain * 100.0)).color(i);
+        if r.creep {
+            s = s.dashed();
+            sv = sv.dashed();
+        }
+        q = q.series(s);
+        v = v.series(sv);
+        let tag = if r.creep { "creep" } else { "Coulomb" };
+        c = c.series(
+            Series::line(
+                format!("sliding ({tag})"),
+                curve(r, &|row| row.share_sliding),
+            )
+            .color(0),
+        );
+        c = c.series(
+            Series::line(
+                format!("rolling ({tag})"),
+                curve(r, &|row| row.share_rolling),
+            )
+            .color(1),
+        );
+        if r.creep {
+            c = c.series(
+                Series::line("creeping (creep)", curve(r, &|row| row.share_creeping)).color(2),
+            );
+        }
+    }
+    // Dashed for the creep run in the contacts chart too.
+    c.series = c
+        .series
+        .into_iter()
+        .map(|s| {
+            if s.name.contains("(creep)") {
+                s.dashed()
+            } else {
+                s
+            }
+        })
+        .collect();
+    q.write(&dir.join("triaxial_q_over_p"))?;
+    v.write(&dir.join("triaxial_volumetric"))?;
+    c.write(&dir.join("triaxial_contacts"))?;
+    Ok(())
+}
