@@ -44,9 +44,14 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
             let count = n.pow(3) as f64;
             writeln!(
                 out,
-                "Dense packing of the triaxial test: {} spheres, compacted to {:.0} Pa (single thread; rapier3d without its `parallel` feature)",
+                "Dense packing of the triaxial test: {} spheres, compacted to {:.0} Pa ({})",
                 n.pow(3),
-                params.confining_pressure
+                params.confining_pressure,
+                if cfg!(feature = "parallel") {
+                    "rapier3d with its `parallel` feature (rayon); the compliant forces are computed on one thread"
+                } else {
+                    "single thread: rapier3d without its `parallel` feature"
+                }
             )?;
             let mut s = Specimen::generate(params)?;
             let c = compact(&mut s, 2_000_000, &mut |_| {})?;
