@@ -13,6 +13,7 @@ pub mod kinematics;
 pub mod material;
 pub mod mindlin;
 pub mod rolling_torque;
+pub mod root;
 pub mod steady_law;
 pub mod steady_table;
 pub mod transient_law;

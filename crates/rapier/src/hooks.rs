@@ -60,6 +60,7 @@ use std::sync::Mutex;
 
 use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::rolling_torque::{RollingInput, RollingModel, RollingState, epsd_rolling_inertia};
+use creep_law::root::illinois;
 use creep_law::steady_law::SteadyLaw;
 use creep_law::{PairMaterial, Surface, Vec3, hertz, kalker};
 use rapier3d::geometry::NEW_CONTACT_BIT;
@@ -761,35 +762,14 @@ fn solve_creep_force(q_star: f64, k: f64, mu_p: f64, creepage: &dyn Fn(f64) -> f
         return hi0.max(0.0);
     }
     let h = |q: f64| q + k * creepage(q) - q_star;
-    let (mut a, mut b) = (0.0, hi0);
-    let (mut fa, mut fb) = (h(a), h(b));
+    let (fa, fb) = (h(0.0), h(hi0));
     if fb <= 0.0 {
         return hi0;
     }
-    let mut side = 0i8;
-    for _ in 0..100 {
-        let c = (a * fb - b * fa) / (fb - fa);
-        let fc = h(c);
-        if (b - a).abs() <= 1e-13 * hi0 || fc == 0.0 {
-            return c;
-        }
-        if fc > 0.0 {
-            b = c;
-            fb = fc;
-            if side == 1 {
-                fa *= 0.5;
-            }
-            side = 1;
-        } else {
-            a = c;
-            fa = fc;
-            if side == -1 {
-                fb *= 0.5;
-            }
-            side = -1;
-        }
-    }
-    0.5 * (a + b)
+    illinois(h, (0.0, fa), (hi0, fb), 100, |_, fc, k| {
+        (k.b - k.a).abs() <= 1e-13 * hi0 || fc == 0.0
+    })
+    .root_or_midpoint()
 }
 
 /// Mean spurious change of the separation along `n` caused by a body's contact anchor riding

@@ -172,15 +172,16 @@ pub struct PathError {
     pub end: f64,
 }
 
-impl Curve {
-    /// Error of Kuhn's rule against the exact curve.
-    pub fn error(&self) -> PathError {
-        let d: Vec<f64> = self
-            .kuhn
+impl PathError {
+    /// Error of `model` against `reference` on the same records (in units of `mu P`): the
+    /// largest and RMS `model - reference` over the records after the first (where both start
+    /// from zero by construction), and its value at the last record.
+    fn between(r: f64, model: &[f64], reference: &[f64]) -> Self {
+        let d: Vec<f64> = model
             .iter()
-            .zip(&self.exact)
+            .zip(reference)
             .skip(1)
-            .map(|(k, e)| k - e)
+            .map(|(m, e)| m - e)
             .collect();
         let max = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let rms = if d.is_empty() {
@@ -188,12 +189,19 @@ impl Curve {
         } else {
             (d.iter().map(|v| v * v).sum::<f64>() / d.len() as f64).sqrt()
         };
-        PathError {
-            r: self.r,
+        Self {
+            r,
             max,
             rms,
             end: d.last().copied().unwrap_or(0.0),
         }
+    }
+}
+
+impl Curve {
+    /// Error of Kuhn's rule against the exact curve.
+    pub fn error(&self) -> PathError {
+        PathError::between(self.r, &self.kuhn, &self.exact)
     }
 }
 
@@ -226,25 +234,7 @@ impl CompliantPath {
     /// same records), in units of `mu P`, as for [`Curve::error`]: `max`, `rms` (first record
     /// excluded) and `end` of `Q_engine - Q_reference`.
     pub fn error_against(&self, reference: &[f64]) -> PathError {
-        let d: Vec<f64> = self
-            .q
-            .iter()
-            .zip(reference)
-            .skip(1)
-            .map(|(e, k)| e - k)
-            .collect();
-        let max = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let rms = if d.is_empty() {
-            0.0
-        } else {
-            (d.iter().map(|v| v * v).sum::<f64>() / d.len() as f64).sqrt()
-        };
-        PathError {
-            r: self.r,
-            max,
-            rms,
-            end: d.last().copied().unwrap_or(0.0),
-        }
+        PathError::between(self.r, &self.q, reference)
     }
 }
 

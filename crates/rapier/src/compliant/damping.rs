@@ -19,6 +19,7 @@
 //! regula falsi. The unit tests check the integrator against the closed form without cut-off.
 
 use crate::error::PluginError;
+use creep_law::root::illinois;
 
 /// Smallest restitution coefficient accepted [-] (below it the damping diverges).
 pub const MIN_RESTITUTION: f64 = 0.01;
@@ -96,31 +97,11 @@ pub fn damping_coefficient(e: f64) -> Result<f64, PluginError> {
             return Err(PluginError::Restitution(e));
         }
     }
-    // Illinois regula falsi.
-    let mut side = 0i8;
-    for _ in 0..60 {
-        let c = (lo * fhi - hi * flo) / (fhi - flo);
-        let fc = f(c);
-        if fc.abs() < 1e-10 || (hi - lo) < 1e-12 * hi {
-            return Ok(c);
-        }
-        if fc > 0.0 {
-            lo = c;
-            flo = fc;
-            if side == 1 {
-                fhi *= 0.5;
-            }
-            side = 1;
-        } else {
-            hi = c;
-            fhi = fc;
-            if side == -1 {
-                flo *= 0.5;
-            }
-            side = -1;
-        }
-    }
-    Ok(0.5 * (lo + hi))
+    // Illinois regula falsi (creep-law's `root::illinois`).
+    Ok(illinois(f, (lo, flo), (hi, fhi), 60, |_, fc, k| {
+        fc.abs() < 1e-10 || (k.b - k.a) < 1e-12 * k.b
+    })
+    .root_or_midpoint())
 }
 
 #[cfg(test)]

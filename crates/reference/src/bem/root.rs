@@ -4,6 +4,7 @@
 //! "A modified regula falsi method for computing the root of an equation", BIT 11).
 
 use crate::error::RefError;
+use creep_law::root::{self, Illinois};
 
 /// Finds `x` with `|f(x)| <= tol` for a non-decreasing `f`, starting at `x0` with the slope
 /// estimate `slope > 0`. The last evaluation of `f` is at the returned root (callers rely on the
@@ -50,36 +51,44 @@ pub(crate) fn illinois(
             });
         }
     }
-    let (mut a, mut fa, mut b, mut fb) = (x0, f0, x1, f1);
-    let mut side = 0i8;
-    for _ in 0..300 {
-        let x = (a * fb - b * fa) / (fb - fa);
-        let fx = f(x)?;
-        if fx.abs() <= tol || (b - a).abs() <= 4.0 * f64::EPSILON * a.abs().max(b.abs()) {
-            let s = (fb - fa) / (b - a);
-            return Ok((x, if s > 0.0 { s } else { slope }));
-        }
-        if fx.signum() == fb.signum() {
-            b = x;
-            fb = fx;
-            if side == 1 {
-                fa *= 0.5;
+    // Illinois regula falsi (creep-law's `root::illinois`); an error of `f` stops it (as NaN).
+    let mut failure = None;
+    let result = root::illinois(
+        |x| match f(x) {
+            Ok(v) => v,
+            Err(e) => {
+                failure.get_or_insert(e);
+                f64::NAN
             }
-            side = 1;
-        } else {
-            a = x;
-            fa = fx;
-            if side == -1 {
-                fb *= 0.5;
-            }
-            side = -1;
-        }
+        },
+        (x0, f0),
+        (x1, f1),
+        300,
+        |_, fx, k| {
+            fx.is_nan()
+                || fx.abs() <= tol
+                || (k.b - k.a).abs() <= 4.0 * f64::EPSILON * k.a.abs().max(k.b.abs())
+        },
+    );
+    if let Some(e) = failure {
+        return Err(e);
     }
-    Err(RefError::NoConvergence {
-        solver: what,
-        iterations: 300,
-        residual: fa.abs().min(fb.abs()),
-    })
+    match result {
+        Illinois::Root { x, bracket: k } if !x.is_nan() => {
+            let s = (k.fb - k.fa) / (k.b - k.a);
+            Ok((x, if s > 0.0 { s } else { slope }))
+        }
+        Illinois::Root { x, .. } => Err(RefError::NoConvergence {
+            solver: what,
+            iterations: 0,
+            residual: x,
+        }),
+        Illinois::Exhausted(k) => Err(RefError::NoConvergence {
+            solver: what,
+            iterations: 300,
+            residual: k.fa.abs().min(k.fb.abs()),
+        }),
+    }
 }
 
 #[cfg(test)]
