@@ -180,20 +180,6 @@ fn records_are_dropped_when_a_body_is_removed() {
 }
 
 #[test]
-fn sphere_at_rest_does_not_creep_away() {
-    let (mut w, ball) = incline(1.0 / 60.0, 0.0, Fidelity::Creep);
-    for _ in 0..120 {
-        w.step().unwrap();
-    }
-    let x0 = w.physics.bodies[ball].translation();
-    for _ in 0..10_000 {
-        w.step().unwrap();
-    }
-    let d = (w.physics.bodies[ball].translation() - x0).length();
-    assert!(f64::from(d) < 1e-6, "drifted {d} m");
-}
-
-#[test]
 fn quiet_bodies_switch_their_hooks_off_and_moving_ones_on() {
     // A ball resting on a floor (Auto): below the activation speed its collider's hook is off,
     // so its contacts keep Rapier's recycling; pushed, it comes back on and creeps.
