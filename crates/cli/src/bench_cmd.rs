@@ -1,8 +1,15 @@
 //! `creep bench dem`: particle-steps per second of the dense packing of the triaxial test in
 //! the compliant regime (Coulomb-Mindlin and creep-friction) and in plain Rapier, measured side
 //! by side in one process (medians over the steps).
+//!
+//! For the peers (LAMMPS, LIGGGHTS; `bench/peers/`): `--export DIR` writes the compacted
+//! packing as a LAMMPS data file with the material, the walls and the time step, and
+//! `--rounds R --between CMD` repeats the timing `R` times on the one compacted packing,
+//! running `CMD` (e.g. the peers' runs) after each round, so that the tools are interleaved on
+//! a shared machine without compacting again (about a minute at 4,096 spheres).
 
 use std::io::Write;
+use std::path::{Path, PathBuf};
 
 use creep_scenes::triaxial::{
     Specimen, TriaxialParams, compact, time_compliant_steps, time_plain_rapier_steps,
@@ -19,9 +26,23 @@ pub enum BenchCommand {
         /// Spheres per side of the lattice (n^3 spheres).
         #[arg(long, default_value_t = 16)]
         n: usize,
-        /// Timed steps per variant.
+        /// Timed steps per variant (per round with `--rounds`).
         #[arg(long, default_value_t = 200)]
         steps: usize,
+        /// Write the compacted packing to this directory for the peers (LAMMPS, LIGGGHTS):
+        /// `packing.data` (LAMMPS data file, atom_style sphere: diameter, density, position,
+        /// velocities), `params.lmp` (LAMMPS/LIGGGHTS variables: box = wall faces, material,
+        /// dt) and `packing.json` (the same and the stresses of the packing).
+        #[arg(long, value_name = "DIR")]
+        export: Option<PathBuf>,
+        /// Timing rounds on the one compacted packing; each round times every variant for
+        /// `--steps` steps and prints a `round` line with the mean seconds per step.
+        #[arg(long, default_value_t = 1)]
+        rounds: usize,
+        /// Shell command (`sh -c`) run after each round, with `CREEP_BENCH_ROUND` set to the
+        /// round (1-based), e.g. the peers' runs, so that they interleave with ours.
+        #[arg(long, value_name = "CMD")]
+        between: Option<String>,
     },
 }
 
@@ -30,12 +51,35 @@ fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
+fn mean(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        f64::NAN
+    } else {
+        v.iter().sum::<f64>() / v.len() as f64
+    }
+}
+
 /// Runs a benchmark.
 pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
     match cmd {
-        BenchCommand::Dem { n, steps } => {
+        BenchCommand::Dem {
+            n,
+            steps,
+            export,
+            rounds,
+            between,
+        } => {
             if *steps == 0 {
                 return Err("--steps must be at least 1".into());
+            }
+            if *rounds == 0 {
+                return Err("--rounds must be at least 1".into());
+            }
+            if let Some(dir) = export {
+                // Fail before the minute of compaction, not after it.
+                std::fs::create_dir_all(dir).map_err(|e| {
+                    format!("--export: cannot create directory {}: {e}", dir.display())
+                })?;
             }
             let params = TriaxialParams {
                 n_per_side: *n,
@@ -60,16 +104,49 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
                 "compacted in {} steps: solid fraction {:.4}, coordination {:.2}",
                 c.steps, c.solid_fraction, c.coordination
             )?;
+            if let Some(dir) = export {
+                let e = export_packing(&s, dir)?;
+                writeln!(
+                    out,
+                    "exported to {}: {} spheres, dt {:.6e} s, wall stress {:.5e} Pa, ball-ball contact pressure {:.5e} Pa",
+                    dir.display(),
+                    e.spheres,
+                    e.dt,
+                    e.p_walls,
+                    e.p_ball_ball
+                )?;
+                out.flush()?;
+            }
             // Interleave the variants in blocks so the machine's load drifts hit all alike.
             let (mut cm, mut cr, mut pr) = (vec![], vec![], vec![]);
             let block = (*steps / 4).max(1);
-            let mut left = *steps;
-            while left > 0 {
-                let k = block.min(left);
-                cm.extend(time_compliant_steps(&s, false, k)?);
-                cr.extend(time_compliant_steps(&s, true, k)?);
-                pr.extend(time_plain_rapier_steps(&s, k));
-                left -= k;
+            for round in 1..=*rounds {
+                let (mut rcm, mut rcr, mut rpr) = (vec![], vec![], vec![]);
+                let mut left = *steps;
+                while left > 0 {
+                    let k = block.min(left);
+                    rcm.extend(time_compliant_steps(&s, false, k)?);
+                    rcr.extend(time_compliant_steps(&s, true, k)?);
+                    rpr.extend(time_plain_rapier_steps(&s, k));
+                    left -= k;
+                }
+                if *rounds > 1 || between.is_some() {
+                    // Means, like a loop time divided by its steps (LAMMPS' "Loop time").
+                    writeln!(
+                        out,
+                        "round {round} of {rounds}, mean s/step: cm {:.6e} creep {:.6e} plain {:.6e}",
+                        mean(&rcm),
+                        mean(&rcr),
+                        mean(&rpr)
+                    )?;
+                    out.flush()?;
+                }
+                cm.extend(rcm);
+                cr.extend(rcr);
+                pr.extend(rpr);
+                if let Some(command) = between {
+                    run_between(command, round)?;
+                }
             }
             let (m_cm, m_cr, m_pr) = (median(cm), median(cr), median(pr));
             writeln!(
@@ -93,4 +170,305 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
             Ok(())
         }
     }
+}
+
+/// Runs `command` with `sh -c`, its output going to ours; an error if it cannot start or
+/// fails.
+fn run_between(command: &str, round: usize) -> Res {
+    let status = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(command)
+        .env("CREEP_BENCH_ROUND", round.to_string())
+        .status()
+        .map_err(|e| format!("--between: cannot run `sh -c {command}`: {e}"))?;
+    if !status.success() {
+        return Err(format!("--between: `{command}` failed after round {round} ({status})").into());
+    }
+    Ok(())
+}
+
+/// What [`export_packing`] wrote.
+struct Exported {
+    spheres: usize,
+    dt: f64,
+    p_walls: f64,
+    p_ball_ball: f64,
+}
+
+/// One of the six walls: the inner face of a kinematic cuboid.
+struct Face {
+    axis: usize,
+    /// +1: the face looks towards -axis (the upper wall).
+    side: f64,
+    /// Position of the inner face along `axis` [m].
+    at: f64,
+}
+
+/// Writes the compacted packing to `dir` (see `--export`).
+fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::error::Error>> {
+    let params = s.params();
+    let physics = &s.world().physics;
+    let (bodies, colliders) = (&physics.bodies, &physics.colliders);
+
+    // Balls and walls, as the specimen built them (walls: axis-aligned cuboids, thinnest
+    // along their axis).
+    let mut atoms = Vec::new();
+    let mut faces = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    for (h, co) in colliders.iter() {
+        let Some(body) = co.parent().and_then(|b| bodies.get(b)) else {
+            continue;
+        };
+        if let Some(ball) = co.shape().as_ball() {
+            index.insert(h, atoms.len());
+            atoms.push((
+                ball.radius,
+                body.translation(),
+                body.linvel(),
+                body.angvel(),
+            ));
+        } else if let Some(cub) = co.shape().as_cuboid() {
+            let he = cub.half_extents;
+            let t = co.translation();
+            let axis = (0..3).min_by(|&a, &b| he[a].total_cmp(&he[b])).unwrap_or(0);
+            let side = if t[axis] > 0.0 { 1.0 } else { -1.0 };
+            faces.push(Face {
+                axis,
+                side,
+                at: f64::from(t[axis]) - side * f64::from(he[axis]),
+            });
+        }
+    }
+    if atoms.is_empty() {
+        return Err("--export: the packing has no spheres".into());
+    }
+    let face = |axis: usize, side: f64| {
+        faces
+            .iter()
+            .find(|f| f.axis == axis && f.side == side)
+            .map(|f| f.at)
+    };
+    let mut lo = [0.0; 3];
+    let mut hi = [0.0; 3];
+    for axis in 0..3 {
+        match (face(axis, -1.0), face(axis, 1.0)) {
+            (Some(l), Some(h)) if h > l => {
+                lo[axis] = l;
+                hi[axis] = h;
+            }
+            _ => {
+                return Err(format!(
+                    "--export: expected two walls across axis {axis} (found {} walls)",
+                    faces.len()
+                )
+                .into());
+            }
+        }
+    }
+    let dims = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let volume = dims[0] * dims[1] * dims[2];
+
+    // Stresses of the last step's contacts: each wall's normal stress and the ball-ball part
+    // of the Love-Weber stress (LAMMPS' pair virial: `(1/3V) sum r_ij . f_ij`).
+    let centre = |h| {
+        colliders
+            .get(h)
+            .and_then(|co| co.parent())
+            .and_then(|b| bodies.get(b))
+            .map(|b| b.translation())
+            .map(|x| [f64::from(x.x), f64::from(x.y), f64::from(x.z)])
+    };
+    let mut wall_force = [0.0; 6];
+    let mut virial = 0.0;
+    // Mean Mindlin stiffness 8 G* a of the ball-ball contacts (a = sqrt(R* delta)): the scale
+    // the peers' rolling springs are set to.
+    let g_star = params.material.shear_modulus() / (2.0 * (2.0 - params.material.poisson_ratio()));
+    let mut kt_sum = 0.0;
+    let (mut ball_ball, mut ball_wall) = (0usize, 0usize);
+    for (&(c1, c2), rec) in s.world().compliant.contacts() {
+        // Force on p (collider 1) from q.
+        let f = rec.tangential_force - rec.normal * rec.normal_force;
+        let f = [f.x, f.y, f.z];
+        match (index.contains_key(&c1), index.contains_key(&c2)) {
+            (true, true) => {
+                if let (Some(xp), Some(xq)) = (centre(c1), centre(c2)) {
+                    virial -= (0..3).map(|i| (xq[i] - xp[i]) * f[i]).sum::<f64>();
+                    let (rp, rq) = (
+                        f64::from(atoms[index[&c1]].0),
+                        f64::from(atoms[index[&c2]].0),
+                    );
+                    let r_star = rp * rq / (rp + rq);
+                    kt_sum += 8.0 * g_star * (r_star * rec.overlap.max(0.0)).sqrt();
+                    ball_ball += 1;
+                }
+            }
+            (false, false) => {}
+            (p_is_ball, _) => {
+                // The wall's share: the force on the wall, and the normal from it into the ball.
+                let (on_wall, n) = if !p_is_ball {
+                    (f, rec.normal)
+                } else {
+                    ([-f[0], -f[1], -f[2]], -rec.normal)
+                };
+                // The normal from the wall into the ball picks the wall: -side along its axis.
+                let n = [n.x, n.y, n.z];
+                let axis = (0..3)
+                    .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+                    .unwrap_or(0);
+                let side = if n[axis] < 0.0 { 1.0 } else { -1.0 };
+                let k = 2 * axis + usize::from(side > 0.0);
+                wall_force[k] += side * on_wall[axis];
+                ball_wall += 1;
+            }
+        }
+    }
+    let mut wall_stress = [0.0; 6];
+    for (k, w) in wall_stress.iter_mut().enumerate() {
+        let axis = k / 2;
+        *w = wall_force[k] / (dims[(axis + 1) % 3] * dims[(axis + 2) % 3]);
+    }
+    let p_walls = wall_stress.iter().sum::<f64>() / 6.0;
+    let p_ball_ball = virial / (3.0 * volume);
+
+    let m = &params.material;
+    let g = m.shear_modulus();
+    let nu = m.poisson_ratio();
+    let young = 2.0 * g * (1.0 + nu);
+    let dt = f64::from(physics.integration_parameters.dt);
+    let r_min = params.radius * (1.0 - params.radius_spread);
+    let t_r = creep_law::hertz::rayleigh_time_step(m, r_min);
+    let prediction = f64::from(physics.integration_parameters.prediction_distance());
+    let solids: f64 = atoms
+        .iter()
+        .map(|a| 4.0 / 3.0 * std::f64::consts::PI * f64::from(a.0).powi(3))
+        .sum();
+    let d_mean = atoms.iter().map(|a| 2.0 * f64::from(a.0)).sum::<f64>() / atoms.len() as f64;
+
+    let write = |name: &str, text: String| {
+        let path = dir.join(name);
+        std::fs::write(&path, text)
+            .map_err(|e| format!("--export: cannot write {}: {e}", path.display()))
+    };
+
+    // LAMMPS data file (atom_style sphere; LIGGGHTS' atom_style granular reads the same):
+    // f32 values printed with 9 significant digits round-trip exactly.
+    let mut data = String::new();
+    data.push_str(&format!(
+        "creep bench dem --export: {} spheres compacted to {:.0} Pa (SI units)\n\n",
+        atoms.len(),
+        params.confining_pressure
+    ));
+    data.push_str(&format!("{} atoms\n2 atom types\n\n", atoms.len()));
+    for (axis, name) in ["x", "y", "z"].iter().enumerate() {
+        data.push_str(&format!(
+            "{:.9e} {:.9e} {name}lo {name}hi\n",
+            lo[axis], hi[axis]
+        ));
+    }
+    // Section names without LAMMPS' `# style` hints: LIGGGHTS' reader refuses them. Columns
+    // (atom_style sphere): atom-ID atom-type diameter density x y z; then atom-ID vx vy vz wx
+    // wy wz.
+    data.push_str("\nAtoms\n\n");
+    for (i, (r, x, _, _)) in atoms.iter().enumerate() {
+        data.push_str(&format!(
+            "{} 1 {:.9e} {:.9e} {:.9e} {:.9e} {:.9e}\n",
+            i + 1,
+            2.0 * f64::from(*r),
+            m.density(),
+            x.x,
+            x.y,
+            x.z
+        ));
+    }
+    data.push_str("\nVelocities\n\n");
+    for (i, (_, _, v, w)) in atoms.iter().enumerate() {
+        data.push_str(&format!(
+            "{} {:.9e} {:.9e} {:.9e} {:.9e} {:.9e} {:.9e}\n",
+            i + 1,
+            v.x,
+            v.y,
+            v.z,
+            w.x,
+            w.y,
+            w.z
+        ));
+    }
+    write("packing.data", data)?;
+
+    let vars: Vec<(&str, f64, &str)> = vec![
+        ("xlo", lo[0], "wall faces [m] (the box)"),
+        ("xhi", hi[0], ""),
+        ("ylo", lo[1], ""),
+        ("yhi", hi[1], ""),
+        ("zlo", lo[2], ""),
+        ("zhi", hi[2], ""),
+        ("dt", dt, "time step [s], as Rapier steps it (f32)"),
+        (
+            "rayleigh_time",
+            t_r,
+            "Rayleigh time of the smallest radius [s]",
+        ),
+        ("young", young, "E = 2 G (1 + nu) [Pa]"),
+        ("shear", g, "G [Pa]"),
+        ("poisson", nu, "nu [-]"),
+        ("density", m.density(), "rho [kg/m^3]"),
+        ("mu", params.mu, "ball-ball friction [-] (walls: 0)"),
+        ("restitution", params.restitution, "e [-]"),
+        ("d_mean", d_mean, "mean diameter [m]"),
+        ("p0", params.confining_pressure, "confining pressure [Pa]"),
+        (
+            "skin",
+            prediction,
+            "Rapier's prediction distance [m]: the peers' neighbour skin",
+        ),
+        (
+            "kt_mean",
+            kt_sum / ball_ball.max(1) as f64,
+            "mean Mindlin stiffness 8 G* a of the ball-ball contacts [N/m]",
+        ),
+        ("p_walls", p_walls, "mean wall stress of the packing [Pa]"),
+        (
+            "p_ball_ball",
+            p_ball_ball,
+            "ball-ball part of the Love-Weber pressure [Pa] (LAMMPS: pair virial)",
+        ),
+    ];
+    let mut lmp = String::from(
+        "# creep bench dem --export: the packing's box, material and time step (SI units)\n",
+    );
+    for (name, value, what) in &vars {
+        let comment = if what.is_empty() {
+            String::new()
+        } else {
+            format!("  # {what}")
+        };
+        lmp.push_str(&format!("variable {name} equal {value:.9e}{comment}\n"));
+    }
+    write("params.lmp", lmp)?;
+
+    let mut json = String::from("{\n");
+    json.push_str(&format!("  \"spheres\": {},\n", atoms.len()));
+    for (name, value, _) in &vars {
+        json.push_str(&format!("  \"{name}\": {value:.9e},\n"));
+    }
+    json.push_str(&format!("  \"dt_over_rayleigh\": {:.6},\n", dt / t_r));
+    json.push_str(&format!("  \"solid_fraction\": {:.6},\n", solids / volume));
+    json.push_str(&format!(
+        "  \"wall_stress\": [{}],\n",
+        wall_stress
+            .iter()
+            .map(|w| format!("{w:.6e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    json.push_str(&format!("  \"ball_ball_contacts\": {ball_ball},\n"));
+    json.push_str(&format!("  \"ball_wall_contacts\": {ball_wall}\n}}\n"));
+    write("packing.json", json)?;
+
+    Ok(Exported {
+        spheres: atoms.len(),
+        dt,
+        p_walls,
+        p_ball_ball,
+    })
 }
