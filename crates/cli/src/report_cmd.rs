@@ -3,14 +3,19 @@
 //! exact theory, and writes `REPORT.md`, the CSVs behind it and SVG/PNG plots into `DIR`.
 //!
 //! The report is a list of sections ([`SECTIONS`]), each a function that measures, writes its
-//! files and returns its Markdown; today: the tiers (speed against error). The time-step, scale
-//! and stability sections of issue #8 are to be added the same way.
+//! files and returns its Markdown, under its own progress bar: the tiers (speed against error,
+//! this file), the time step ([`timestep`]), the scale ([`scale`]) and the stability
+//! ([`stability`]) of the Rapier plugin (the scale section: added below).
 //!
 //! Errors are graded by [`creep_reference::tiers`] against the checked-in boundary-element tables
 //! of `crates/reference/data` (so the report is fast); costs are timed in this process (median
 //! of repeated timed loops, inputs and outputs through [`std::hint::black_box`]). The criterion
 //! benches (`cargo bench -p creep-law --bench law`, `cargo bench -p creep-reference --bench bem`)
 //! hold the authoritative timings.
+
+mod fit;
+mod stability;
+mod timestep;
 
 use crate::plot::{Legend, LineChart, LineStyle, PlotError, Series};
 use clap::Args;
@@ -58,6 +63,9 @@ pub enum ReportError {
     /// A plot could not be drawn.
     #[error("plot: {0}")]
     Plot(#[from] PlotError),
+    /// A scene (time step, scale, stability) could not run.
+    #[error("scene: {0}")]
+    Scene(#[from] creep_scenes::SceneError),
 }
 
 /// Settings of one report run.
@@ -115,8 +123,12 @@ pub struct Section {
 /// A section of the report: measures, writes its files into the directory, returns its Markdown.
 type SectionFn = fn(&Config, &Path, &ProgressBar) -> Result<Section, ReportError>;
 
-/// The sections, in order (time step, scale and stability: to come, issue #8).
-const SECTIONS: [(&str, SectionFn); 1] = [("tiers", tiers_section)];
+/// The sections, in order.
+const SECTIONS: [(&str, SectionFn); 3] = [
+    ("tiers", tiers_section),
+    ("time step", timestep::section),
+    ("stability", stability::section),
+];
 
 /// Runs `creep report`.
 pub fn run(args: &ReportArgs, out: &mut dyn Write) -> Result<(), Box<dyn std::error::Error>> {
@@ -130,9 +142,11 @@ pub fn run(args: &ReportArgs, out: &mut dyn Write) -> Result<(), Box<dyn std::er
     let mut md = String::from("# Speed against error\n\n");
     let _ = writeln!(
         md,
-        "Written by `creep report{}` ({} build, {} hardware threads). Errors are graded \
-         against the boundary-element solution of Kalker's exact theory (`creep-reference`), \
-         costs are timed in this process.\n",
+        "Written by `creep report{}` ({} build, {} hardware threads). Sections: the model \
+         tiers' speed against error (graded against the boundary-element solution of Kalker's \
+         exact theory, `creep-reference`), the time step, the scale (Rapier's step with and \
+         without the plugin) and the stability (the rigid regime's hard cases) of the Rapier \
+         plugin. Every time is measured in this process.\n",
         if cfg.quick { " --quick" } else { "" },
         if cfg!(debug_assertions) {
             "debug"
@@ -151,8 +165,7 @@ pub fn run(args: &ReportArgs, out: &mut dyn Write) -> Result<(), Box<dyn std::er
     }
     let _ = writeln!(
         md,
-        "\nStill to come (issue #8): the time-step, scale and stability sections.\n\n\
-         Report written in {:.1} s.",
+        "\nReport written in {:.1} s.",
         started.elapsed().as_secs_f64()
     );
     write_file(&dir.join("REPORT.md"), &md)?;

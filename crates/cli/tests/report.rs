@@ -128,6 +128,7 @@ fn quick_report_writes_finite_numbers_within_the_documented_bounds() {
     let (k, _) = find("compliant-kuhn", "transient held force");
     let (f, _) = find("fitted-transient", "transient held force");
     assert!(k > 0.35 && k < 0.55 && f < 0.2 && f < 0.5 * k, "{k} {f}");
+    time_step_and_stability_sections(&dir, &md);
     // No line-contact version: not in the frontier.
     assert!(
         !frontier
@@ -151,4 +152,71 @@ fn unwritable_output_is_an_error_not_a_panic() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("error:") && !err.contains("panicked"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The time-step and stability sections of a `--quick` report in `dir` (`md`: its REPORT.md).
+fn time_step_and_stability_sections(dir: &Path, md: &str) {
+    assert!(md.contains("## Time step") && md.contains("## Stability"));
+    for f in [
+        "timestep.csv",
+        "timestep_orders.csv",
+        "timestep_rigid.png",
+        "timestep_compliant.svg",
+        "stability.csv",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    // Six rigid steps and five compliant ones per quantity, every error finite.
+    let points = read_csv(&dir.join("timestep.csv"));
+    for r in &points {
+        assert!(num(r, "relative_error").is_finite(), "{r:?}");
+    }
+    let count = |regime: &str| points.iter().filter(|r| r["regime"] == regime).count();
+    assert_eq!(count("rigid") % 6, 0);
+    assert_eq!(count("compliant") % 5, 0);
+    // Observed orders: every fit finite; the elastic impact converges at second order
+    // (symplectic Euler is a leap-frog in positions), the rigid incline's acceleration with a
+    // positive order.
+    let orders = read_csv(&dir.join("timestep_orders.csv"));
+    assert_eq!(orders.len(), 8);
+    for r in &orders {
+        assert!(
+            num(r, "observed_order").is_finite() && num(r, "r2") >= 0.0,
+            "{r:?}"
+        );
+    }
+    let order = |prefix: &str| {
+        let r = orders
+            .iter()
+            .find(|r| r["quantity"].starts_with(prefix))
+            .unwrap_or_else(|| panic!("{prefix}"));
+        num(r, "observed_order")
+    };
+    for q in [
+        "impact (e = 1): contact duration",
+        "impact (e = 1): peak force",
+        "impact (e = 1): rebound",
+    ] {
+        let k = order(q);
+        assert!(k > 1.5 && k < 3.0, "{q}: {k}");
+    }
+    assert!(order("incline: acceleration") > 0.5);
+    // The hard cases: each passes every check but the two engine limits, which fail one.
+    let verdicts = read_csv(&dir.join("stability.csv"));
+    let limits = ["rubber 1/60", "mass ratio 1000:1"];
+    let mut cases: Vec<&str> = verdicts.iter().map(|r| r["case"].as_str()).collect();
+    cases.dedup();
+    assert_eq!(cases.len(), 8, "{cases:?}");
+    for case in cases {
+        let fails = verdicts
+            .iter()
+            .filter(|r| r["case"] == case && r["passed"] == "false")
+            .count();
+        assert_eq!(
+            fails > 0,
+            limits.contains(&case),
+            "{case}: {fails} failing checks"
+        );
+    }
+    assert!(md.contains("fail (engine limit)"));
 }

@@ -10,6 +10,7 @@ pub mod cue_ball;
 pub mod free_rolling;
 pub mod friction_drive;
 pub mod hard_cases;
+pub mod impact;
 pub mod incline;
 mod measure;
 pub mod rolling_effect;

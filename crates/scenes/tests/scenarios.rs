@@ -107,3 +107,53 @@ fn soft_rubber_creeps_by_kalker_up_to_large_creepage() {
         assert!(err.abs() < tol, "{theta_deg} deg: {err}");
     }
 }
+
+#[test]
+fn compliant_impact_matches_hertz_and_converges_at_second_order() {
+    use creep_scenes::impact::{ImpactParams, run};
+    let at = |f: f64, e: f64| {
+        run(&ImpactParams {
+            dt_over_rayleigh: f,
+            restitution: e,
+            ..Default::default()
+        })
+        .unwrap()
+    };
+    let (coarse, fine) = (at(0.2, 1.0), at(0.1, 1.0));
+    println!(
+        "impact at 0.2 / 0.1 T_R: duration {:+.3e} / {:+.3e}, peak {:+.3e} / {:+.3e}, rebound {:+.3e} / {:+.3e}",
+        coarse.duration_error(),
+        fine.duration_error(),
+        coarse.peak_force_error(),
+        fine.peak_force_error(),
+        coarse.rebound - 1.0,
+        fine.rebound - 1.0
+    );
+    assert!(fine.duration_error().abs() < 1e-3 && fine.peak_force_error().abs() < 1e-3);
+    assert!((fine.rebound - 1.0).abs() < 1e-4);
+    // Halving the step quarters the duration error (symplectic Euler, leap-frog in positions).
+    let order = (coarse.duration_error() / fine.duration_error()).log2();
+    assert!((order - 2.0).abs() < 0.3, "order {order}");
+    let damped = at(0.1, 0.5);
+    assert!(
+        (damped.rebound / 0.5 - 1.0).abs() < 0.01,
+        "{}",
+        damped.rebound
+    );
+    for bad in [
+        ImpactParams {
+            dt_over_rayleigh: 1.5,
+            ..Default::default()
+        },
+        ImpactParams {
+            restitution: 0.0,
+            ..Default::default()
+        },
+        ImpactParams {
+            speed: f64::NAN,
+            ..Default::default()
+        },
+    ] {
+        assert!(run(&bad).is_err());
+    }
+}
