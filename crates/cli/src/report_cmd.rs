@@ -5,7 +5,7 @@
 //! The report is a list of sections ([`SECTIONS`]), each a function that measures, writes its
 //! files and returns its Markdown, under its own progress bar: the tiers (speed against error,
 //! this file), the time step ([`timestep`]), the scale ([`scale`]) and the stability
-//! ([`stability`]) of the Rapier plugin (the scale section: added below).
+//! ([`stability`]) of the Rapier plugin.
 //!
 //! Errors are graded by [`creep_reference::tiers`] against the checked-in boundary-element tables
 //! of `crates/reference/data` (so the report is fast); costs are timed in this process (median
@@ -14,6 +14,7 @@
 //! hold the authoritative timings.
 
 mod fit;
+mod scale;
 mod stability;
 mod timestep;
 
@@ -124,9 +125,10 @@ pub struct Section {
 type SectionFn = fn(&Config, &Path, &ProgressBar) -> Result<Section, ReportError>;
 
 /// The sections, in order.
-const SECTIONS: [(&str, SectionFn); 3] = [
+const SECTIONS: [(&str, SectionFn); 4] = [
     ("tiers", tiers_section),
     ("time step", timestep::section),
+    ("scale", scale::section),
     ("stability", stability::section),
 ];
 

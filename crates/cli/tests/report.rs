@@ -129,6 +129,7 @@ fn quick_report_writes_finite_numbers_within_the_documented_bounds() {
     let (f, _) = find("fitted-transient", "transient held force");
     assert!(k > 0.35 && k < 0.55 && f < 0.2 && f < 0.5 * k, "{k} {f}");
     time_step_and_stability_sections(&dir, &md);
+    scale_section(&dir, &md);
     // No line-contact version: not in the frontier.
     assert!(
         !frontier
@@ -219,4 +220,29 @@ fn time_step_and_stability_sections(dir: &Path, md: &str) {
         );
     }
     assert!(md.contains("fail (engine limit)"));
+}
+
+/// The scale section of a `--quick` report in `dir`: the 1k and 4k piles, every time positive,
+/// the settled piles' hooks off, and a finite positive growth exponent.
+fn scale_section(dir: &Path, md: &str) {
+    assert!(md.contains("## Scale") && md.contains("scale.png"));
+    let rows = read_csv(&dir.join("scale.csv"));
+    assert_eq!(rows.len(), 2);
+    for r in &rows {
+        for col in ["plain_step_s", "plugin_step_s", "ratio_median_of_pairs"] {
+            let v = num(r, col);
+            assert!(v.is_finite() && v > 0.0, "{col}: {r:?}");
+        }
+        // Settled below the activation speed: the plugin keeps every hook off.
+        assert!(num(r, "max_speed_m_s") < 1e-2, "{r:?}");
+        assert_eq!(num(r, "hooks_on"), 0.0, "{r:?}");
+    }
+    assert!(num(&rows[1], "active_contact_pairs") > 3.0 * num(&rows[0], "active_contact_pairs"));
+    let fits = read_csv(&dir.join("scale_fit.csv"));
+    assert_eq!(fits.len(), 2);
+    for r in &fits {
+        let k = num(r, "exponent_vs_contacts");
+        assert!(k.is_finite() && k > 0.0, "{r:?}");
+    }
+    assert!(dir.join("scale.png").is_file());
 }

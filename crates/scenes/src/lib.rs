@@ -13,6 +13,7 @@ pub mod hard_cases;
 pub mod impact;
 pub mod incline;
 mod measure;
+pub mod pile;
 pub mod rolling_effect;
 pub mod triaxial;
 
