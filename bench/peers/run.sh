@@ -87,7 +87,9 @@ if ! command -v lmp >/dev/null || ! command -v liggghts >/dev/null; then
 fi
 command -v lmp >/dev/null || die "lmp not found after installing lammps"
 command -v liggghts >/dev/null || die "liggghts not found after installing liggghts"
-lmp -h | grep -qw granular \
+# (lmp -h into a variable first: grep -q closing the pipe would fail it under pipefail)
+LMP_HELP="$(lmp -h 2>&1 || true)"
+grep -qw granular <<<"$LMP_HELP" \
   || die "this LAMMPS has no pair_style granular (GRANULAR package)"
 
 # 2. This project, release build, single thread (no `parallel` feature).
@@ -103,9 +105,9 @@ mkdir -p "$WORK/logs"
 CMD=("$CREEP" bench dem --n "$N_SIDE" --steps "$OUR_STEPS" --rounds "$ROUNDS" --export "$WORK/packing"
   --between "$HERE/run.sh --peers-round")
 echo "== ${CMD[*]}"
-uptime
+LOAD_START="$(uptime | sed 's/.*load average: *//')"
 WORK="$WORK" PEER_STEPS="$PEER_STEPS" "${CMD[@]}" | tee "$WORK/creep.log"
-uptime
+LOAD_END="$(uptime | sed 's/.*load average: *//')"
 
 # 4. Medians and ratios.
 median() { sort -g | awk '{ a[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print a[(NR + 1) / 2]; else print (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
@@ -126,6 +128,7 @@ peer_col() { # tool rolling column -> median of that column
 
 LAMMPS_REF=$(peer_ps lammps sds | median)
 ratio() { awk -v a="$1" -v b="$LAMMPS_REF" 'BEGIN { printf "%.3f", a / b }'; }
+jsong() { printf '%g' "$(json "$1")"; }
 sci() { awk -v a="$1" 'BEGIN { printf "%.3e", a }'; }
 
 LMP_VERSION="$(head -1 "$WORK/logs/lammps-sds-round1.log" | sed 's/^LAMMPS (\(.*\))$/\1/') (Debian $(dpkg-query -W -f='${Version}' lammps 2>/dev/null || echo '?'))"
@@ -133,35 +136,39 @@ LIG_VERSION="$(grep -m1 -o 'LIGGGHTS-PUBLIC [0-9.]*' "$WORK/logs/liggghts-cdt-ro
 OUR_VERSION="creep-friction $(cd "$ROOT" && git rev-parse --short HEAD 2>/dev/null || echo '?')$(cd "$ROOT" && git diff --quiet HEAD -- crates 2>/dev/null || echo '+local changes'), rapier3d 0.36"
 CPU="$(lscpu 2>/dev/null | awk -F: '/Model name/ { gsub(/^ +/, "", $2); print $2; exit }')"
 
-row() { # tool version model values...
+LAMMPS_ROUNDS=$(peer_ps lammps sds)
+row() { # tool version model values (one per round, in round order)
   local tool="$1" version="$2" model="$3" values="$4"
-  local med rng
+  local med rng per_round
   med=$(echo "$values" | median)
   rng=$(echo "$values" | range)
-  echo "| $tool | $version | $model | $(sci "$med") | $rng | $(ratio "$med") |"
+  # The ratio within each round (same load), then the median over the rounds.
+  per_round=$(paste <(echo "$values") <(echo "$LAMMPS_ROUNDS") | awk '{ print $1 / $2 }' | median)
+  echo "| $tool | $version | $model | $(sci "$med") | $rng | $(ratio "$med") | $(awk -v a="$per_round" 'BEGIN { printf "%.3f", a }') |"
 }
 
 {
   echo "# Peers: particle-steps per second on the same dense packing"
   echo
-  echo "Written by \`bench/peers/run.sh\` on $(date -u +%Y-%m-%d) ($CPU, $(nproc) cores, shared with"
+  echo "Written by \`bench/peers/run.sh\` on $(date -u +%Y-%m-%d) ($CPU, $(getconf _NPROCESSORS_ONLN) cores, shared with"
   echo "other jobs: the runs are interleaved, $ROUNDS rounds, and the medians are quoted). One thread"
   echo "each (OMP_NUM_THREADS=1, no MPI, no accelerator package; this project without its"
-  echo "\`parallel\` feature)."
+  echo "\`parallel\` feature). Load average (1, 5, 15 min) at the start: $LOAD_START; at the end:"
+  echo "$LOAD_END."
   echo
   echo "Packing: the triaxial test's $N spheres (radius 1 mm +-20 %) compacted frictionless to"
   echo "p0 = 100 kPa between six frictionless walls (\`creep bench dem --export\`), solid fraction"
-  echo "$(json solid_fraction); then timed at rest with mu = $(json mu), e = $(json restitution),"
-  echo "E = 2G(1+nu) = $(json young) Pa, nu = $(json poisson), rho = $(json density) kg/m^3,"
-  echo "dt = $(json dt) s = $(json dt_over_rayleigh) T_R (T_R of the smallest radius); neighbour"
-  echo "skin = Rapier's prediction distance, $(json skin) m (2 % of the mean diameter)."
+  echo "$(jsong solid_fraction); then timed at rest with mu = $(jsong mu), e = $(jsong restitution),"
+  echo "E = 2G(1+nu) = $(jsong young) Pa (G = $(jsong shear) Pa), nu = $(jsong poisson), rho = $(jsong density) kg/m^3,"
+  echo "dt = $(jsong dt) s = $(jsong dt_over_rayleigh) T_R (T_R = $(jsong rayleigh_time) s, of the smallest radius);"
+  echo "neighbour skin = Rapier's prediction distance, $(jsong skin) m (2 % of the mean diameter)."
   echo "Ours: $OUR_STEPS steps per variant and round (mean s/step of the round);"
   echo "peers: $PEER_STEPS steps per run (their \"Loop time\")."
   echo
   echo "**Goal: the compliant regime at least as fast as LAMMPS per particle-step (ratio >= 1).**"
   echo
-  echo "| tool | version | model | particle-steps/s (median) | range over rounds | ratio to LAMMPS (sds) |"
-  echo "|---|---|---|---|---|---|"
+  echo "| tool | version | model | particle-steps/s (median) | range over rounds | ratio to LAMMPS (sds) | per-round ratio (median) |"
+  echo "|---|---|---|---|---|---|---|"
   row "LAMMPS" "$LMP_VERSION" "granular: hertz/material, damping tsuji, mindlin (NULL: 8 G* a), rolling sds" "$(peer_ps lammps sds)"
   row "LAMMPS" "$LMP_VERSION" "same, rolling none" "$(peer_ps lammps none)"
   row "LIGGGHTS" "$LIG_VERSION" "gran hertz, tangential history, rolling_friction cdt" "$(peer_ps liggghts cdt)"
@@ -179,7 +186,7 @@ row() { # tool version model values...
   echo
   echo "| | ball-ball pressure [Pa], step 0 | end | wall stress [Pa], step 0 | end |"
   echo "|---|---|---|---|---|"
-  echo "| creep-rapier (export) | $(json p_ball_ball) | | $(json p_walls) | |"
+  echo "| creep-rapier (export) | $(jsong p_ball_ball) | | $(jsong p_walls) | |"
   for p in "lammps sds" "lammps none" "liggghts cdt" "liggghts off"; do
     # shellcheck disable=SC2086
     set -- $p

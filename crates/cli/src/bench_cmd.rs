@@ -472,3 +472,66 @@ fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::err
         p_ball_ball,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // The export of a generated (not compacted: that takes a minute at any size in a debug
+    // build) packing: the files' shape and numbers.
+    #[test]
+    fn export_writes_the_packing() {
+        let dir = std::env::temp_dir().join(format!("creep-bench-export-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let params = TriaxialParams {
+            n_per_side: 2,
+            ..TriaxialParams::default()
+        };
+        let s = Specimen::generate(params).expect("specimen");
+        let e = export_packing(&s, &dir).expect("export");
+        assert_eq!(e.spheres, 8);
+        assert!((e.dt - params.time_step()).abs() < 1e-6 * e.dt);
+        let data = std::fs::read_to_string(dir.join("packing.data")).expect("data file");
+        assert!(data.contains("8 atoms\n2 atom types\n"), "{data}");
+        let atoms = data
+            .split("\nAtoms\n\n")
+            .nth(1)
+            .and_then(|s| s.split("\n\nVelocities\n\n").next())
+            .expect("Atoms section");
+        assert_eq!(atoms.lines().count(), 8);
+        for line in atoms.lines() {
+            let cols: Vec<f64> = line
+                .split_whitespace()
+                .map(|c| c.parse().expect("number"))
+                .collect();
+            assert_eq!(cols.len(), 7);
+            assert!(cols[2] >= 1.6e-3 && cols[2] <= 2.4e-3, "diameter {line}");
+            assert_eq!(cols[3], 2500.0);
+        }
+        let params_lmp = std::fs::read_to_string(dir.join("params.lmp")).expect("params");
+        for v in ["xlo", "zhi", "dt", "young", "skin", "kt_mean", "p_walls"] {
+            assert!(params_lmp.contains(&format!("variable {v} equal ")), "{v}");
+        }
+        assert!(params_lmp.contains("variable young equal 6.960000000e7"));
+        let json = std::fs::read_to_string(dir.join("packing.json")).expect("json");
+        assert!(json.contains("\"dt_over_rayleigh\": 0.2"), "{json}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        let mut out = Vec::new();
+        let dem = |rounds, steps| BenchCommand::Dem {
+            n: 2,
+            steps,
+            export: None,
+            rounds,
+            between: None,
+        };
+        assert!(run(&dem(0, 2), &mut out).is_err());
+        assert!(run(&dem(1, 0), &mut out).is_err());
+        assert!(run_between("true", 1).is_ok());
+        let e = run_between("exit 3", 2).expect_err("a failing --between");
+        assert!(e.to_string().contains("after round 2"), "{e}");
+    }
+}
