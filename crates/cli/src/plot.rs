@@ -16,6 +16,7 @@
 #![allow(dead_code)]
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 use std::path::{Path, PathBuf};
@@ -294,25 +295,11 @@ impl LineChart {
         };
         let (x0, x1, y0, y1) = self.bounds()?;
         root.fill(&WHITE).map_err(|e| err(&e))?;
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, (FAMILY, 22))
-            .margin(15)
-            .margin_right(35)
-            .x_label_area_size(50)
-            .y_label_area_size(70)
+        let mut chart = self
+            .frame(root)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(|e| err(&e))?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&|v| tick(*v))
-            .y_label_formatter(&|v| tick(*v))
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .label_style((FAMILY, 15))
-            .axis_desc_style((FAMILY, 17))
-            .light_line_style(RGBColor(235, 235, 235))
-            .draw()
-            .map_err(|e| err(&e))?;
+        self.draw_mesh(&mut chart).map_err(|e| err(&e))?;
         for s in &self.series {
             let color = s.rgb();
             let style = color.stroke_width(2);
@@ -356,6 +343,42 @@ impl LineChart {
 }
 
 impl LineChart {
+    /// The chart's frame: title, margins and label areas (linear and log-log charts alike).
+    fn frame<'a, 'b, DB: DrawingBackend>(
+        &'b self,
+        root: &'a DrawingArea<DB, Shift>,
+    ) -> ChartBuilder<'a, 'b, DB> {
+        let mut b = ChartBuilder::on(root);
+        b.caption(&self.title, (FAMILY, 22))
+            .margin(15)
+            .margin_right(35)
+            .x_label_area_size(50)
+            .y_label_area_size(70);
+        b
+    }
+
+    /// The grid, tick labels and axis titles.
+    fn draw_mesh<'a, DB, X, Y>(
+        &self,
+        chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
+    where
+        DB: DrawingBackend + 'a,
+        X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+        Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    {
+        chart
+            .configure_mesh()
+            .x_label_formatter(&|v| tick(*v))
+            .y_label_formatter(&|v| tick(*v))
+            .x_desc(&self.x_label)
+            .y_desc(&self.y_label)
+            .label_style((FAMILY, 15))
+            .axis_desc_style((FAMILY, 17))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()
+    }
+
     /// Draws the legend of the named series, where `self.legend` puts it.
     fn draw_legend<'a, DB, CT>(
         &self,
@@ -465,25 +488,11 @@ impl LineChart {
         };
         let (x0, x1, y0, y1) = self.log_bounds()?;
         root.fill(&WHITE).map_err(|e| err(&e))?;
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, (FAMILY, 22))
-            .margin(15)
-            .margin_right(35)
-            .x_label_area_size(50)
-            .y_label_area_size(70)
+        let mut chart = self
+            .frame(root)
             .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
             .map_err(|e| err(&e))?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&|v| tick(*v))
-            .y_label_formatter(&|v| tick(*v))
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .label_style((FAMILY, 15))
-            .axis_desc_style((FAMILY, 17))
-            .light_line_style(RGBColor(235, 235, 235))
-            .draw()
-            .map_err(|e| err(&e))?;
+        self.draw_mesh(&mut chart).map_err(|e| err(&e))?;
         for s in &self.series {
             let color = s.rgb();
             let pts = || s.finite().filter(|(x, y)| *x > 0.0 && *y > 0.0);
