@@ -14,6 +14,10 @@
 //! Run: `cargo run -p creep-bevy --features render --example incline_race --ignore-rust-version --release`
 //! (`-- --screenshot out.png --frames 120` to render 120 frames, save a screenshot and exit).
 
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` also refuses NaN, on purpose
+#![allow(clippy::too_many_arguments)] // Bevy systems
+#![allow(clippy::needless_range_loop)] // lanes and twins indexed in parallel arrays
+
 mod common;
 
 use bevy::prelude::*;
@@ -139,6 +143,7 @@ fn main() {
                 up: -gravity.normalize(),
             },
             physics: true,
+            many_objects: false,
         })
         .insert_resource(StartParams {
             params,
@@ -146,7 +151,12 @@ fn main() {
             mu_r,
         })
         .add_systems(Startup, setup)
-        .add_systems(Update, (keys, reset, measure, draw_lanes).chain())
+        .add_systems(
+            Update,
+            (keys, reset, measure, draw_lanes)
+                .chain()
+                .after(common::StepSet),
+        )
         .run();
 }
 
