@@ -634,6 +634,17 @@ pub fn compact(
     max_steps: usize,
     progress: &mut dyn FnMut(f64),
 ) -> Result<CompactionSummary, SceneError> {
+    compact_observed(specimen, max_steps, progress, &mut |_| {})
+}
+
+/// [`compact`], calling `observe` with the specimen after every step (e.g. to draw it: the
+/// desktop demo `triaxial_view`).
+pub fn compact_observed(
+    specimen: &mut Specimen,
+    max_steps: usize,
+    progress: &mut dyn FnMut(f64),
+    observe: &mut dyn FnMut(&Specimen),
+) -> Result<CompactionSummary, SceneError> {
     let p0 = specimen.params.confining_pressure;
     let rate = specimen.params.strain_rate();
     let dt = specimen.params.time_step();
@@ -653,6 +664,7 @@ pub fn compact(
         }
         specimen.set_wall_speeds(v);
         specimen.step()?;
+        observe(specimen);
         last = specimen.stress();
         let wall_err = last
             .each
@@ -718,6 +730,17 @@ pub fn shear(
     creep: bool,
     progress: &mut dyn FnMut(f64),
 ) -> Result<ShearRun, SceneError> {
+    shear_observed(specimen, creep, progress, &mut |_, _| {})
+}
+
+/// [`shear`], calling `observe` with the sheared copy before every step and at the end, with
+/// the row when one was recorded there (e.g. to draw it: the desktop demo `triaxial_view`).
+pub fn shear_observed(
+    specimen: &Specimen,
+    creep: bool,
+    progress: &mut dyn FnMut(f64),
+    observe: &mut dyn FnMut(&Specimen, Option<&TriaxialRow>),
+) -> Result<ShearRun, SceneError> {
     let mut s = specimen.clone_fresh(creep)?;
     let params = s.params;
     let p0 = params.confining_pressure;
@@ -756,6 +779,9 @@ pub fn shear(
             }
             rows.push(row);
             progress(i as f64 / total_steps as f64);
+            observe(&s, rows.last());
+        } else {
+            observe(&s, None);
         }
         if last {
             break;
