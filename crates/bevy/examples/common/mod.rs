@@ -115,7 +115,17 @@ pub fn parse_count(flag: &str, value: &str, lo: u64, hi: u64) -> Result<u64, Arg
 
 /// Parses the process's arguments; on error prints it and `usage` and exits with code 2.
 pub fn args_or_exit(usage: &str, own_flags: &[&str]) -> (CommonArgs, Vec<(String, String)>) {
-    match parse_args(std::env::args().skip(1), own_flags) {
+    let parsed = parse_args(std::env::args().skip(1), own_flags);
+    // The demos open an X11 window (the `render` feature enables winit's X11 backend only):
+    // without a display winit would panic, so say what is missing instead.
+    if cfg!(target_os = "linux") && parsed.is_ok() && std::env::var_os("DISPLAY").is_none() {
+        eprintln!(
+            "error: no X display (DISPLAY is not set). Headless: `Xvfb :99 &` and run with \
+             DISPLAY=:99 XDG_RUNTIME_DIR=/tmp/xdg (see the README's \"Desktop demos\")"
+        );
+        std::process::exit(2);
+    }
+    match parsed {
         Ok(a) => a,
         Err(ArgError(msg)) if msg.is_empty() => {
             println!("{usage}\n{COMMON_USAGE}");
