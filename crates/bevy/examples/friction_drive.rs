@@ -28,7 +28,7 @@ use common::{
     AngleMeter, DemoPlugin, OrbitCamera, PanelText, Plot, ResetRequested, Stepping, colours,
 };
 use creep_bevy::{CompliantSettings, CreepFriction, CreepMaterial, CreepSettings, Fidelity};
-use creep_law::{Material, PairMaterial, Surface, hertz, kalker};
+use creep_law::{PairMaterial, Surface, hertz, kalker};
 use creep_scenes::friction_drive::DriveParams;
 use creep_scenes::incline::G;
 
@@ -38,22 +38,12 @@ usage: friction_drive [--material steel|glass|rubber] [common options]
   --material M   both spheres' material (default steel)
 keys: Up/Down brake torque (manual), A automatic sweep, M material";
 
-const MATERIALS: [&str; 3] = ["steel", "glass", "rubber"];
 /// Distance between the two drives along z [m].
 const TWIN: f32 = 0.25;
 /// Window of the creepage measurement [s].
 const WINDOW: f64 = 0.25;
 /// Period of the automatic brake sweep, 0 to 0.95 mu P R and back [s].
 const SWEEP: f64 = 16.0;
-
-fn material(name: &str) -> Option<Material> {
-    Some(match name {
-        "steel" => Material::steel(),
-        "glass" => Material::glass(),
-        "rubber" => Material::rubber(),
-        _ => return None,
-    })
-}
 
 #[derive(Resource)]
 struct Drive {
@@ -95,22 +85,12 @@ fn main() {
     let mut material_index = 0;
     for (flag, value) in &own {
         match flag.as_str() {
-            "--material" => {
-                material_index = MATERIALS
-                    .iter()
-                    .position(|m| m == value)
-                    .unwrap_or_else(|| {
-                        common::exit_with(
-                            USAGE,
-                            &format!("--material `{value}`: expected steel, glass or rubber"),
-                        )
-                    })
-            }
+            "--material" => material_index = common::material_arg(USAGE, value),
             _ => unreachable!("only the declared flags reach here"),
         }
     }
     let params = DriveParams {
-        material: material(MATERIALS[material_index]).expect("known material"),
+        material: common::material(material_index),
         ..DriveParams::default()
     };
     App::new()
@@ -201,8 +181,8 @@ fn keys(
         drive.manual = None;
     }
     if input.just_pressed(KeyCode::KeyM) {
-        drive.material = (drive.material + 1) % MATERIALS.len();
-        drive.params.material = material(MATERIALS[drive.material]).expect("known material");
+        drive.material = (drive.material + 1) % common::MATERIALS.len();
+        drive.params.material = common::material(drive.material);
         reset.0 = true;
     }
 }
@@ -429,7 +409,7 @@ fn measure(
          creepage: creep drive {:+.3e}, Coulomb twin (engine) {:+.3e}, difference {:+.3e}\n\
          Kalker F_ss(Q/mu P) = {:.3e} (measured/Kalker {:.3})\n\
          input minus output angle: creep {:.4} rad, Coulomb {:.4} rad, difference {:.4} rad after {:.1} rad",
-        MATERIALS[drive.material],
+        common::MATERIALS[drive.material],
         p.radius,
         p.omega,
         mu,

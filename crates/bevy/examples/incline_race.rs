@@ -45,16 +45,11 @@ const RACE_TIME: f64 = 4.0;
 /// Window of the slip measurement [s] (finite differences of positions and rotations).
 const WINDOW: f64 = 0.2;
 
-const MATERIALS: [&str; 3] = ["steel", "glass", "rubber"];
-
-fn material(name: &str) -> Option<Material> {
-    let m = match name {
-        "steel" => Material::steel(),
-        "glass" => Material::glass(),
-        "rubber" => Material::rubber(),
-        _ => return None,
-    };
-    m.with_friction(0.5).ok()
+/// The lane material: creep-law's `common::MATERIALS[index]` with mu = 0.5.
+fn material(index: usize) -> Material {
+    common::material(index)
+        .with_friction(0.5)
+        .expect("0.5 is a valid friction coefficient")
 }
 
 #[derive(Resource)]
@@ -93,17 +88,7 @@ fn main() {
     let mut mu_r = 0.02;
     for (flag, value) in &own {
         match flag.as_str() {
-            "--material" => {
-                material_index = MATERIALS
-                    .iter()
-                    .position(|m| m == value)
-                    .unwrap_or_else(|| {
-                        common::exit_with(
-                            USAGE,
-                            &format!("--material `{value}`: expected steel, glass or rubber"),
-                        )
-                    })
-            }
+            "--material" => material_index = common::material_arg(USAGE, value),
             "--mu-r" => {
                 mu_r = match value.parse::<f64>() {
                     Ok(v) if RollingModel::constant_torque(v).is_ok() && v < 0.1 => v,
@@ -117,7 +102,7 @@ fn main() {
         }
     }
     let params = InclineParams {
-        material: material(MATERIALS[material_index]).expect("known material"),
+        material: material(material_index),
         ..InclineParams::default()
     };
     let gravity = Vec3::new(
@@ -242,8 +227,8 @@ fn keys(
         reset.0 = true;
     }
     if input.just_pressed(KeyCode::KeyM) {
-        race.material = (race.material + 1) % MATERIALS.len();
-        race.params.material = material(MATERIALS[race.material]).expect("known material");
+        race.material = (race.material + 1) % common::MATERIALS.len();
+        race.params.material = material(race.material);
         reset.0 = true;
     }
 }
@@ -466,7 +451,7 @@ fn measure(
     let a_torque = 5.0 / 7.0 * G * (p.theta.sin() - race.mu_r * p.theta.cos());
     let mut s = format!(
         "incline race: {} ball R = {} m, mu = {}, theta = {:.0} deg; F fidelity, M material, R restart\n",
-        MATERIALS[race.material],
+        common::MATERIALS[race.material],
         p.radius,
         p.material.friction(),
         p.theta.to_degrees()

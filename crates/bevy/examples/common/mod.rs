@@ -139,6 +139,31 @@ pub fn args_or_exit(usage: &str, own_flags: &[&str]) -> (CommonArgs, Vec<(String
 }
 
 /// Prints an error about a demo option and exits with code 2.
+/// The materials the demos cycle through (`--material`, key M), by name.
+pub const MATERIALS: [&str; 3] = ["steel", "glass", "rubber"];
+
+/// creep-law's material `MATERIALS[index]` (G, nu, density of steel, glass, rubber).
+pub fn material(index: usize) -> creep_law::Material {
+    match index % MATERIALS.len() {
+        0 => creep_law::Material::steel(),
+        1 => creep_law::Material::glass(),
+        _ => creep_law::Material::rubber(),
+    }
+}
+
+/// The index in [`MATERIALS`] of a `--material` value, or exit 2 with the usage.
+pub fn material_arg(usage: &str, value: &str) -> usize {
+    MATERIALS
+        .iter()
+        .position(|m| m == &value)
+        .unwrap_or_else(|| {
+            exit_with(
+                usage,
+                &format!("--material `{value}`: expected steel, glass or rubber"),
+            )
+        })
+}
+
 pub fn exit_with(usage: &str, msg: &str) -> ! {
     eprintln!("error: {msg}\n\n{usage}\n{COMMON_USAGE}");
     std::process::exit(2);
