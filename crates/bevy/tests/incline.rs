@@ -7,11 +7,10 @@ mod common;
 
 use bevy::prelude::*;
 use common::*;
-use creep_bevy::{CreepFrictionPlugin, CreepMaterial, CreepSettings, Fidelity};
+use creep_bevy::{CreepFrictionPlugin, CreepMaterial, Fidelity};
 use creep_law::rolling_torque::RollingModel;
-use creep_rapier::{CreepWorld, StepCounts};
+use creep_rapier::StepCounts;
 use creep_scenes::incline::InclineParams;
-use rapier3d::prelude::*;
 
 const STEPS: usize = 600;
 const TOLERANCE: f32 = 1e-6;
@@ -22,25 +21,8 @@ fn rapier_run(
     p: &InclineParams,
     mat: Option<creep_rapier::CreepMaterial>,
 ) -> Vec<([Vec3; 2], StepCounts)> {
-    let mut w = CreepWorld::new(p.dt as f32, CreepSettings::default()).expect("world");
-    let g = incline_gravity(p);
-    w.physics.gravity = Vector::new(g.x, g.y, g.z);
-    let mu = p.material.friction() as f32;
-    w.insert(
-        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
-        ColliderBuilder::cuboid(1.0e4, 0.5, 10.0).friction(mu),
-        mat,
-    );
+    let (mut w, ball) = creep_scenes::incline::world(p, mat).expect("world");
     let r = p.radius as f32;
-    let (ball, _) = w.insert(
-        RigidBodyBuilder::dynamic()
-            .translation(Vector::new(0.0, r, 0.0))
-            .can_sleep(false),
-        ColliderBuilder::ball(r)
-            .density(p.material.density() as f32)
-            .friction(mu),
-        mat,
-    );
     (0..STEPS)
         .map(|_| {
             let counts = w.step().expect("step");

@@ -1166,21 +1166,14 @@ fn drift(sk: &mut Scene, steps: usize) -> Result<f64, SceneError> {
 /// The at-rest case ([`HardCase::AtRest`]): the centre's displacement over `steps` steps after
 /// 120 settling steps (creep fidelity; no Coulomb run is needed: it must not move at all).
 fn at_rest(steps: usize) -> Result<Outcome, SceneError> {
-    let mut w = CreepWorld::new(1.0 / 60.0, CreepSettings::default())?;
-    let steel =
-        CreepMaterial::new(Material::steel().with_friction(0.5)?).with_fidelity(Fidelity::Creep);
-    w.insert(
-        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
-        ColliderBuilder::cuboid(1000.0, 0.5, 10.0).friction(0.5),
-        Some(steel),
-    );
-    let (ball, _) = w.insert(
-        RigidBodyBuilder::dynamic()
-            .translation(Vector::new(0.0, 0.1, 0.0))
-            .can_sleep(false),
-        ColliderBuilder::ball(0.1).density(7850.0).friction(0.5),
-        Some(steel),
-    );
+    // The incline scene's world, flat: a 0.1 m steel ball (mu = 0.5) on a steel plane.
+    let p = crate::incline::InclineParams {
+        theta: 0.0,
+        dt: 1.0 / 60.0,
+        ..Default::default()
+    };
+    let steel = CreepMaterial::new(p.material).with_fidelity(Fidelity::Creep);
+    let (mut w, ball) = crate::incline::world(&p, Some(steel))?;
     for _ in 0..120 {
         w.step()?;
     }

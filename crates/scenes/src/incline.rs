@@ -80,19 +80,25 @@ pub struct InclineResult {
     pub q_over_mu_p: f64,
 }
 
-fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneError> {
+/// The scene's world: a fixed flat cuboid (top face at `y = 0`) and the ball resting on it at
+/// the origin, gravity tilted by `theta`, both colliders registered with `material` (`None`:
+/// unregistered, plain Rapier), the plugin's steady law `p.creep_model`. Returns the world and
+/// the ball. Shared by this scene, the hard cases' sphere at rest and creep-bevy's tests.
+pub fn world(
+    p: &InclineParams,
+    material: Option<CreepMaterial>,
+) -> Result<(CreepWorld, RigidBodyHandle), SceneError> {
     let settings = CreepSettings {
         creep_model: p.creep_model,
         ..Default::default()
     };
     let mut w = CreepWorld::new(p.dt as f32, settings)?;
     w.physics.gravity = Vector::new((G * p.theta.sin()) as f32, (-G * p.theta.cos()) as f32, 0.0);
-    let mat = CreepMaterial::new(p.material).with_fidelity(fidelity);
     let mu = p.material.friction() as f32;
     w.insert(
         RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
         ColliderBuilder::cuboid(1.0e4, 0.5, 10.0).friction(mu),
-        Some(mat),
+        material,
     );
     let r = p.radius as f32;
     let (ball, _) = w.insert(
@@ -102,8 +108,14 @@ fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneErr
         ColliderBuilder::ball(r)
             .density(p.material.density() as f32)
             .friction(mu),
-        Some(mat),
+        material,
     );
+    Ok((w, ball))
+}
+
+fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneError> {
+    let mat = CreepMaterial::new(p.material).with_fidelity(fidelity);
+    let (mut w, ball) = world(p, Some(mat))?;
     let steps = (p.duration / p.dt).round() as usize;
     let mut meter = RollingMeter::default();
     let mut x0 = 0.0;
