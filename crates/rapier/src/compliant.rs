@@ -97,6 +97,10 @@ use geometry::{Frame, Touch};
 /// Default largest `dt / T_R` (Rayleigh time step) [-]; DEM practice is 0.1-0.3.
 pub const DEFAULT_RAYLEIGH_FRACTION: f64 = 0.2;
 
+/// Relative slack of the Rayleigh check [-]: four f32 ulps, the rounding of `dt` and of the
+/// radii that Rapier stores as f32, so a step set to exactly the fraction passes.
+const RAYLEIGH_ROUNDING: f64 = 4.0 * f32::EPSILON as f64;
+
 /// What to do when `dt` exceeds the safe fraction of the Rayleigh time step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum RayleighCheck {
@@ -381,7 +385,9 @@ impl CompliantRegime {
                 self.counts.max_step_displacement = self.counts.max_step_displacement.max(d);
             }
         }
-        if dt > self.settings.rayleigh_fraction * t_r {
+        // Rapier's `dt` and the ball radii are f32: a step set to exactly the fraction (in f64)
+        // arrives rounded, up to a few f32 ulps above it; that is not a violation.
+        if dt > self.settings.rayleigh_fraction * t_r * (1.0 + RAYLEIGH_ROUNDING) {
             match self.settings.rayleigh_check {
                 RayleighCheck::Error => {
                     return Err(PluginError::RayleighTimeStep {

@@ -312,7 +312,7 @@ impl Specimen {
         // step, see `Specimen::step`).
         world.physics.integration_parameters.length_unit = params.mean_diameter() as f32;
         world.compliant.set_settings(CompliantSettings {
-            rayleigh_fraction: params.rayleigh_fraction.max(1e-9) * 1.01,
+            rayleigh_fraction: params.rayleigh_fraction,
             rayleigh_check: RayleighCheck::Error,
             creep: false,
             ..CompliantSettings::default()
