@@ -46,6 +46,7 @@ use creep_rapier::{
 use creep_reference::RefError;
 use creep_reference::bem::{Creepage, SolverOptions, SteadySolver, TransientSolver};
 use creep_reference::contact::CircularContact;
+use creep_reference::mindlin::Mindlin;
 use rapier3d::math::Rotation;
 use rapier3d::prelude::{ColliderBuilder, RigidBodyBuilder, Vector};
 
@@ -263,6 +264,7 @@ pub struct RollingEffect {
     config: RollingEffectConfig,
     pair: PairMaterial,
     contact: CircularContact,
+    mindlin: Mindlin,
 }
 
 impl RollingEffect {
@@ -324,10 +326,12 @@ impl RollingEffect {
         let p = config.normal_force;
         let a = hertz::contact_radius(&pair, p);
         let contact = CircularContact::new(a, p, pair.g, pair.nu, pair.mu)?;
+        let mindlin = Mindlin::new(contact.mu_p(), pair.g_star, a)?;
         Ok(RollingEffect {
             config,
             pair,
             contact,
+            mindlin,
         })
     }
 
@@ -369,17 +373,20 @@ impl RollingEffect {
     }
 
     /// Normalised sliding displacement at which Cattaneo-Mindlin loading saturates,
-    /// `3 mu P/(16 G* a)` over `mu P/(G a)` \[dimensionless\] (Mindlin 1949).
+    /// `K = 3 mu P/(16 G* a)` over `mu P/(G a)` \[dimensionless\] (Mindlin 1949;
+    /// creep-reference's [`Mindlin::sliding_shift`]).
     pub fn mindlin_saturation(&self) -> f64 {
-        3.0 / (16.0 * self.pair.g_star) * self.contact.g()
+        self.mindlin.sliding_shift() / self.displacement_scale()
     }
 
-    /// `Q/(mu P)` of Cattaneo-Mindlin loading at normalised displacement `delta_n` (Mindlin
-    /// 1949; DESIGN.md §2, inverted: `Q/(mu P) = 1 - (1 - delta/K)^(3/2)`, `K = 3 mu P/(16 G*
-    /// a)`; 1 beyond `K`).
+    /// `Q/(mu P)` of Cattaneo-Mindlin loading at normalised displacement `delta_n`:
+    /// `1 - (1 - delta/K)^(3/2)`, 1 beyond `K` (Mindlin 1949; creep-reference's
+    /// [`Mindlin::loading_force`]). Negative or non-finite `delta_n` gives 0.
     pub fn mindlin_force(&self, delta_n: f64) -> f64 {
-        let x = (delta_n / self.mindlin_saturation()).clamp(0.0, 1.0);
-        1.0 - (1.0 - x).powf(1.5)
+        let delta = delta_n.max(0.0) * self.displacement_scale();
+        self.mindlin
+            .loading_force(delta)
+            .map_or(0.0, |q| q / self.mindlin.mu_p())
     }
 
     /// Normalised sliding displacement of each record, `k end / steps`, `k = 0..=steps`.
