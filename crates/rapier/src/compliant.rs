@@ -376,11 +376,17 @@ impl CompliantRegime {
             if m.fidelity != Fidelity::Compliant {
                 continue;
             }
-            if let Some(rb) = colliders
-                .get(h)
-                .and_then(|c| c.parent())
-                .and_then(|b| bodies.get(b))
-            {
+            let Some(co) = colliders.get(h) else {
+                continue;
+            };
+            // A restitution the damping cannot reproduce is an error before any contact state
+            // moves (the pair loop below only meets it again for a product of two valid
+            // coefficients under `CoefficientCombineRule::Multiply`).
+            let e = f64::from(co.restitution());
+            if !(MIN_RESTITUTION..=1.0).contains(&e) {
+                return Err(PluginError::Restitution(e));
+            }
+            if let Some(rb) = co.parent().and_then(|b| bodies.get(b)) {
                 let d = f64::from(rb.linvel().length()) * dt;
                 self.counts.max_step_displacement = self.counts.max_step_displacement.max(d);
             }

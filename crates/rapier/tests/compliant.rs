@@ -512,13 +512,18 @@ fn zero_restitution_is_a_typed_error() {
     let glass = Material::glass();
     let (mut w, _, _) = sphere_on_wall(&glass, 0.01, 1.0, 0.0, 0.0, 0.5, 100.0);
     let mut err = None;
+    let mut steps = 0;
     for _ in 0..400 {
+        steps += 1;
         if let Err(e) = w.step() {
             err = Some(e);
             break;
         }
     }
     assert!(matches!(err, Some(PluginError::Restitution(_))), "{err:?}");
+    // Refused at the first step, before any contact state moved.
+    assert_eq!(steps, 1);
+    assert_eq!(w.compliant.contacts().count(), 0);
 }
 
 /// f32 positions: the per-step displacement `v dt` against the f32 spacing (ulp) of the
