@@ -113,8 +113,7 @@ pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
             if let Some(bad) = ratios.iter().find(|r| !(**r >= 0.0 && **r < 1.0)) {
                 return Err(format!("--ratios must be in [0, 1), got {bad}").into());
             }
-            let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
-            let slip_torque = p.material.friction() * m * incline::G * p.radius;
+            let slip_torque = p.material.friction() * p.normal_force() * p.radius;
             let torques: Vec<f64> = ratios.iter().map(|r| r * slip_torque).collect();
             let rows = friction_drive::run(&p, &torques)?;
             if *csv {

@@ -43,6 +43,17 @@ impl Default for DriveParams {
     }
 }
 
+impl DriveParams {
+    /// Mass of each sphere [kg] (uniform solid sphere).
+    pub fn mass(&self) -> f64 {
+        crate::measure::sphere_mass(self.material.density(), self.radius)
+    }
+    /// Normal force of the contact: the output sphere's weight plus `press` [N].
+    pub fn normal_force(&self) -> f64 {
+        self.mass() * G + self.press
+    }
+}
+
 /// One brake torque of the drive.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DriveRow {
@@ -149,8 +160,7 @@ pub fn run(p: &DriveParams, torques: &[f64]) -> Result<Vec<DriveRow>, SceneError
         )));
     }
     let mu = p.material.friction();
-    let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
-    let pn = m * G + p.press;
+    let pn = p.normal_force();
     let pair = PairMaterial::new(
         &p.material,
         &p.material,

@@ -846,7 +846,7 @@ fn rubber_vee(dt: f32) -> Vee {
 
 /// The ball mass of the steel V [kg].
 fn steel_ball_mass() -> f32 {
-    (4.0 / 3.0 * std::f64::consts::PI * 0.1f64.powi(3) * 7850.0) as f32
+    crate::measure::sphere_mass(7850.0, 0.1) as f32
 }
 
 /// One case of the matrix.

@@ -94,7 +94,7 @@ pub fn run(p: &ImpactParams) -> Result<ImpactResult, SceneError> {
         )));
     }
     let r = p.radius;
-    let mass = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let mass = crate::measure::sphere_mass(p.material.density(), r);
     let pair = PairMaterial::new(&p.material, &p.material, Surface::Plane, Surface::Sphere(r))?;
     let hertz_impact = HertzImpact::new(mass, r, pair.e_star, p.speed)
         .map_err(|e| SceneError::Parameter(e.to_string()))?;

@@ -168,7 +168,7 @@ pub fn run(p: &InclineParams) -> Result<InclineResult, SceneError> {
     // The force the contact transmits: (2/7) m g sin(theta) when rolling without slip; with
     // creep the rotation lags and it is smaller (by about the creepage), so the measured force
     // is used where the plugin recorded one.
-    let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
+    let m = crate::measure::sphere_mass(p.material.density(), p.radius);
     let (pn, q) = if creep.q > 0.0 && creep.p > 0.0 {
         (creep.p, creep.q)
     } else {

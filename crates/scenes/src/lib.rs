@@ -17,4 +17,4 @@ pub mod pile;
 pub mod rolling_effect;
 pub mod triaxial;
 
-pub use measure::{RollingMeter, SceneError};
+pub use measure::{RollingMeter, SceneError, sphere_mass};

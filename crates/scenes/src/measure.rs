@@ -49,3 +49,9 @@ pub(crate) fn positive(name: &str, v: f64) -> Result<f64, SceneError> {
         )))
     }
 }
+
+/// Mass of a uniform solid sphere, `rho (4/3) pi R^3` [kg], from its density `rho` [kg/m^3] and
+/// radius `R` [m].
+pub fn sphere_mass(density: f64, radius: f64) -> f64 {
+    density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3)
+}

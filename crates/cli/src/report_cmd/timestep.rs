@@ -107,8 +107,7 @@ fn measure(pb: &ProgressBar) -> Result<Vec<Study>, ReportError> {
             dt,
             ..Default::default()
         };
-        let m = dp.material.density() * 4.0 / 3.0 * std::f64::consts::PI * dp.radius.powi(3);
-        let torque = DRIVE_LOAD * dp.material.friction() * m * G * dp.radius;
+        let torque = DRIVE_LOAD * dp.material.friction() * dp.normal_force() * dp.radius;
         let rows = friction_drive::run(&dp, &[torque])?;
         if let Some(row) = rows.first() {
             drive
