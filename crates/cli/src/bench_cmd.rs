@@ -8,6 +8,7 @@
 //! running `CMD` (e.g. the peers' runs) after each round, so that the tools are interleaved on
 //! a shared machine without compacting again (about a minute at 4,096 spheres).
 
+use creep_law::{PairMaterial, Surface, hertz};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -282,7 +283,6 @@ fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::err
     let mut virial = 0.0;
     // Mean Mindlin stiffness 8 G* a of the ball-ball contacts (a = sqrt(R* delta)): the scale
     // the peers' rolling springs are set to.
-    let g_star = params.material.shear_modulus() / (2.0 * (2.0 - params.material.poisson_ratio()));
     let mut kt_sum = 0.0;
     let (mut ball_ball, mut ball_wall) = (0usize, 0usize);
     for (&(c1, c2), rec) in s.world().compliant.contacts() {
@@ -297,8 +297,14 @@ fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::err
                         f64::from(atoms[index[&c1]].0),
                         f64::from(atoms[index[&c2]].0),
                     );
-                    let r_star = rp * rq / (rp + rq);
-                    kt_sum += 8.0 * g_star * (r_star * rec.overlap.max(0.0)).sqrt();
+                    let pair = PairMaterial::new(
+                        &params.material,
+                        &params.material,
+                        Surface::Sphere(rp),
+                        Surface::Sphere(rq),
+                    )?;
+                    let a = hertz::contact_radius_from_overlap(&pair, rec.overlap.max(0.0));
+                    kt_sum += pair.tangential_stiffness(a);
                     ball_ball += 1;
                 }
             }
@@ -333,7 +339,7 @@ fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::err
     let m = &params.material;
     let g = m.shear_modulus();
     let nu = m.poisson_ratio();
-    let young = 2.0 * g * (1.0 + nu);
+    let young = m.young_modulus();
     let dt = f64::from(physics.integration_parameters.dt);
     let r_min = params.radius * (1.0 - params.radius_spread);
     let t_r = creep_law::hertz::rayleigh_time_step(m, r_min);
