@@ -361,7 +361,7 @@ fn measure(
     // Normalised creepage xi G a^2 / (mu P): Kalker's curve is then material independent.
     let norm = pair.g * a * a / (mu * pn);
     let measured = creepage[0] - creepage[1];
-    let expected = kalker::steady_creepage(ratio, mu * pn, pair.g, a, pair.c11);
+    let expected = p.expected_creepage(pn, q).unwrap_or(f64::NAN);
     if measured.is_finite() && contact.is_some() && !stepping.paused {
         let pt = (ratio, measured * norm);
         if drive.points.last() != Some(&pt) {

@@ -26,9 +26,8 @@ use common::{
     AngleMeter, DemoPlugin, OrbitCamera, PanelText, Plot, ResetRequested, Stepping, colours,
 };
 use creep_bevy::{CompliantSettings, CreepFriction, CreepMaterial, CreepSettings, Fidelity};
+use creep_law::Material;
 use creep_law::rolling_torque::RollingModel;
-use creep_law::steady_law::SteadyLaw;
-use creep_law::{Material, PairMaterial, Surface, hertz};
 use creep_scenes::incline::{G, InclineParams};
 
 const USAGE: &str = "incline_race: Coulomb vs creep-friction vs rolling torque on one incline
@@ -308,27 +307,11 @@ fn reset(
     race.points = Default::default();
 }
 
-/// The steady creepage of the ball on the incline: Kalker's `F_ss(Q/(mu P))` (Kalker 2000;
-/// Kuhn 2011) at the closed-form loads of rolling without slip, `Q = (2/7) m g sin(theta)`,
-/// `P = m g cos(theta)` (creep-scenes' incline), with Hertz's contact radius [-].
+/// The steady creepage of the ball on the incline at the closed-form loads of rolling without
+/// slip (creep-scenes' `InclineParams::rolling_loads` and `expected_creepage`) [-].
 fn kalker_creepage(p: &InclineParams) -> f64 {
-    let m = p.material.density() * 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3);
-    let (pn, q) = (m * G * p.theta.cos(), 2.0 / 7.0 * m * G * p.theta.sin());
-    let Ok(pair) = PairMaterial::new(
-        &p.material,
-        &p.material,
-        Surface::Plane,
-        Surface::Sphere(p.radius),
-    ) else {
-        return f64::NAN;
-    };
-    let a = hertz::contact_radius(&pair, pn);
-    SteadyLaw::with_c11(p.creep_model, pair.nu, pair.c11).creepage_for_force(
-        q,
-        p.material.friction() * pn,
-        pair.g,
-        a,
-    )
+    let (pn, q) = p.rolling_loads();
+    p.expected_creepage(pn, q).unwrap_or(f64::NAN)
 }
 
 fn measure(

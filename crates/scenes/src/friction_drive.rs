@@ -52,6 +52,21 @@ impl DriveParams {
     pub fn normal_force(&self) -> f64 {
         self.mass() * G + self.press
     }
+
+    /// Kalker's steady creepage `F_ss(Q/(mu P))` [-] (Kalker 2000; Kuhn 2011) of the two
+    /// spheres' contact at normal force `pn` and tangential force `q` [N], with Hertz's contact
+    /// radius at `pn`.
+    pub fn expected_creepage(&self, pn: f64, q: f64) -> Result<f64, SceneError> {
+        let pair = PairMaterial::new(
+            &self.material,
+            &self.material,
+            Surface::Sphere(self.radius),
+            Surface::Sphere(self.radius),
+        )?;
+        let mu_p = self.material.friction() * pn;
+        let a = hertz::contact_radius(&pair, pn);
+        Ok(kalker::steady_creepage(q / mu_p, mu_p, pair.g, a, pair.c11))
+    }
 }
 
 /// One brake torque of the drive.
@@ -194,7 +209,7 @@ pub fn run(p: &DriveParams, torques: &[f64]) -> Result<Vec<DriveRow>, SceneError
             nu: pair.nu,
             mu,
             creepage_measured: creep.creepage - engine.creepage,
-            creepage_expected: kalker::steady_creepage(q / (mu * pm), mu * pm, pair.g, a, pair.c11),
+            creepage_expected: p.expected_creepage(pm, q)?,
             creepage_engine: engine.creepage,
         });
     }

@@ -46,6 +46,39 @@ impl Default for InclineParams {
     }
 }
 
+impl InclineParams {
+    /// The closed-form loads of rolling without slip, `(P, Q)` = `(m g cos(theta), (2/7) m g
+    /// sin(theta))` [N] (a uniform solid sphere, `I = (2/5) m R^2`).
+    pub fn rolling_loads(&self) -> (f64, f64) {
+        let m = crate::measure::sphere_mass(self.material.density(), self.radius);
+        (
+            m * G * self.theta.cos(),
+            2.0 / 7.0 * m * G * self.theta.sin(),
+        )
+    }
+
+    /// The steady creepage [-] of the ball on the plane at normal force `pn` and friction force
+    /// `q` [N]: the plugin's steady law (`creep_model`; Kalker's `F_ss(Q/(mu P))` for `Kuhn`,
+    /// Kalker 2000, Kuhn 2011) with Hertz's contact radius at `pn`.
+    pub fn expected_creepage(&self, pn: f64, q: f64) -> Result<f64, SceneError> {
+        let pair = PairMaterial::new(
+            &self.material,
+            &self.material,
+            Surface::Plane,
+            Surface::Sphere(self.radius),
+        )?;
+        let a = hertz::contact_radius(&pair, pn);
+        Ok(
+            SteadyLaw::with_c11(self.creep_model, pair.nu, pair.c11).creepage_for_force(
+                q,
+                self.material.friction() * pn,
+                pair.g,
+                a,
+            ),
+        )
+    }
+}
+
 /// What the incline measured, for one fidelity.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InclineRun {
@@ -168,26 +201,17 @@ pub fn run(p: &InclineParams) -> Result<InclineResult, SceneError> {
     // The force the contact transmits: (2/7) m g sin(theta) when rolling without slip; with
     // creep the rotation lags and it is smaller (by about the creepage), so the measured force
     // is used where the plugin recorded one.
-    let m = crate::measure::sphere_mass(p.material.density(), p.radius);
     let (pn, q) = if creep.q > 0.0 && creep.p > 0.0 {
         (creep.p, creep.q)
     } else {
-        (m * G * p.theta.cos(), 2.0 / 7.0 * m * G * p.theta.sin())
+        p.rolling_loads()
     };
-    let pair = PairMaterial::new(
-        &p.material,
-        &p.material,
-        Surface::Plane,
-        Surface::Sphere(p.radius),
-    )?;
-    let a = hertz::contact_radius(&pair, pn);
     Ok(InclineResult {
         coulomb,
         creep,
         acceleration_expected: 5.0 / 7.0 * G * p.theta.sin(),
         creepage_measured: creep.slip - coulomb.slip,
-        creepage_expected: SteadyLaw::with_c11(p.creep_model, pair.nu, pair.c11)
-            .creepage_for_force(q, mu * pn, pair.g, a),
+        creepage_expected: p.expected_creepage(pn, q)?,
         q_over_mu_p: q / (mu * pn),
     })
 }
