@@ -28,7 +28,7 @@ use common::{
     AngleMeter, DemoPlugin, OrbitCamera, PanelText, Plot, ResetRequested, Stepping, colours,
 };
 use creep_bevy::{CompliantSettings, CreepFriction, CreepMaterial, CreepSettings, Fidelity};
-use creep_law::{PairMaterial, Surface, hertz, kalker};
+use creep_law::{PairMaterial, SteadyLaw, Surface, hertz};
 use creep_scenes::friction_drive::DriveParams;
 use creep_scenes::incline::G;
 
@@ -376,7 +376,7 @@ fn measure(
     let curve: Vec<(f64, f64)> = (0..=100)
         .map(|i| {
             let s = f64::from(i) / 100.0;
-            (s, kalker::steady_creepage_n_c11(s, pair.c11))
+            (s, SteadyLaw::Kuhn { c11: pair.c11 }.creepage_n(s))
         })
         .collect();
     plot.polyline(&curve, colours::THEORY);

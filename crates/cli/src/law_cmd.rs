@@ -4,8 +4,8 @@ use std::io::Write;
 
 use clap::{Subcommand, ValueEnum};
 use creep_law::{
-    CreepModel, CreepState, Material, MindlinState, PairMaterial, Surface, Vec2, hertz, kalker,
-    steady_law,
+    CreepInput, CreepLaw, CreepModel, CreepState, Material, MindlinState, PairMaterial, SteadyLaw,
+    Surface, Vec2, hertz, kalker,
 };
 
 /// Steady creep laws selectable by `--model`.
@@ -92,8 +92,9 @@ pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
                 return Err(format!("--q-ratio values must be in [0, 1], got {bad}").into());
             }
             writeln!(out, "q_over_mu_p,creepage_n")?;
+            let law = SteadyLaw::new(model.creep_model(), *nu);
             for &s in q_ratio {
-                let x = steady_law::steady_creepage_n(model.creep_model(), s, *nu);
+                let x = law.creepage_n(s);
                 writeln!(out, "{s},{x:.10e}")?;
             }
             Ok(())
@@ -197,11 +198,17 @@ pub fn tour(out: &mut dyn Write) -> Res {
     writeln!(out, "   rolled/a   Q/(mu P)   (steady target 0.6)")?;
     let xi = kalker::steady_creepage(0.6, mu_p, pair.g, a, pair.c11);
     let mut st = CreepState::new();
-    st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+    st.update(
+        &CreepLaw::kuhn(pair),
+        CreepInput::new(p, Vec2::ZERO, Vec2::ZERO),
+    );
     let dr = a / 100.0;
     for i in 1..=400 {
         let q = st
-            .update(&pair, p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0))
+            .update(
+                &CreepLaw::kuhn(pair),
+                CreepInput::new(p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0)),
+            )
             .q;
         if i % 50 == 0 {
             writeln!(out, "   {:8.2}   {:8.4}", i as f64 / 100.0, q.x / mu_p)?;
@@ -262,7 +269,7 @@ mod tests {
             .collect();
         assert_eq!(rows.len(), 4);
         for (s, x) in rows {
-            let expect = steady_law::fitted_creepage_n(s, 0.3);
+            let expect = SteadyLaw::new(CreepModel::Fitted, 0.3).creepage_n(s);
             assert!((x - expect).abs() < 1e-9 * expect.max(1e-9), "{s}: {x}");
             // Below Kalker's F_ss away from s = 0 (the closed form over-estimates).
             if s > 0.0 {

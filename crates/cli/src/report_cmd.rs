@@ -21,7 +21,8 @@ mod timestep;
 use crate::plot::{Legend, LineChart, LineStyle, PlotError, Series};
 use clap::Args;
 use creep_law::{
-    CreepModel, CreepState, Material, PairMaterial, SteadyLaw, Surface, Vec2, hertz, kalker,
+    CreepInput, CreepLaw, CreepModel, CreepState, Material, PairMaterial, SteadyLaw, Surface, Vec2,
+    hertz,
 };
 use creep_reference::RefError;
 use creep_reference::bem::{Creepage, SolverOptions, SteadySolver};
@@ -260,15 +261,17 @@ fn tier_cost(tier: Tier, cfg: &Config) -> Result<f64, ReportError> {
                 black_box(if n > lim { t * (lim / n) } else { t });
             })
         }
-        Tier::RigidKuhn => median_ns(reps, secs, |i| {
-            black_box(kalker::steady_creepage_for_force(
-                black_box(q[i & 63]),
-                black_box(mu_p),
-                pair.g,
-                a,
-                pair.c11,
-            ));
-        }),
+        Tier::RigidKuhn => {
+            let law = SteadyLaw::Kuhn { c11: pair.c11 };
+            median_ns(reps, secs, |i| {
+                black_box(black_box(&law).creepage_for_force(
+                    black_box(q[i & 63]),
+                    black_box(mu_p),
+                    pair.g,
+                    a,
+                ));
+            })
+        }
         Tier::RigidFitted => {
             let law = SteadyLaw::new(CreepModel::Fitted, pair.nu);
             median_ns(reps, secs, |i| {
@@ -284,24 +287,33 @@ fn tier_cost(tier: Tier, cfg: &Config) -> Result<f64, ReportError> {
             let model = tier.compliant_model().unwrap_or_default();
             // Steady rolling at 0.6 mu P is stationary, so updating one state repeatedly
             // measures the per-step cost (as the criterion bench `steady_law/creep_update_*`).
-            let law = SteadyLaw::new(model, pair.nu);
-            let xi = law.creepage_for_force(0.6 * mu_p, mu_p, pair.g, a);
+            let law = CreepLaw::new(pair, model);
+            let xi = law.steady().creepage_for_force(0.6 * mu_p, mu_p, pair.g, a);
             let dr = a * 1e-3;
             let mut st = CreepState::new();
-            st.update_model_with_radius(&pair, model, p, a, Vec2::ZERO, Vec2::ZERO);
+            st.update(
+                &law,
+                CreepInput::new(p, Vec2::ZERO, Vec2::ZERO).with_radius(a),
+            );
             for _ in 0..20_000 {
                 let du = Vec2::new(xi * dr, 0.0);
-                st.update_model_with_radius(&pair, model, p, a, du, Vec2::new(dr, 0.0));
+                st.update(
+                    &law,
+                    CreepInput::new(p, du, Vec2::new(dr, 0.0)).with_radius(a),
+                );
             }
             median_ns(reps, secs, |_| {
-                black_box(st.update_model_with_radius(
-                    black_box(&pair),
-                    black_box(model),
-                    black_box(p),
-                    black_box(a),
-                    black_box(Vec2::new(xi * dr, 0.0)),
-                    black_box(Vec2::new(dr, 0.0)),
-                ));
+                black_box(
+                    st.update(
+                        black_box(&law),
+                        CreepInput::new(
+                            black_box(p),
+                            black_box(Vec2::new(xi * dr, 0.0)),
+                            black_box(Vec2::new(dr, 0.0)),
+                        )
+                        .with_radius(black_box(a)),
+                    ),
+                );
             })
         }
         Tier::Fastsim => {

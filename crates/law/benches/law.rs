@@ -7,8 +7,8 @@ use std::hint::black_box;
 
 use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::{
-    CreepModel, CreepState, Material, MindlinState, PairMaterial, SteadyLaw, Surface, Vec2, Vec3,
-    hertz, kalker, steady_law,
+    CreepInput, CreepLaw, CreepModel, CreepState, Material, MindlinState, PairMaterial, SteadyLaw,
+    Surface, Vec2, Vec3, hertz, kalker,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -25,60 +25,73 @@ fn bench_updates(c: &mut Criterion) {
     let ds = 3.0 * pair.mu * p / (16.0 * pair.g_star * a);
     let xi = kalker::steady_creepage(0.6, pair.mu * p, pair.g, a, pair.c11);
     let dr = a * 1e-3;
+    let law = CreepLaw::kuhn(pair);
 
     // Steady rolling at 0.6 mu P is stationary, so updating one state repeatedly measures the
     // real per-step cost (no state copy inside the timed loop).
     let mut rolling = CreepState::new();
-    rolling.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+    rolling.update(&law, CreepInput::new(p, Vec2::ZERO, Vec2::ZERO));
     for _ in 0..20_000 {
-        rolling.update(&pair, p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0));
+        rolling.update(
+            &law,
+            CreepInput::new(p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0)),
+        );
     }
     c.bench_function("creep_update/steady_rolling", |b| {
         b.iter(|| {
             rolling.update(
-                black_box(&pair),
-                black_box(p),
-                black_box(Vec2::new(xi * dr, 0.0)),
-                black_box(Vec2::new(dr, 0.0)),
+                black_box(&law),
+                CreepInput::new(
+                    black_box(p),
+                    black_box(Vec2::new(xi * dr, 0.0)),
+                    black_box(Vec2::new(dr, 0.0)),
+                ),
             )
         })
     });
     // The same, with the contact radius given (DEM: a = sqrt(R* delta), no cube root).
     c.bench_function("creep_update/steady_rolling_radius_given", |b| {
         b.iter(|| {
-            rolling.update_with_radius(
-                black_box(&pair),
-                black_box(p),
-                black_box(a),
-                black_box(Vec2::new(xi * dr, 0.0)),
-                black_box(Vec2::new(dr, 0.0)),
+            rolling.update(
+                black_box(&law),
+                CreepInput::new(
+                    black_box(p),
+                    black_box(Vec2::new(xi * dr, 0.0)),
+                    black_box(Vec2::new(dr, 0.0)),
+                )
+                .with_radius(black_box(a)),
             )
         })
     });
     // Micro-oscillation in the stick range without rolling (a settled packing).
     let mut stuck = CreepState::new();
-    stuck.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
-    stuck.update(&pair, p, Vec2::new(0.2 * ds, 0.0), Vec2::ZERO);
+    stuck.update(&law, CreepInput::new(p, Vec2::ZERO, Vec2::ZERO));
+    stuck.update(
+        &law,
+        CreepInput::new(p, Vec2::new(0.2 * ds, 0.0), Vec2::ZERO),
+    );
     c.bench_function("creep_update/stick_oscillating", |b| {
         let mut sign = 1.0;
         b.iter(|| {
             sign = -sign;
             stuck.update(
-                black_box(&pair),
-                black_box(p),
-                black_box(Vec2::new(sign * 1e-6 * ds, 0.0)),
-                Vec2::ZERO,
+                black_box(&law),
+                CreepInput::new(
+                    black_box(p),
+                    black_box(Vec2::new(sign * 1e-6 * ds, 0.0)),
+                    Vec2::ZERO,
+                ),
             )
         })
     });
     // A deep load memory (nested cycles) and a turning path with varying P: the slow case. The
     // state is copied in per iteration (criterion's batched mode), which is included.
     let mut deep = CreepState::new();
-    deep.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+    deep.update(&law, CreepInput::new(p, Vec2::ZERO, Vec2::ZERO));
     let mut d = 0.0;
     for k in 0..12 {
         let t = if k % 2 == 0 { 0.9 } else { -0.9 } * ds * 0.7f64.powi(k);
-        deep.update(&pair, p, Vec2::new(t - d, 0.0), Vec2::ZERO);
+        deep.update(&law, CreepInput::new(p, Vec2::new(t - d, 0.0), Vec2::ZERO));
         d = t;
     }
     c.bench_function("creep_update/deep_memory_turning_incl_copy", |b| {
@@ -86,10 +99,12 @@ fn bench_updates(c: &mut Criterion) {
             || deep,
             |st| {
                 st.update(
-                    black_box(&pair),
-                    black_box(p * 1.001),
-                    black_box(Vec2::new(1e-3 * ds, 2e-3 * ds)),
-                    black_box(Vec2::new(dr, dr)),
+                    black_box(&law),
+                    CreepInput::new(
+                        black_box(p * 1.001),
+                        black_box(Vec2::new(1e-3 * ds, 2e-3 * ds)),
+                        black_box(Vec2::new(dr, dr)),
+                    ),
                 )
             },
             criterion::BatchSize::SmallInput,
@@ -160,12 +175,14 @@ fn bench_steady_laws(c: &mut Criterion) {
         b.iter(|| kalker::steady_creepage_n(black_box(ss[next()]), black_box(nu)))
     });
     c.bench_function("steady_law/fitted_nu", |b| {
-        b.iter(|| steady_law::fitted_creepage_n(black_box(ss[next()]), black_box(nu)))
+        b.iter(|| {
+            SteadyLaw::new(CreepModel::Fitted, black_box(nu)).creepage_n(black_box(ss[next()]))
+        })
     });
     let kuhn = SteadyLaw::new(CreepModel::Kuhn, nu);
     let fitted = SteadyLaw::new(CreepModel::Fitted, nu);
     c.bench_function("steady_law/kuhn_fss_c11_given", |b| {
-        b.iter(|| kalker::steady_creepage_n_c11(black_box(ss[next()]), black_box(pair.c11)))
+        b.iter(|| black_box(&kuhn).creepage_n(black_box(ss[next()])))
     });
     c.bench_function("steady_law/fitted_precomputed", |b| {
         b.iter(|| black_box(&fitted).creepage_n(black_box(ss[next()])))
@@ -182,21 +199,27 @@ fn bench_steady_laws(c: &mut Criterion) {
     let a = hertz::contact_radius(&pair, p);
     let dr = a * 1e-3;
     for model in CreepModel::ALL {
-        let law = SteadyLaw::new(model, nu);
-        let xi = law.creepage_for_force(0.6 * pair.mu * p, pair.mu * p, pair.g, a);
+        let law = CreepLaw::new(pair, model);
+        let xi = law
+            .steady()
+            .creepage_for_force(0.6 * pair.mu * p, pair.mu * p, pair.g, a);
         let mut st = CreepState::new();
-        st.update_model(&pair, model, p, Vec2::ZERO, Vec2::ZERO);
+        st.update(&law, CreepInput::new(p, Vec2::ZERO, Vec2::ZERO));
         for _ in 0..20_000 {
-            st.update_model(&pair, model, p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0));
+            st.update(
+                &law,
+                CreepInput::new(p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0)),
+            );
         }
         c.bench_function(&format!("steady_law/creep_update_{}", model.name()), |b| {
             b.iter(|| {
-                st.update_model(
-                    black_box(&pair),
-                    black_box(model),
-                    black_box(p),
-                    black_box(Vec2::new(xi * dr, 0.0)),
-                    black_box(Vec2::new(dr, 0.0)),
+                st.update(
+                    black_box(&law),
+                    CreepInput::new(
+                        black_box(p),
+                        black_box(Vec2::new(xi * dr, 0.0)),
+                        black_box(Vec2::new(dr, 0.0)),
+                    ),
                 )
             })
         });

@@ -4,7 +4,7 @@
 //! `dQ = c_CM^-1 ( du_disp - F_ss(|Q|/(mu P)) Q/|Q| |du_roll| )`
 //!
 //! The Cattaneo-Mindlin compliance `c_CM` with its load history is [`MindlinState`]; `F_ss` is
-//! Kalker's steady creepage ([`kalker::steady_creepage`]). Each step feeds the Cattaneo-Mindlin
+//! Kalker's steady creepage ([`crate::kalker::steady_creepage`]). Each step feeds the Cattaneo-Mindlin
 //! algorithm the *effective* displacement `du_eff = du_disp - du_creep`, with the creep
 //! displacement `du_creep = F_ss Q/|Q| |du_roll|` evaluated explicitly from the force at the start
 //! of the step and the new normal force.
@@ -19,19 +19,101 @@
 //! `2 delta_CM(|Q|/2)` (Mindlin & Deresiewicz 1953 unloading; `delta_CM` Mindlin's loading curve),
 //! which is inactive whenever `F_ss |du_roll| <= |Q| / (8 G* a)` — all ordinary DEM steps.
 //!
-//! Tiers ([`CreepModel`], one setting): [`CreepState::update`] is Kuhn's rule as above (the
-//! talk's model). [`CreepState::update_model`] takes the model: `Kuhn` (identical to `update`),
-//! `Fitted` (the same rule with the boundary-element-fitted steady law of
-//! [`crate::steady_law`] in place of `F_ss`) and `FittedTransient` (the fitted law with the
-//! relaxed creep rate of [`crate::transient_law`], whose lag state lives in [`CreepState`]).
+//! One entry point: [`CreepState::update`] takes the pair's law, [`CreepLaw`] (the pair's
+//! material, its [`CreepModel`] and that model's [`SteadyLaw`], built once per pair), and one
+//! step, [`CreepInput`] (`P`, optionally `a`, `du_disp`, `du_roll`). Tiers ([`CreepModel`]):
+//! `Kuhn` is Kuhn's rule as above (the talk's model, Kalker's `F_ss`), `Fitted` the same rule
+//! with the boundary-element-fitted steady law of [`crate::steady_law`] in place of `F_ss`, and
+//! `FittedTransient` the fitted law with the relaxed creep rate of [`crate::transient_law`],
+//! whose lag state lives in [`CreepState`]. Every tier's steady creep rate comes from
+//! [`SteadyLaw`].
 
 use crate::hertz;
-use crate::kalker;
 use crate::material::PairMaterial;
 use crate::mindlin::{MindlinState, MindlinStep};
 use crate::steady_law::{CreepModel, SteadyLaw};
 use crate::transient_law;
 use crate::vector::Vec2;
+
+/// The creep-friction law of one contact pair: its combined material, its creep model and that
+/// model's steady law ([`SteadyLaw::with_c11`] at the pair's `nu` and cached `C11`). Build it
+/// once per pair (it holds the fitted law's coefficients) and pass it to every
+/// [`CreepState::update`] of the pair's contacts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CreepLaw {
+    pair: PairMaterial,
+    model: CreepModel,
+    steady: SteadyLaw,
+}
+
+impl CreepLaw {
+    /// The law of `model` for `pair`.
+    pub fn new(pair: PairMaterial, model: CreepModel) -> Self {
+        Self {
+            pair,
+            model,
+            steady: SteadyLaw::with_c11(model, pair.nu, pair.c11),
+        }
+    }
+
+    /// Kuhn's rule ([`CreepModel::Kuhn`], the talk's model) for `pair`.
+    pub fn kuhn(pair: PairMaterial) -> Self {
+        Self::new(pair, CreepModel::Kuhn)
+    }
+
+    /// The pair's combined material.
+    #[inline]
+    pub fn pair(&self) -> &PairMaterial {
+        &self.pair
+    }
+
+    /// The creep model (tier).
+    #[inline]
+    pub fn model(&self) -> CreepModel {
+        self.model
+    }
+
+    /// The steady creep law of the model at the pair's Poisson ratio.
+    #[inline]
+    pub fn steady(&self) -> &SteadyLaw {
+        &self.steady
+    }
+}
+
+/// One step's input to [`CreepState::update`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CreepInput {
+    /// Normal force at the end of the step [N] (not positive or not finite: open contact).
+    pub p: f64,
+    /// Contact radius at the end of the step [m]; `None`: Hertz's, [`hertz::contact_radius`]
+    /// of `p` (give it when the host knows it better, e.g. `sqrt(R* delta)` from a DEM overlap).
+    pub a: Option<f64>,
+    /// Relative displacement of the step `du_disp = du_q - du_p` in the tangent plane [m].
+    pub du_disp: Vec2,
+    /// Rolling displacement of the step in the tangent plane [m] (Kuhn & Bagi 2004; only its
+    /// length enters the law).
+    pub du_roll: Vec2,
+}
+
+impl CreepInput {
+    /// A step at normal force `p` [N] (Hertz's contact radius) with displacements `du_disp` and
+    /// `du_roll` [m].
+    #[inline]
+    pub fn new(p: f64, du_disp: Vec2, du_roll: Vec2) -> Self {
+        Self {
+            p,
+            a: None,
+            du_disp,
+            du_roll,
+        }
+    }
+
+    /// This step with the contact radius `a` [m] given.
+    #[inline]
+    pub fn with_radius(self, a: f64) -> Self {
+        Self { a: Some(a), ..self }
+    }
+}
 
 /// What one creep-friction update did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -113,61 +195,33 @@ impl CreepState {
         }
     }
 
-    /// One step of Kuhn's rule: normal force `p` [N] at the end of the step (Hertz gives `a`),
-    /// relative displacement `du_disp = du_q - du_p` [m] and rolling displacement `du_roll` [m]
-    /// (Kuhn & Bagi 2004; only its length enters), both in the tangent plane. Non-finite inputs
-    /// count as zero motion / open contact.
-    pub fn update(
-        &mut self,
-        pair: &PairMaterial,
-        p: f64,
-        du_disp: Vec2,
-        du_roll: Vec2,
-    ) -> CreepStep {
-        let a = hertz::contact_radius(pair, p);
-        self.update_with_radius(pair, p, a, du_disp, du_roll)
-    }
-
-    /// [`CreepState::update`] with the contact radius `a` [m] given (e.g. from a DEM overlap).
-    pub fn update_with_radius(
-        &mut self,
-        pair: &PairMaterial,
-        p: f64,
-        a: f64,
-        du_disp: Vec2,
-        du_roll: Vec2,
-    ) -> CreepStep {
-        self.update_model_with_radius(pair, CreepModel::Kuhn, p, a, du_disp, du_roll)
-    }
-
-    /// One step of the creep-friction rule with the steady (and transient) law of `model`:
-    /// [`CreepModel::Kuhn`] is exactly [`CreepState::update`]; the fitted tiers replace `F_ss` by
-    /// [`SteadyLaw`]'s fitted law, and [`CreepModel::FittedTransient`] applies the relaxed creep
-    /// rate of [`crate::transient_law`]. Arguments as in [`CreepState::update`]. Switching the
-    /// model of a live contact is allowed (the lag state starts from its last value, zero if
-    /// never used).
-    pub fn update_model(
-        &mut self,
-        pair: &PairMaterial,
-        model: CreepModel,
-        p: f64,
-        du_disp: Vec2,
-        du_roll: Vec2,
-    ) -> CreepStep {
-        let a = hertz::contact_radius(pair, p);
-        self.update_model_with_radius(pair, model, p, a, du_disp, du_roll)
-    }
-
-    /// [`CreepState::update_model`] with the contact radius `a` [m] given.
-    pub fn update_model_with_radius(
-        &mut self,
-        pair: &PairMaterial,
-        model: CreepModel,
-        p: f64,
-        a: f64,
-        du_disp: Vec2,
-        du_roll: Vec2,
-    ) -> CreepStep {
+    /// One step of the creep-friction rule of `law` (Kuhn 2011, the talk, eq. 1, with the steady
+    /// law of [`CreepLaw::steady`] in place of `F_ss`; see the module doc): the normal force
+    /// becomes `step.p` [N] with contact radius `step.a` [m] (Hertz's
+    /// [`hertz::contact_radius`] when `None`, e.g. given from a DEM overlap), and the surfaces
+    /// move by the relative displacement `du_disp = du_q - du_p` [m] while rolling by `du_roll`
+    /// [m] (Kuhn & Bagi 2004; only its length enters), both in the tangent plane.
+    /// [`CreepModel::FittedTransient`] also advances the lagged creep rate of
+    /// [`crate::transient_law`]. Non-finite inputs count as zero motion / open contact.
+    /// Switching the model of a live contact is allowed (the lag state starts from its last
+    /// value, zero if never used).
+    pub fn update(&mut self, law: &CreepLaw, step: CreepInput) -> CreepStep {
+        let CreepLaw {
+            pair,
+            model,
+            steady,
+        } = law;
+        let (pair, model) = (pair, *model);
+        let CreepInput {
+            p,
+            a,
+            du_disp,
+            du_roll,
+        } = step;
+        let a = match a {
+            Some(a) => a,
+            None => hertz::contact_radius(pair, p),
+        };
         let roll = du_roll.length();
         let q = self.mindlin.force();
         let q_abs = q.length();
@@ -181,14 +235,9 @@ impl CreepState {
         }
         if rolling && !open {
             let mu_p = pair.mu * p;
-            // Steady creep rate of the current force (Kuhn: Kalker's F_ss as in `update`).
+            // Steady creep rate of the current force (Kuhn: Kalker's F_ss).
             let f = if q_abs > 0.0 {
-                match model {
-                    CreepModel::Kuhn => {
-                        kalker::steady_creepage_for_force(q_abs, mu_p, pair.g, a, pair.c11)
-                    }
-                    _ => SteadyLaw::new(model, pair.nu).creepage_for_force(q_abs, mu_p, pair.g, a),
-                }
+                steady.creepage_for_force(q_abs, mu_p, pair.g, a)
             } else {
                 0.0
             };
@@ -271,6 +320,7 @@ fn unload_to_zero(q: f64, mu_p: f64, k_t: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kalker;
 
     fn pair() -> PairMaterial {
         crate::material::steel_ball_on_plane()
@@ -284,7 +334,7 @@ mod tests {
         for i in 0..100 {
             let du = Vec2::new((i as f64).sin(), (0.3 * i as f64).cos()) * 2e-7;
             let p = 100.0 + 50.0 * (0.1 * i as f64).sin();
-            let a = c.update(&pair, p, du, Vec2::ZERO);
+            let a = c.update(&CreepLaw::kuhn(pair), CreepInput::new(p, du, Vec2::ZERO));
             let b = m.update(&pair, p, du);
             assert_eq!(a.q, b.q);
             assert_eq!(a.slip_dissipation, b.slip_dissipation);
@@ -314,10 +364,16 @@ mod tests {
         for s_target in [0.2, 0.6, 0.9] {
             let xi = kalker::steady_creepage(s_target, mu_p, pair.g, a, pair.c11);
             let mut st = CreepState::new();
-            st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+            st.update(
+                &CreepLaw::kuhn(pair),
+                CreepInput::new(p, Vec2::ZERO, Vec2::ZERO),
+            );
             let dr = a / 50.0;
             for _ in 0..5000 {
-                st.update(&pair, p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0));
+                st.update(
+                    &CreepLaw::kuhn(pair),
+                    CreepInput::new(p, Vec2::new(xi * dr, 0.0), Vec2::new(dr, 0.0)),
+                );
             }
             let s = st.force().x / mu_p;
             assert!((s - s_target).abs() < 1e-6, "target {s_target}: {s}");
@@ -330,11 +386,20 @@ mod tests {
         let p = 100.0;
         let a = hertz::contact_radius(&pair, p);
         let mut st = CreepState::new();
-        st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
-        st.update(&pair, p, Vec2::new(1e-6, 0.0), Vec2::ZERO);
+        st.update(
+            &CreepLaw::kuhn(pair),
+            CreepInput::new(p, Vec2::ZERO, Vec2::ZERO),
+        );
+        st.update(
+            &CreepLaw::kuhn(pair),
+            CreepInput::new(p, Vec2::new(1e-6, 0.0), Vec2::ZERO),
+        );
         let q0 = st.force().x;
         assert!(q0 > 0.0);
-        let step = st.update(&pair, p, Vec2::ZERO, Vec2::new(100.0 * a, 0.0));
+        let step = st.update(
+            &CreepLaw::kuhn(pair),
+            CreepInput::new(p, Vec2::ZERO, Vec2::new(100.0 * a, 0.0)),
+        );
         assert!(step.q.x >= -1e-12 * q0 && step.q.x < q0, "{:?}", step.q);
         assert!(step.creep_dissipation >= 0.0);
     }

@@ -35,14 +35,16 @@ pub fn c11(nu: f64) -> f64 {
 /// i.e. `F_ss = 3 mu P / (G a^2 C11) [1 - (1 - |Q|/(mu P))^(1/3)]` of Kuhn (2011, the talk, eq. 1).
 /// Small-`s` limit: `xi_n = s / C11` (Kalker's linear theory, `Q = G a^2 C11 xi`). `s` is clamped to
 /// `[0, 1]`; at `s = 1` (full slip) the creepage is `3 / C11`.
+/// With `C11` known (a pair's cached [`crate::PairMaterial::c11`]) use
+/// [`crate::SteadyLaw::Kuhn`], which evaluates this closed form.
 #[inline]
 pub fn steady_creepage_n(s: f64, nu: f64) -> f64 {
-    steady_creepage_n_c11(s, c11(nu))
+    creepage_n(s, c11(nu))
 }
 
-/// [`steady_creepage_n`] with `C11` given (saves the polynomial on hot paths).
+/// [`steady_creepage_n`] with `C11` given: the closed form behind [`crate::SteadyLaw::Kuhn`].
 #[inline]
-pub fn steady_creepage_n_c11(s: f64, c11: f64) -> f64 {
+pub(crate) fn creepage_n(s: f64, c11: f64) -> f64 {
     let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
     3.0 / c11 * (1.0 - (1.0 - s).cbrt())
 }
@@ -54,12 +56,12 @@ pub fn steady_creepage_n_c11(s: f64, c11: f64) -> f64 {
 /// Negative `xi_n` gives the odd extension `s(-xi_n) = -s(xi_n)`.
 #[inline]
 pub fn steady_force_ratio(creepage_n: f64, nu: f64) -> f64 {
-    steady_force_ratio_c11(creepage_n, c11(nu))
+    force_ratio(creepage_n, c11(nu))
 }
 
-/// [`steady_force_ratio`] with `C11` given.
+/// [`steady_force_ratio`] with `C11` given: the inverse behind [`crate::SteadyLaw::Kuhn`].
 #[inline]
-pub fn steady_force_ratio_c11(creepage_n: f64, c11: f64) -> f64 {
+pub(crate) fn force_ratio(creepage_n: f64, c11: f64) -> f64 {
     if creepage_n.is_nan() {
         return 0.0;
     }
@@ -82,26 +84,7 @@ pub fn steady_creepage(s: f64, mu_p: f64, g: f64, a: f64, c11: f64) -> f64 {
     if !(denom > 0.0) || !(mu_p > 0.0) || !mu_p.is_finite() {
         return 0.0;
     }
-    mu_p / denom * steady_creepage_n_c11(s, c11)
-}
-
-/// Steady creepage `F_ss` [-] for a tangential force of magnitude `q_abs` [N] (same law as
-/// [`steady_creepage`], from the force instead of the ratio). With `mu P = +inf` (no slip) this is
-/// the limit `mu -> inf` of Kalker's closed form, his linear theory: `F_ss = |Q| / (G a^2 C11)`.
-#[inline]
-pub fn steady_creepage_for_force(q_abs: f64, mu_p: f64, g: f64, a: f64, c11: f64) -> f64 {
-    if mu_p == f64::INFINITY {
-        let denom = g * a * a * c11;
-        return if denom > 0.0 && q_abs.is_finite() {
-            q_abs / denom
-        } else {
-            0.0
-        };
-    }
-    if !(mu_p > 0.0) {
-        return 0.0;
-    }
-    steady_creepage(q_abs / mu_p, mu_p, g, a, c11)
+    mu_p / denom * creepage_n(s, c11)
 }
 
 #[cfg(test)]
@@ -159,12 +142,14 @@ mod tests {
         let expect = steady_creepage_n(0.5, nu) * mu_p / (g * a * a);
         assert!((f / expect - 1.0).abs() < 1e-14);
         assert_eq!(steady_creepage(0.5, mu_p, g, 0.0, c11(nu)), 0.0);
-        let by_force = steady_creepage_for_force(0.5 * mu_p, mu_p, g, a, c11(nu));
+        // From the force, through the steady law of Kuhn's rule (SteadyLaw::Kuhn).
+        let law = crate::SteadyLaw::Kuhn { c11: c11(nu) };
+        let by_force = law.creepage_for_force(0.5 * mu_p, mu_p, g, a);
         assert!((by_force / f - 1.0).abs() < 1e-14);
         // mu -> inf: linear theory, and the finite-mu law approaches it.
-        let lin = steady_creepage_for_force(1.0, f64::INFINITY, g, a, c11(nu));
+        let lin = law.creepage_for_force(1.0, f64::INFINITY, g, a);
         assert!((lin * g * a * a * c11(nu) - 1.0).abs() < 1e-14);
-        let big = steady_creepage_for_force(1.0, 1e8, g, a, c11(nu));
+        let big = law.creepage_for_force(1.0, 1e8, g, a);
         assert!((big / lin - 1.0).abs() < 1e-7);
     }
 }

@@ -19,7 +19,7 @@ pub mod steady_table;
 pub mod transient_law;
 pub mod vector;
 
-pub use creep::{CreepState, CreepStep};
+pub use creep::{CreepInput, CreepLaw, CreepState, CreepStep};
 pub use error::LawError;
 pub use material::{FrictionCombine, Material, PairMaterial, Surface};
 pub use mindlin::{MindlinState, MindlinStep};

@@ -1,6 +1,9 @@
 //! Property tests of the creep-friction law over random load paths (proptest).
 
-use creep_law::{CreepState, Material, MindlinState, PairMaterial, Surface, Vec2, hertz, kalker};
+use creep_law::{
+    CreepInput, CreepLaw, CreepState, Material, MindlinState, PairMaterial, Surface, Vec2, hertz,
+    kalker,
+};
 use proptest::prelude::*;
 
 fn pair(mu: f64, r: f64, plane: bool) -> PairMaterial {
@@ -42,7 +45,7 @@ proptest! {
         let mut st = CreepState::new();
         for (dx, dy, roll, pf) in path {
             let p = p0 * pf;
-            let out = st.update(&pair, p, Vec2::new(dx, dy) * ds, Vec2::new(roll * ds, 0.0));
+            let out = st.update(&CreepLaw::kuhn(pair), CreepInput::new(p, Vec2::new(dx, dy) * ds, Vec2::new(roll * ds, 0.0)));
             prop_assert!(out.q.is_finite() && out.slip_dissipation.is_finite() && out.creep_dissipation.is_finite());
             prop_assert!(out.q.length() <= pair.mu * p.max(0.0) * (1.0 + 1e-12), "{:?} > {}", out.q, pair.mu * p);
             prop_assert!(out.slip_dissipation >= 0.0 && out.creep_dissipation >= 0.0);
@@ -66,7 +69,7 @@ proptest! {
         let mut residuals = [0.0; 2];
         for (k, sub) in [100usize, 400].into_iter().enumerate() {
             let mut st = CreepState::new();
-            st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+            st.update(&CreepLaw::kuhn(pair), CreepInput::new(p, Vec2::ZERO, Vec2::ZERO));
             let mut pos = Vec2::ZERO;
             let (mut work, mut scale, mut dissipated, mut truncation) = (0.0, 0.0, 0.0, 0.0);
             let mut targets: Vec<Vec2> = legs.iter().map(|&(x, y)| Vec2::new(x, y) * ds).collect();
@@ -76,7 +79,7 @@ proptest! {
                 for _ in 0..sub {
                     let q0 = st.force();
                     let roll = if with_roll { Vec2::new(du.length() * 3.0, 0.0) } else { Vec2::ZERO };
-                    let out = st.update(&pair, p, du, roll);
+                    let out = st.update(&CreepLaw::kuhn(pair), CreepInput::new(p, du, roll));
                     work += (q0 + out.q).dot(du) * 0.5;
                     scale += out.q.length() * du.length();
                     dissipated += out.dissipation();
@@ -169,7 +172,7 @@ proptest! {
         let mut m = MindlinState::new();
         for (dx, dy, _, pf) in path {
             let du = Vec2::new(dx, dy) * ds;
-            let a = c.update(&pair, 10.0 * pf, du, Vec2::ZERO);
+            let a = c.update(&CreepLaw::kuhn(pair), CreepInput::new(10.0 * pf, du, Vec2::ZERO));
             let b = m.update(&pair, 10.0 * pf, du);
             prop_assert_eq!(a.q.x.to_bits(), b.q.x.to_bits());
             prop_assert_eq!(a.q.y.to_bits(), b.q.y.to_bits());
@@ -187,11 +190,11 @@ proptest! {
         let pair = pair(f64::INFINITY, 0.01, true);
         let k_t = pair.tangential_stiffness(hertz::contact_radius(&pair, p));
         let mut st = CreepState::new();
-        st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+        st.update(&CreepLaw::kuhn(pair), CreepInput::new(p, Vec2::ZERO, Vec2::ZERO));
         let mut u = Vec2::ZERO;
         for (x, y) in path {
             u += Vec2::new(x, y);
-            let q = st.update(&pair, p, Vec2::new(x, y), Vec2::ZERO).q;
+            let q = st.update(&CreepLaw::kuhn(pair), CreepInput::new(p, Vec2::new(x, y), Vec2::ZERO)).q;
             prop_assert!((q - u * k_t).length() <= 1e-9 * k_t * 1e-5 * 60.0);
         }
     }
@@ -208,9 +211,9 @@ proptest! {
     ) {
         let pair = pair(mu, 0.01, false);
         let mut st = CreepState::new();
-        st.update(&pair, 1.0, Vec2::new(1e-7, 0.0), Vec2::ZERO);
+        st.update(&CreepLaw::kuhn(pair), CreepInput::new(1.0, Vec2::new(1e-7, 0.0), Vec2::ZERO));
         for _ in 0..steps {
-            let out = st.update(&pair, p, Vec2::new(dx, dy), Vec2::new(roll, roll));
+            let out = st.update(&CreepLaw::kuhn(pair), CreepInput::new(p, Vec2::new(dx, dy), Vec2::new(roll, roll)));
             prop_assert!(out.q.is_finite(), "{:?}", out);
             prop_assert!(out.slip_dissipation.is_finite() && out.creep_dissipation.is_finite(), "{:?}", out);
             if mu.is_finite() {
@@ -232,7 +235,10 @@ fn held_force_rolling_converges_to_kalkers_creepage() {
     let ds = delta_s(&pair, p);
     for s_target in [0.1, 0.5, 0.9, 0.98] {
         let mut st = CreepState::new();
-        st.update(&pair, p, Vec2::ZERO, Vec2::ZERO);
+        st.update(
+            &CreepLaw::kuhn(pair),
+            CreepInput::new(p, Vec2::ZERO, Vec2::ZERO),
+        );
         // Load to the target force without rolling first.
         let q_target = s_target * mu_p;
         let roll = Vec2::new(a / 20.0, 0.0);
@@ -243,7 +249,13 @@ fn held_force_rolling_converges_to_kalkers_creepage() {
             for _ in 0..200 {
                 let mid = 0.5 * (lo + hi);
                 let mut trial = st;
-                let q = trial.update(&pair, p, Vec2::new(mid, 0.0), r).q.x;
+                let q = trial
+                    .update(
+                        &CreepLaw::kuhn(pair),
+                        CreepInput::new(p, Vec2::new(mid, 0.0), r),
+                    )
+                    .q
+                    .x;
                 if q < q_target {
                     lo = mid
                 } else {
@@ -254,7 +266,10 @@ fn held_force_rolling_converges_to_kalkers_creepage() {
                 }
             }
             let du = 0.5 * (lo + hi);
-            st.update(&pair, p, Vec2::new(du, 0.0), r);
+            st.update(
+                &CreepLaw::kuhn(pair),
+                CreepInput::new(p, Vec2::new(du, 0.0), r),
+            );
             if step > 0 {
                 ratio = du / roll.x;
             }

@@ -82,7 +82,9 @@ mod geometry;
 
 use creep_law::kinematics::contact_rates;
 use creep_law::rolling_torque::{RollingInput, RollingState, epsd_rolling_inertia};
-use creep_law::{CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz};
+use creep_law::{
+    CreepInput, CreepLaw, CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz,
+};
 use rapier3d::prelude::*;
 
 pub use damping::{
@@ -524,13 +526,9 @@ impl CompliantRegime {
             } else {
                 Vec2::ZERO
             };
-            let step = rec.state.update_model_with_radius(
-                &pm,
-                self.settings.creep_model,
-                p_el,
-                a,
-                du_disp,
-                du_roll,
+            let step = rec.state.update(
+                &CreepLaw::new(pm, self.settings.creep_model),
+                CreepInput::new(p_el, du_disp, du_roll).with_radius(a),
             );
             self.energy.slip += step.slip_dissipation;
             self.energy.creep += step.creep_dissipation;

@@ -22,7 +22,9 @@ use crate::fit::{
     read_transient_csv,
 };
 use crate::mindlin::Mindlin;
-use creep_law::{CreepModel, CreepState, Material, PairMaterial, SteadyLaw, Surface, Vec2};
+use creep_law::{
+    CreepInput, CreepLaw, CreepModel, CreepState, Material, PairMaterial, SteadyLaw, Surface, Vec2,
+};
 
 /// The steady table (grids `"32"`, `"64"` and their extrapolation `"ext"`).
 pub const STEADY_CSV: &str = include_str!("../data/steady_bem.csv");
@@ -122,7 +124,10 @@ pub fn model_transient(
     // Normalised creepage xi_n = xi G a^2/(mu P) = xi a^2 here.
     let scale = a * a;
     let mut st = CreepState::new();
-    st.update_model_with_radius(&pair, model, p, a, Vec2::ZERO, Vec2::ZERO);
+    st.update(
+        &CreepLaw::new(pair, model),
+        CreepInput::new(p, Vec2::ZERO, Vec2::ZERO).with_radius(a),
+    );
     let mut prev = 0.0;
     let mut out = Vec::with_capacity(c.rolled.len());
     for (i, &rolled) in c.rolled.iter().enumerate() {
@@ -134,21 +139,19 @@ pub fn model_transient(
                 if i == 0 {
                     // Mindlin's shift to s mu P (Cattaneo-Mindlin, exact in MindlinState).
                     let d = mindlin_shift(&pair, p, a, s);
-                    let step =
-                        st.update_model_with_radius(&pair, model, p, a, Vec2::new(d, 0.0), roll);
+                    let step = st.update(
+                        &CreepLaw::new(pair, model),
+                        CreepInput::new(p, Vec2::new(d, 0.0), roll).with_radius(a),
+                    );
                     out.push((d + step.creep_displacement.x) / dq * scale);
                 } else {
                     out.push(hold_force_step(&mut st, &pair, model, p, a, dq) * scale);
                 }
             }
             TransientCase::HoldCreepage(_) => {
-                let step = st.update_model_with_radius(
-                    &pair,
-                    model,
-                    p,
-                    a,
-                    Vec2::new(xi_ss / scale * dq, 0.0),
-                    roll,
+                let step = st.update(
+                    &CreepLaw::new(pair, model),
+                    CreepInput::new(p, Vec2::new(xi_ss / scale * dq, 0.0), roll).with_radius(a),
                 );
                 out.push(step.q.x / (pair.mu * p));
             }
@@ -177,9 +180,15 @@ fn hold_force_step(
     let roll = Vec2::new(dq, 0.0);
     let mut probe = *st;
     let c = probe
-        .update_model_with_radius(pair, model, p, a, Vec2::ZERO, roll)
+        .update(
+            &CreepLaw::new(*pair, model),
+            CreepInput::new(p, Vec2::ZERO, roll).with_radius(a),
+        )
         .creep_displacement;
-    st.update_model_with_radius(pair, model, p, a, c, roll);
+    st.update(
+        &CreepLaw::new(*pair, model),
+        CreepInput::new(p, c, roll).with_radius(a),
+    );
     c.x / dq
 }
 
@@ -364,9 +373,15 @@ pub fn compliant_steady_creepage_n(
     let p = 1.0;
     let a = creep_law::hertz::contact_radius(&pair, p);
     let mut st = CreepState::new();
-    st.update_model_with_radius(&pair, model, p, a, Vec2::ZERO, Vec2::ZERO);
+    st.update(
+        &CreepLaw::new(pair, model),
+        CreepInput::new(p, Vec2::ZERO, Vec2::ZERO).with_radius(a),
+    );
     let d = mindlin_shift(&pair, p, a, s);
-    st.update_model_with_radius(&pair, model, p, a, Vec2::new(d, 0.0), Vec2::ZERO);
+    st.update(
+        &CreepLaw::new(pair, model),
+        CreepInput::new(p, Vec2::new(d, 0.0), Vec2::ZERO).with_radius(a),
+    );
     let mut xi = 0.0;
     for _ in 0..steps.max(1) {
         xi = hold_force_step(&mut st, &pair, model, p, a, a / 16.0);
@@ -572,19 +587,18 @@ pub fn mindlin_case(
                 return Ok(None);
             };
             let mut st = CreepState::new();
-            st.update_model_with_radius(&pair, model, p, a, Vec2::ZERO, Vec2::ZERO);
+            st.update(
+                &CreepLaw::new(pair, model),
+                CreepInput::new(p, Vec2::ZERO, Vec2::ZERO).with_radius(a),
+            );
             let mut prev = 0.0;
             let mut e = Vec::with_capacity(path.len());
             for &(b, s) in &path {
                 let d = shift(b, s)?;
                 let q = st
-                    .update_model_with_radius(
-                        &pair,
-                        model,
-                        p,
-                        a,
-                        Vec2::new(d - prev, 0.0),
-                        Vec2::ZERO,
+                    .update(
+                        &CreepLaw::new(pair, model),
+                        CreepInput::new(p, Vec2::new(d - prev, 0.0), Vec2::ZERO).with_radius(a),
                     )
                     .q
                     .x;

@@ -38,8 +38,10 @@
 //! contact radii, is `r epsilon delta G a/(mu P)`, so the ratio `r` at which creep matters scales
 //! as `1/epsilon`.
 
-use creep_law::kalker;
-use creep_law::{CreepModel, CreepState, LawError, Material, PairMaterial, Surface, Vec2, hertz};
+use creep_law::{
+    CreepInput, CreepLaw, CreepModel, CreepState, LawError, Material, PairMaterial, SteadyLaw,
+    Surface, Vec2, hertz,
+};
 use creep_rapier::{
     CompliantSettings, CreepMaterial, CreepSettings, CreepWorld, Fidelity, PluginError,
 };
@@ -414,12 +416,18 @@ impl RollingEffect {
         let d = c.end * self.displacement_scale() / (c.steps * c.kuhn_substeps) as f64;
         let mut st = CreepState::new();
         // Close the contact at P before any tangential motion.
-        st.update(&self.pair, p, Vec2::ZERO, Vec2::ZERO);
+        st.update(
+            &CreepLaw::kuhn(self.pair),
+            CreepInput::new(p, Vec2::ZERO, Vec2::ZERO),
+        );
         let mut out = Vec::with_capacity(c.steps + 1);
         out.push(st.force().x / self.mu_p());
         for _ in 0..c.steps {
             for _ in 0..c.kuhn_substeps {
-                st.update(&self.pair, p, Vec2::new(d, 0.0), Vec2::new(r * d, 0.0));
+                st.update(
+                    &CreepLaw::kuhn(self.pair),
+                    CreepInput::new(p, Vec2::new(d, 0.0), Vec2::new(r * d, 0.0)),
+                );
             }
             out.push(st.force().x / self.mu_p());
         }
@@ -656,7 +664,7 @@ impl RollingEffect {
         let xi = 1.0 / r;
         let mut s = SteadySolver::new(self.contact, SolverOptions::with_grid(grid))?;
         let exact = s.solve(Creepage::longitudinal(xi))?.fx / self.mu_p();
-        let kuhn = kalker::steady_force_ratio_c11(xi / self.epsilon(), self.pair.c11);
+        let kuhn = SteadyLaw::Kuhn { c11: self.pair.c11 }.force_ratio(xi / self.epsilon());
         Ok((exact, kuhn))
     }
 }
