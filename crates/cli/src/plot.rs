@@ -1,7 +1,7 @@
 //! Line charts written as SVG and PNG (plotters), shared by the CLI's figures and reports.
 //!
-//! Text is rendered with the DejaVu Sans font committed under `assets/fonts/` (Bitstream Vera
-//! licence, `assets/fonts/DejaVuSans-LICENSE.txt`) and compiled into the binary: plotters'
+//! Text is rendered with the DejaVu Sans font committed under `crates/cli/assets/fonts/` (Bitstream Vera
+//! licence, `crates/cli/assets/fonts/DejaVuSans-LICENSE.txt`) and compiled into the binary: plotters'
 //! `ab_glyph` backend needs no system fontconfig or freetype, so a fresh machine can draw.
 //! [`register_fonts`] registers it once; [`LineChart::write`] calls it.
 //!
@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// The font every chart uses (DejaVu Sans 2.37, from Debian's `fonts-dejavu-core`).
-static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
 /// The family name charts ask plotters for.
 const FAMILY: &str = "sans-serif";

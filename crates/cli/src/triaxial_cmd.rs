@@ -15,8 +15,8 @@ use crate::plot::{LineChart, Series};
 
 type Res = Result<(), Box<dyn std::error::Error>>;
 
-/// The built-in defaults (the repository's `assets/triaxial.conf`).
-const DEFAULTS: &str = include_str!("../../../assets/triaxial.conf");
+/// The built-in defaults (the repository's `crates/cli/assets/triaxial.conf`).
+const DEFAULTS: &str = include_str!("../assets/triaxial.conf");
 
 /// Arguments of `creep triaxial`.
 #[derive(Debug, clap::Args)]
@@ -27,8 +27,8 @@ pub struct TriaxialArgs {
     /// Output directory (CSVs, SVG/PNG plots, SUMMARY.md).
     #[arg(long, default_value = "triaxial")]
     out: PathBuf,
-    /// Parameters file (`key = value` lines, the form of assets/triaxial.conf); default: the
-    /// built-in copy of assets/triaxial.conf.
+    /// Parameters file (`key = value` lines, the form of crates/cli/assets/triaxial.conf); default: the
+    /// built-in copy of crates/cli/assets/triaxial.conf.
     #[arg(long)]
     config: Option<PathBuf>,
 }

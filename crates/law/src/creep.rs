@@ -83,21 +83,21 @@ impl CreepLaw {
 /// One step's input to [`CreepState::update`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CreepInput {
-    /// Normal force at the end of the step [N] (not positive or not finite: open contact).
+    /// Normal force at the end of the step \[N\] (not positive or not finite: open contact).
     pub p: f64,
-    /// Contact radius at the end of the step [m]; `None`: Hertz's, [`hertz::contact_radius`]
+    /// Contact radius at the end of the step \[m\]; `None`: Hertz's, [`hertz::contact_radius`]
     /// of `p` (give it when the host knows it better, e.g. `sqrt(R* delta)` from a DEM overlap).
     pub a: Option<f64>,
-    /// Relative displacement of the step `du_disp = du_q - du_p` in the tangent plane [m].
+    /// Relative displacement of the step `du_disp = du_q - du_p` in the tangent plane \[m\].
     pub du_disp: Vec2,
-    /// Rolling displacement of the step in the tangent plane [m] (Kuhn & Bagi 2004; only its
+    /// Rolling displacement of the step in the tangent plane \[m\] (Kuhn & Bagi 2004; only its
     /// length enters the law).
     pub du_roll: Vec2,
 }
 
 impl CreepInput {
-    /// A step at normal force `p` [N] (Hertz's contact radius) with displacements `du_disp` and
-    /// `du_roll` [m].
+    /// A step at normal force `p` \[N\] (Hertz's contact radius) with displacements `du_disp` and
+    /// `du_roll` \[m\].
     #[inline]
     pub fn new(p: f64, du_disp: Vec2, du_roll: Vec2) -> Self {
         Self {
@@ -108,7 +108,7 @@ impl CreepInput {
         }
     }
 
-    /// This step with the contact radius `a` [m] given.
+    /// This step with the contact radius `a` \[m\] given.
     #[inline]
     pub fn with_radius(self, a: f64) -> Self {
         Self { a: Some(a), ..self }
@@ -118,25 +118,25 @@ impl CreepInput {
 /// What one creep-friction update did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CreepStep {
-    /// Tangential force on p from q after the step [N].
+    /// Tangential force on p from q after the step \[N\].
     pub q: Vec2,
-    /// Contact radius used [m].
+    /// Contact radius used \[m\].
     pub a: f64,
-    /// Creep displacement of the step, `F_ss Q/|Q| |du_roll|` (after the guard) [m].
+    /// Creep displacement of the step, `F_ss Q/|Q| |du_roll|` (after the guard) \[m\].
     pub creep_displacement: Vec2,
-    /// Energy dissipated by Cattaneo-Mindlin micro-slip and gross slip [J] (>= 0).
+    /// Energy dissipated by Cattaneo-Mindlin micro-slip and gross slip \[J\] (>= 0).
     pub slip_dissipation: f64,
-    /// Energy dissipated by creep, `Q . du_creep` [J]: `|Q| F_ss |du_roll|` >= 0 for Kuhn's rule
+    /// Energy dissipated by creep, `Q . du_creep` \[J\]: `|Q| F_ss |du_roll|` >= 0 for Kuhn's rule
     /// and the fitted tier; for the transient tier it can be slightly negative for a step in
     /// which the force turns faster than the lagged creep rate follows.
     pub creep_dissipation: f64,
-    /// Energy added by simplifying an over-full load memory [J] (>= 0, see
+    /// Energy added by simplifying an over-full load memory \[J\] (>= 0, see
     /// [`MindlinStep::truncation_energy`]).
     pub truncation_energy: f64,
 }
 
 impl CreepStep {
-    /// Total energy dissipated in the step [J].
+    /// Total energy dissipated in the step \[J\].
     #[inline]
     pub fn dissipation(&self) -> f64 {
         self.slip_dissipation + self.creep_dissipation
@@ -159,7 +159,7 @@ impl CreepState {
         Self::default()
     }
 
-    /// Tangential force on p from q after the last update [N].
+    /// Tangential force on p from q after the last update \[N\].
     #[inline]
     pub fn force(&self) -> Vec2 {
         self.mindlin.force()
@@ -197,10 +197,10 @@ impl CreepState {
 
     /// One step of the creep-friction rule of `law` (Kuhn 2011, the talk, eq. 1, with the steady
     /// law of [`CreepLaw::steady`] in place of `F_ss`; see the module doc): the normal force
-    /// becomes `step.p` [N] with contact radius `step.a` [m] (Hertz's
+    /// becomes `step.p` \[N\] with contact radius `step.a` \[m\] (Hertz's
     /// [`hertz::contact_radius`] when `None`, e.g. given from a DEM overlap), and the surfaces
-    /// move by the relative displacement `du_disp = du_q - du_p` [m] while rolling by `du_roll`
-    /// [m] (Kuhn & Bagi 2004; only its length enters), both in the tangent plane.
+    /// move by the relative displacement `du_disp = du_q - du_p` \[m\] while rolling by `du_roll`
+    /// \[m\] (Kuhn & Bagi 2004; only its length enters), both in the tangent plane.
     /// [`CreepModel::FittedTransient`] also advances the lagged creep rate of
     /// [`crate::transient_law`]. Non-finite inputs count as zero motion / open contact.
     /// Switching the model of a live contact is allowed (the lag state starts from its last
@@ -304,7 +304,7 @@ impl CreepState {
     }
 }
 
-/// Displacement that unloads a force `q` [N] to zero along the Mindlin & Deresiewicz (1953)
+/// Displacement that unloads a force `q` \[N\] to zero along the Mindlin & Deresiewicz (1953)
 /// unloading branch from a virgin loading: `2 delta_CM(q/2)`, with Mindlin's loading curve
 /// `delta_CM(Q) = 3 mu P / (16 G* a) [1 - (1 - Q/(mu P))^(2/3)]` (`3 mu P/(16 G* a) = 3 mu P /
 /// (2 k_t)`); `q / k_t` when `mu P` is infinite.

@@ -1,13 +1,13 @@
 //! Hertz's normal contact of elastic spheres (Hertz 1882; Johnson 1985, *Contact Mechanics*, §4.2,
 //! §4.2) and the Rayleigh time step of a particle.
 //!
-//! All functions take the pair's effective radius `R*` [m] and modulus `E*` [Pa] through a
+//! All functions take the pair's effective radius `R*` \[m\] and modulus `E*` \[Pa\] through a
 //! [`PairMaterial`]; forces are in N, lengths in m. Non-positive loads or overlaps give zero (an
 //! open contact), never NaN.
 
 use crate::material::{Material, PairMaterial};
 
-/// Contact radius `a = (3 P R* / (4 E*))^(1/3)` [m] for normal force `p` [N] (Johnson 1985,
+/// Contact radius `a = (3 P R* / (4 E*))^(1/3)` \[m\] for normal force `p` \[N\] (Johnson 1985,
 /// §4.2). Zero for `p <= 0`.
 #[inline]
 pub fn contact_radius(pair: &PairMaterial, p: f64) -> f64 {
@@ -18,7 +18,7 @@ pub fn contact_radius(pair: &PairMaterial, p: f64) -> f64 {
     }
 }
 
-/// Normal force `P = (4/3) E* sqrt(R*) delta^(3/2)` [N] for overlap `delta` [m] (Johnson 1985,
+/// Normal force `P = (4/3) E* sqrt(R*) delta^(3/2)` \[N\] for overlap `delta` \[m\] (Johnson 1985,
 /// §4.2). Zero for `delta <= 0`.
 #[inline]
 pub fn normal_force(pair: &PairMaterial, delta: f64) -> f64 {
@@ -29,15 +29,15 @@ pub fn normal_force(pair: &PairMaterial, delta: f64) -> f64 {
     }
 }
 
-/// Overlap (approach of distant points) `delta = a^2 / R* = (3 P / (4 E* sqrt(R*)))^(2/3)` [m] for
-/// normal force `p` [N] (Johnson 1985, §4.2, inverted). Zero for `p <= 0`.
+/// Overlap (approach of distant points) `delta = a^2 / R* = (3 P / (4 E* sqrt(R*)))^(2/3)` \[m\] for
+/// normal force `p` \[N\] (Johnson 1985, §4.2, inverted). Zero for `p <= 0`.
 #[inline]
 pub fn overlap(pair: &PairMaterial, p: f64) -> f64 {
     let a = contact_radius(pair, p);
     a * a / pair.r_star
 }
 
-/// Contact radius from the overlap: `a = sqrt(R* delta)` [m] (Johnson 1985, §4.2).
+/// Contact radius from the overlap: `a = sqrt(R* delta)` \[m\] (Johnson 1985, §4.2).
 #[inline]
 pub fn contact_radius_from_overlap(pair: &PairMaterial, delta: f64) -> f64 {
     if delta > 0.0 {
@@ -47,13 +47,13 @@ pub fn contact_radius_from_overlap(pair: &PairMaterial, delta: f64) -> f64 {
     }
 }
 
-/// Normal stiffness `k_n = dP/d delta = 2 E* sqrt(R* delta) = 2 E* a` [N/m] at overlap `delta` [m].
+/// Normal stiffness `k_n = dP/d delta = 2 E* sqrt(R* delta) = 2 E* a` [N/m] at overlap `delta` \[m\].
 #[inline]
 pub fn normal_stiffness(pair: &PairMaterial, delta: f64) -> f64 {
     2.0 * pair.e_star * contact_radius_from_overlap(pair, delta)
 }
 
-/// Elastic energy stored in the normal contact, `W = (8/15) E* sqrt(R*) delta^(5/2)` [J]
+/// Elastic energy stored in the normal contact, `W = (8/15) E* sqrt(R*) delta^(5/2)` \[J\]
 /// (the integral of [`normal_force`] over the overlap).
 #[inline]
 pub fn normal_energy(pair: &PairMaterial, delta: f64) -> f64 {
@@ -64,8 +64,8 @@ pub fn normal_energy(pair: &PairMaterial, delta: f64) -> f64 {
     }
 }
 
-/// Rayleigh time step of a sphere of radius `radius` [m] made of `material`:
-/// `T_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766)` [s], the time a Rayleigh surface wave takes
+/// Rayleigh time step of a sphere of radius `radius` \[m\] made of `material`:
+/// `T_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766)` \[s\], the time a Rayleigh surface wave takes
 /// to cross half the sphere (Li, Xu & Thornton 2005, "A comparison of discrete element simulations
 /// and experiments for 'sandpiles' composed of spherical particles", Powder Technol. 160, 219-228;
 /// the Rayleigh wave speed approximation is Thornton's). DEM codes use a fraction (0.1-0.3) of it.

@@ -2,8 +2,8 @@
 //! closed-form steady creepage `F_ss` used by Kuhn's creep-friction rule.
 //!
 //! Notation: `s = |Q| / (mu P)` is the force ratio, `xi` the creepage (slip speed over rolling
-//! speed, dimensionless), `a` the contact radius [m], `G` and `nu` the pair's combined shear modulus
-//! [Pa] and Poisson ratio in Kalker's sense (see [`crate::material::PairMaterial`]). The normalised
+//! speed, dimensionless), `a` the contact radius \[m\], `G` and `nu` the pair's combined shear modulus
+//! \[Pa\] and Poisson ratio in Kalker's sense (see [`crate::material::PairMaterial`]). The normalised
 //! creepage is `xi_n = xi G a^2 / (mu P)` (dimensionless).
 
 /// Kalker's linear creep coefficient `C11` for circular contact (`a/b = 1`), from Kalker's table of
@@ -74,8 +74,8 @@ pub(crate) fn force_ratio(creepage_n: f64, c11: f64) -> f64 {
 /// (Kalker 2000; Kuhn 2011, the talk, eq. 1): `F_ss = 3 mu P / (G a^2 C11) [1 - (1 - s)^(1/3)]`.
 ///
 /// * `s` — force ratio `|Q|/(mu P)`, clamped to `[0, 1]`;
-/// * `mu_p` — Coulomb limit `mu P` [N];
-/// * `g` — combined shear modulus [Pa]; `a` — contact radius [m]; `c11` — from [`c11`].
+/// * `mu_p` — Coulomb limit `mu P` \[N\];
+/// * `g` — combined shear modulus \[Pa\]; `a` — contact radius \[m\]; `c11` — from [`c11`].
 ///
 /// Returns 0 when `a = 0` or `mu P = 0` (no contact, no creep).
 #[inline]

@@ -9,7 +9,7 @@
 //! * Rolling rate: `v_roll = ((u'_q + u'_p)/2 - c')_t`, with `c'` the velocity of the contact
 //!   point, which follows from the normal's rotation `n'`: for two spheres `n = (x_q - x_p)/d`, so
 //!   `n' = (v_q - v_p)_t / d` and `c' = v_p + rho_p n'` (`rho_p` the distance from `x_p` to `c`
-//!   along `n`), which is DESIGN's `c'_t = (R_q v_p + R_p v_q)/(R_p + R_q)` with the actual
+//!   along `n`), which is `c'_t = (R_q v_p + R_p v_q)/(R_p + R_q)` (docs/ARCHITECTURE.md §4) with the actual
 //!   distances; for a plane the normal turns with the plane, `n' = w_plane x n`, and `c` stays
 //!   under the sphere's centre.
 //!
@@ -24,7 +24,7 @@ use crate::vector::Vec3;
 /// The motion of one body and the shape of its surface at the contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyMotion {
-    /// Centre of mass (for a sphere, its centre) [m].
+    /// Centre of mass (for a sphere, its centre) \[m\].
     pub position: Vec3,
     /// Linear velocity of the centre [m/s].
     pub velocity: Vec3,

@@ -17,7 +17,7 @@ pub struct Material {
 impl Material {
     /// A validated material.
     ///
-    /// * `shear_modulus` — G [Pa], finite and > 0;
+    /// * `shear_modulus` — G \[Pa\], finite and > 0;
     /// * `poisson_ratio` — nu [-], in (-1, 0.5] (0.5: incompressible);
     /// * `friction` — Coulomb coefficient mu [-], >= 0; `f64::INFINITY` means no slip ever;
     /// * `density` — rho [kg/m^3], finite and >= 0 (0 for massless walls; the Rayleigh time step
@@ -73,7 +73,7 @@ impl Material {
         }
     }
 
-    /// Shear modulus G [Pa].
+    /// Shear modulus G \[Pa\].
     pub fn shear_modulus(&self) -> f64 {
         self.g
     }
@@ -89,7 +89,7 @@ impl Material {
     pub fn density(&self) -> f64 {
         self.density
     }
-    /// Young's modulus E = 2 G (1 + nu) [Pa] (isotropic elasticity).
+    /// Young's modulus E = 2 G (1 + nu) \[Pa\] (isotropic elasticity).
     pub fn young_modulus(&self) -> f64 {
         2.0 * self.g * (1.0 + self.nu)
     }
@@ -102,14 +102,14 @@ impl Material {
 /// The shape of a body's surface at a contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Surface {
-    /// A sphere of the given radius [m] (finite, > 0).
+    /// A sphere of the given radius \[m\] (finite, > 0).
     Sphere(f64),
     /// A plane (infinite radius of curvature).
     Plane,
 }
 
 impl Surface {
-    /// Radius of curvature [m]; `f64::INFINITY` for a plane.
+    /// Radius of curvature \[m\]; `f64::INFINITY` for a plane.
     #[inline]
     pub fn radius(self) -> f64 {
         match self {
@@ -171,13 +171,13 @@ impl FrictionCombine {
 ///   `nu = (G/2) (nu_p/G_p + nu_q/G_q)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PairMaterial {
-    /// Effective radius R* [m] (finite: two planes are rejected).
+    /// Effective radius R* \[m\] (finite: two planes are rejected).
     pub r_star: f64,
-    /// Effective Young's modulus E* [Pa].
+    /// Effective Young's modulus E* \[Pa\].
     pub e_star: f64,
-    /// Mindlin's effective shear modulus G* [Pa].
+    /// Mindlin's effective shear modulus G* \[Pa\].
     pub g_star: f64,
-    /// Kalker's combined shear modulus G [Pa].
+    /// Kalker's combined shear modulus G \[Pa\].
     pub g: f64,
     /// Kalker's combined Poisson ratio nu [-].
     pub nu: f64,
@@ -249,7 +249,7 @@ impl PairMaterial {
         Ok(self)
     }
 
-    /// Initial Cattaneo-Mindlin tangential stiffness `k_t = 8 G* a` [N/m] at contact radius `a` [m]
+    /// Initial Cattaneo-Mindlin tangential stiffness `k_t = 8 G* a` [N/m] at contact radius `a` \[m\]
     /// (Mindlin 1949).
     #[inline]
     pub fn tangential_stiffness(&self, a: f64) -> f64 {

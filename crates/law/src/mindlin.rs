@@ -52,8 +52,8 @@
 //! (see `Onset`), not at the end-of-step limit, which misses the fall of the limit as `a`
 //! shrinks. At constant `P` all three reduce to the exact Mindlin-Deresiewicz bookkeeping.
 //!
-//! Conventions: `Q` is the tangential force on body p from body q [N]; the displacement increment
-//! `du` is `du_disp = du_q - du_p` [m] in the tangent plane, so a stuck contact has `dQ = k_t du`
+//! Conventions: `Q` is the tangential force on body p from body q \[N\]; the displacement increment
+//! `du` is `du_disp = du_q - du_p` \[m\] in the tangent plane, so a stuck contact has `dQ = k_t du`
 //! with `k_t = 8 G* a` (Mindlin 1949).
 
 use crate::hertz;
@@ -63,7 +63,7 @@ use crate::vector::Vec2;
 /// The most pieces (annuli of distinct load history) one contact remembers.
 pub const MAX_PIECES: usize = 8;
 
-/// Largest displacement increment one update accepts [m]; longer ones are shortened to it (a
+/// Largest displacement increment one update accepts \[m\]; longer ones are shortened to it (a
 /// guard that keeps every output finite for any finite input, e.g. with `mu = +inf`).
 pub const MAX_INCREMENT: f64 = 1e100;
 
@@ -71,11 +71,11 @@ pub const MAX_INCREMENT: f64 = 1e100;
 /// `s(x) = a^2 - x^2` [m^2] (the slip limit is `kappa s(x)`).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Piece {
-    /// Outer radius of the annulus [m] (inner radius: the previous piece's, or 0).
+    /// Outer radius of the annulus \[m\] (inner radius: the previous piece's, or 0).
     x_hi: f64,
     /// Displacement per unit depth [1/m]; `|beta| <= kappa`, `= kappa` on springs at the limit.
     beta: Vec2,
-    /// Uniform displacement [m].
+    /// Uniform displacement \[m\].
     c: Vec2,
 }
 
@@ -108,17 +108,17 @@ fn int_s2(a: f64, x1: f64, x2: f64) -> f64 {
 /// What one Cattaneo-Mindlin update did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MindlinStep {
-    /// Tangential force on p from q after the step [N].
+    /// Tangential force on p from q after the step \[N\].
     pub q: Vec2,
-    /// Contact radius used [m].
+    /// Contact radius used \[m\].
     pub a: f64,
-    /// Energy dissipated by micro-slip and gross slip in the step [J] (>= 0): slip of each spring
+    /// Energy dissipated by micro-slip and gross slip in the step \[J\] (>= 0): slip of each spring
     /// times its force while it slipped (at constant `P` the force at the end of the step), plus
     /// the energy springs had when they left the contact, plus any energy a merge of the memory
     /// removed.
     pub slip_dissipation: f64,
     /// Energy the springs gained when the memory was over [`MAX_PIECES`] and had to be
-    /// simplified by the last-resort rule [J] (>= 0; zero in all but rare, long 2-D histories).
+    /// simplified by the last-resort rule \[J\] (>= 0; zero in all but rare, long 2-D histories).
     /// The energy balance is `work = stored + slip_dissipation - truncation_energy`.
     pub truncation_energy: f64,
 }
@@ -127,14 +127,14 @@ pub struct MindlinStep {
 /// open contact.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MindlinState {
-    /// Contact radius of the last update [m].
+    /// Contact radius of the last update \[m\].
     a: f64,
     /// Number of pieces in use.
     n: usize,
     /// The pieces, inner to outer. Between updates `n <= MAX_PIECES`; the spare slot holds the
     /// springs that enter the contact during an update until `merge` has made room for them.
     pieces: [Piece; MAX_PIECES + 1],
-    /// Tangential force after the last update [N].
+    /// Tangential force after the last update \[N\].
     q: Vec2,
 }
 
@@ -144,13 +144,13 @@ impl MindlinState {
         Self::default()
     }
 
-    /// Tangential force on p from q after the last update [N].
+    /// Tangential force on p from q after the last update \[N\].
     #[inline]
     pub fn force(&self) -> Vec2 {
         self.q
     }
 
-    /// Contact radius of the last update [m].
+    /// Contact radius of the last update \[m\].
     #[inline]
     pub fn contact_radius(&self) -> f64 {
         self.a
@@ -179,7 +179,7 @@ impl MindlinState {
         self.q = apply(self.q);
     }
 
-    /// Elastic energy stored in the tangential springs [J]:
+    /// Elastic energy stored in the tangential springs \[J\]:
     /// `W = 4 G* integral_0^a |u(x)|^2 dx` (two halves, `(1/2) 4 G* |u|^2` per unit length).
     pub fn elastic_energy(&self, pair: &PairMaterial) -> f64 {
         let mut x_lo = 0.0;
@@ -191,15 +191,15 @@ impl MindlinState {
         4.0 * pair.g_star * w
     }
 
-    /// Advances the contact by one step: the normal force becomes `p` [N] (Hertz gives the contact
-    /// radius) and the surfaces move by `du` [m] (`du_q - du_p`, tangent plane). Non-finite or
+    /// Advances the contact by one step: the normal force becomes `p` \[N\] (Hertz gives the contact
+    /// radius) and the surfaces move by `du` \[m\] (`du_q - du_p`, tangent plane). Non-finite or
     /// negative `p` is treated as an open contact, a non-finite `du` as no motion.
     pub fn update(&mut self, pair: &PairMaterial, p: f64, du: Vec2) -> MindlinStep {
         let a = hertz::contact_radius(pair, p);
         self.update_with_radius(pair, a, du)
     }
 
-    /// [`MindlinState::update`] with the contact radius `a` [m] given directly (e.g. from the
+    /// [`MindlinState::update`] with the contact radius `a` \[m\] given directly (e.g. from the
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
         let a = if a.is_finite() && a > 0.0 { a } else { 0.0 };

@@ -66,9 +66,9 @@ impl RollingModel {
 /// Inputs of one rolling-torque evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RollingInput {
-    /// Normal force P [N].
+    /// Normal force P \[N\].
     pub p: f64,
-    /// Effective rolling radius R* [m].
+    /// Effective rolling radius R* \[m\].
     pub r_star: f64,
     /// Normal contact stiffness k_n [N/m] (EPSD only; e.g. Hertz's `2 E* a`).
     pub k_n: f64,
@@ -76,7 +76,7 @@ pub struct RollingInput {
     pub w_roll: Vec3,
     /// Unit contact normal (EPSD only: the stored spring torque is kept in the tangent plane).
     pub normal: Vec3,
-    /// Time step [s] (EPSD only).
+    /// Time step \[s\] (EPSD only).
     pub dt: f64,
     /// Equivalent rolling inertia `I_r` [kg m^2] (EPSD damping only; see [`epsd_rolling_inertia`]).
     pub rolling_inertia: f64,
@@ -87,7 +87,7 @@ pub struct RollingInput {
 pub struct RollingStep {
     /// Torque on body q [N m] (`-torque` on p).
     pub torque: Vec3,
-    /// Energy dissipated in the step [J] (>= 0): `-M . w_r dt` for types A and B; dashpot work
+    /// Energy dissipated in the step \[J\] (>= 0): `-M . w_r dt` for types A and B; dashpot work
     /// plus plastic rotation times `M_m` for EPSD.
     pub dissipation: f64,
     /// Whether the resistance is fully mobilised (type A always when rolling; EPSD at its cap).

@@ -260,9 +260,9 @@ impl SteadyLaw {
         }
     }
 
-    /// Dimensional steady creepage [-] for a tangential force of magnitude `q_abs` [N], Coulomb
-    /// limit `mu_p` [N] (`+inf`: no slip, Kalker's linear theory `|Q|/(G a^2 C11)`), combined
-    /// shear modulus `g` [Pa] and contact radius `a` [m]: `mu P/(G a^2) xi_n(|Q|/(mu P))`.
+    /// Dimensional steady creepage [-] for a tangential force of magnitude `q_abs` \[N\], Coulomb
+    /// limit `mu_p` \[N\] (`+inf`: no slip, Kalker's linear theory `|Q|/(G a^2 C11)`), combined
+    /// shear modulus `g` \[Pa\] and contact radius `a` \[m\]: `mu P/(G a^2) xi_n(|Q|/(mu P))`.
     /// Returns 0 when there is no contact (`a`, `g` or `mu P` not positive).
     #[inline]
     pub fn creepage_for_force(&self, q_abs: f64, mu_p: f64, g: f64, a: f64) -> f64 {

@@ -41,8 +41,8 @@ pub const INITIAL_FRACTION: f64 = 0.5;
 /// `l` of the relaxation length `L = l a sqrt(1 - s)` of each lag [-].
 pub const RELAXATION_LENGTH: f64 = 0.3;
 
-/// Relaxation length `L` [m] at force ratio `s` (clamped to `[0, 1]`) and contact radius `a`
-/// [m]: `l a sqrt(1 - s)` ([`RELAXATION_LENGTH`]); zero at full slip.
+/// Relaxation length `L` \[m\] at force ratio `s` (clamped to `[0, 1]`) and contact radius `a`
+/// \[m\]: `l a sqrt(1 - s)` ([`RELAXATION_LENGTH`]); zero at full slip.
 #[inline]
 pub fn relaxation_length(s: f64, a: f64) -> f64 {
     let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
@@ -51,7 +51,7 @@ pub fn relaxation_length(s: f64, a: f64) -> f64 {
 
 /// One step of the transient creep rate: returns `(rate, lag_new)` for the steady rate vector
 /// `target` = `F(s) Q/|Q|` [-], the lag state `lag = [phi_1, phi_2]` [-] at the start of the
-/// step, the rolled distance `roll` [m] (>= 0) and the relaxation length `length` [m] (> 0;
+/// step, the rolled distance `roll` \[m\] (>= 0) and the relaxation length `length` \[m\] (> 0;
 /// otherwise the lag is skipped and the steady rate acts at once). The creep displacement of the
 /// step is `rate * roll`.
 #[inline]

@@ -77,7 +77,7 @@ impl CircularContact {
         if s > 0.0 { self.p0() * s.sqrt() } else { 0.0 }
     }
     /// Creepage scale `mu P / (G a^2)` \[dimensionless\]: the normalised creepage is
-    /// `xi_n = xi / creepage_scale()` (the project's convention, DESIGN.md §2).
+    /// `xi_n = xi / creepage_scale()` (the project's convention, docs/ARCHITECTURE.md §4).
     pub fn creepage_scale(&self) -> f64 {
         self.mu * self.p / (self.g * self.a * self.a)
     }

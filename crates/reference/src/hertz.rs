@@ -91,7 +91,7 @@ impl Hertz {
 
 /// `integral_0^1 (1 - x^(5/2))^(-1/2) dx = Gamma(7/5) Gamma(1/2) / Gamma(9/10)`, the time
 /// integral of Hertz's impact (Johnson 1985, §11.4, eq. 11.23; Gamma values to 16 digits).
-const IMPACT_INTEGRAL: f64 = 1.471_637_592_162_353;
+pub const IMPACT_INTEGRAL: f64 = 1.471_637_592_162_353;
 
 /// The normal impact of two elastic spheres (or a sphere on a fixed plane) with relative
 /// approach speed `v`, in Hertz's quasi-static theory (Hertz 1882; Johnson 1985, *Contact

@@ -61,7 +61,7 @@ impl Pair {
     }
 
     /// Hertz's contact modulus `E*` \[Pa\]: `1/E* = (1 - nu_p^2)/E_p + (1 - nu_q^2)/E_q`
-    /// (Johnson 1985, *Contact Mechanics*, eq. 4.22; DESIGN.md §2).
+    /// (Johnson 1985, *Contact Mechanics*, eq. 4.22; docs/ARCHITECTURE.md §4).
     pub fn e_star(&self) -> f64 {
         let c = |m: &Elastic| (1.0 - m.nu * m.nu) / m.e();
         1.0 / (c(&self.p) + c(&self.q))
@@ -69,7 +69,7 @@ impl Pair {
 
     /// Mindlin's tangential modulus `G*` \[Pa\]: `1/G* = (2 - nu_p)/G_p + (2 - nu_q)/G_q`, so that
     /// the initial tangential stiffness is `8 G* a` (Mindlin 1949, "Compliance of elastic bodies in
-    /// contact", J. Appl. Mech. 16; Johnson 1985, §7.2; DESIGN.md §2).
+    /// contact", J. Appl. Mech. 16; Johnson 1985, §7.2; docs/ARCHITECTURE.md §4).
     pub fn g_star(&self) -> f64 {
         let c = |m: &Elastic| (2.0 - m.nu) / m.g;
         1.0 / (c(&self.p) + c(&self.q))

@@ -6,7 +6,7 @@
 //! contact", J. Appl. Mech. 16); Mindlin & Deresiewicz 1953 ("Elastic spheres in contact under
 //! varying oblique forces", J. Appl. Mech. 20); Johnson 1985, *Contact Mechanics*, §7.2.
 //!
-//! With `K = 3 mu P / (16 G* a)` and `1/G* = (2 - nu_p)/G_p + (2 - nu_q)/G_q` (DESIGN.md §2):
+//! With `K = 3 mu P / (16 G* a)` and `1/G* = (2 - nu_p)/G_p + (2 - nu_q)/G_q` (docs/ARCHITECTURE.md §4):
 //!
 //! * loading from rest to `Q`: `delta = K [1 - (1 - Q/(mu P))^(2/3)]`, stick radius
 //!   `c = a (1 - Q/(mu P))^(1/3)`;

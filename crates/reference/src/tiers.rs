@@ -160,14 +160,14 @@ pub fn model_transient(
     Ok(out)
 }
 
-/// Cattaneo-Mindlin shift [m] of loading from rest to `s mu P` (Mindlin 1949;
+/// Cattaneo-Mindlin shift \[m\] of loading from rest to `s mu P` (Mindlin 1949;
 /// `3 mu P/(16 G* a) [1 - (1 - s)^(2/3)]`).
 fn mindlin_shift(pair: &PairMaterial, p: f64, a: f64, s: f64) -> f64 {
     let ds = 3.0 * pair.mu * p / (16.0 * pair.g_star * a);
     ds * (1.0 - (1.0 - s).powf(2.0 / 3.0))
 }
 
-/// One step rolling `dq` [m] with the force held: the contact slides by exactly the step's creep
+/// One step rolling `dq` \[m\] with the force held: the contact slides by exactly the step's creep
 /// displacement. Returns the creepage of the step (creep displacement over `dq`, dimensional).
 fn hold_force_step(
     st: &mut CreepState,

@@ -1,5 +1,5 @@
 //! One Rapier step of a settled pile, with and without the creep plugin, in the same run and
-//! from the same settled state (DESIGN.md §4: a collider with `MODIFY_SOLVER_CONTACTS` takes its
+//! from the same settled state (docs/ARCHITECTURE.md §6: a collider with `MODIFY_SOLVER_CONTACTS` takes its
 //! pairs out of Rapier's contact recycling). The piles are `creep_scenes::pile`'s, the ones
 //! `creep report`'s scale section times.
 //!

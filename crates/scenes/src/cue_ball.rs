@@ -15,7 +15,7 @@ use crate::measure::{SceneError, positive};
 pub struct CueBallRun {
     /// Speed once rolling [m/s].
     pub final_speed: f64,
-    /// Time at which slip fell below 1 % of the speed [s].
+    /// Time at which slip fell below 1 % of the speed \[s\].
     pub slip_time: f64,
 }
 
@@ -28,7 +28,7 @@ pub struct CueBallResult {
     pub creep: CueBallRun,
     /// `(5/7) v0` [m/s].
     pub final_speed_expected: f64,
-    /// `2 v0 / (7 mu g)` [s].
+    /// `2 v0 / (7 mu g)` \[s\].
     pub slip_time_expected: f64,
 }
 
@@ -75,7 +75,7 @@ fn run_one(
     })
 }
 
-/// Runs the cue ball (launch speed `v0` [m/s], step `dt` [s]) with Coulomb and with creep.
+/// Runs the cue ball (launch speed `v0` [m/s], step `dt` \[s\]) with Coulomb and with creep.
 pub fn run(material: Material, v0: f64, dt: f64) -> Result<CueBallResult, SceneError> {
     positive("v0", v0)?;
     positive("dt", dt)?;

@@ -49,7 +49,7 @@ fn run_one(
     Ok(f64::from(w.physics.bodies[ball].linvel().x))
 }
 
-/// A 0.1 m ball launched rolling at `v0` [m/s] for `duration` [s] at step `dt` [s].
+/// A 0.1 m ball launched rolling at `v0` [m/s] for `duration` \[s\] at step `dt` \[s\].
 pub fn run(
     material: Material,
     v0: f64,

@@ -16,17 +16,17 @@ use crate::measure::{RollingMeter, SceneError, positive};
 /// Parameters of the friction drive.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DriveParams {
-    /// Radius of both spheres [m].
+    /// Radius of both spheres \[m\].
     pub radius: f64,
     /// Material of both spheres.
     pub material: Material,
     /// Angular speed of the driving sphere [rad/s].
     pub omega: f64,
-    /// Extra force pressing the output sphere onto the driver [N] (>= 0).
+    /// Extra force pressing the output sphere onto the driver \[N\] (>= 0).
     pub press: f64,
-    /// Time step [s].
+    /// Time step \[s\].
     pub dt: f64,
-    /// Duration [s]; the creepage is measured over the last half.
+    /// Duration \[s\]; the creepage is measured over the last half.
     pub duration: f64,
 }
 
@@ -44,17 +44,17 @@ impl Default for DriveParams {
 }
 
 impl DriveParams {
-    /// Mass of each sphere [kg] (uniform solid sphere).
+    /// Mass of each sphere \[kg\] (uniform solid sphere).
     pub fn mass(&self) -> f64 {
         crate::measure::sphere_mass(self.material.density(), self.radius)
     }
-    /// Normal force of the contact: the output sphere's weight plus `press` [N].
+    /// Normal force of the contact: the output sphere's weight plus `press` \[N\].
     pub fn normal_force(&self) -> f64 {
         self.mass() * G + self.press
     }
 
     /// Kalker's steady creepage `F_ss(Q/(mu P))` [-] (Kalker 2000; Kuhn 2011) of the two
-    /// spheres' contact at normal force `pn` and tangential force `q` [N], with Hertz's contact
+    /// spheres' contact at normal force `pn` and tangential force `q` \[N\], with Hertz's contact
     /// radius at `pn`.
     pub fn expected_creepage(&self, pn: f64, q: f64) -> Result<f64, SceneError> {
         let pair = PairMaterial::new(
@@ -74,16 +74,16 @@ impl DriveParams {
 pub struct DriveRow {
     /// Brake torque on the output sphere [N m].
     pub brake_torque: f64,
-    /// Normal force P [N].
+    /// Normal force P \[N\].
     pub p: f64,
-    /// Friction force the contact transmitted, measured [N] (`T / R` up to the engine's
+    /// Friction force the contact transmitted, measured \[N\] (`T / R` up to the engine's
     /// contact-penetration lever arm, a fraction of a percent).
     pub q: f64,
     /// Q / (mu P) [-].
     pub q_over_mu_p: f64,
-    /// Hertz contact radius [m].
+    /// Hertz contact radius \[m\].
     pub contact_radius: f64,
-    /// Combined shear modulus (Kalker) [Pa].
+    /// Combined shear modulus (Kalker) \[Pa\].
     pub g: f64,
     /// Combined Poisson ratio (Kalker) [-].
     pub nu: f64,
@@ -101,9 +101,9 @@ pub struct DriveRow {
 struct Measured {
     /// Creepage `(R w_in - R w_out) / (R (w_in + w_out) / 2)` from the accumulated angles.
     creepage: f64,
-    /// Mean friction force the contact transmitted (the plugin's record) [N].
+    /// Mean friction force the contact transmitted (the plugin's record) \[N\].
     q: f64,
-    /// Mean normal force [N].
+    /// Mean normal force \[N\].
     p: f64,
 }
 

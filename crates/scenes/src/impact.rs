@@ -26,7 +26,7 @@ use crate::measure::{SceneError, positive};
 pub struct ImpactParams {
     /// Material of the sphere and the wall.
     pub material: Material,
-    /// Sphere radius R [m].
+    /// Sphere radius R \[m\].
     pub radius: f64,
     /// Approach speed v [m/s].
     pub speed: f64,
@@ -53,13 +53,13 @@ impl Default for ImpactParams {
 /// What the impact measured, next to Hertz's closed form.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpactResult {
-    /// The time step [s].
+    /// The time step \[s\].
     pub dt: f64,
-    /// The Rayleigh time step `T_R` [s].
+    /// The Rayleigh time step `T_R` \[s\].
     pub rayleigh_time: f64,
-    /// Contact duration, interpolated to the gap's zero crossings [s].
+    /// Contact duration, interpolated to the gap's zero crossings \[s\].
     pub duration: f64,
-    /// Largest normal force the regime applied [N].
+    /// Largest normal force the regime applied \[N\].
     pub peak_force: f64,
     /// Rebound speed over approach speed [-].
     pub rebound: f64,

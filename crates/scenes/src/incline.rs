@@ -17,15 +17,15 @@ pub const G: f64 = 9.81;
 /// Parameters of the incline scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InclineParams {
-    /// Incline angle theta [rad], in (0, atan(7 mu / 2)) for rolling.
+    /// Incline angle theta \[rad\], in (0, atan(7 mu / 2)) for rolling.
     pub theta: f64,
-    /// Sphere radius R [m].
+    /// Sphere radius R \[m\].
     pub radius: f64,
     /// Material of ball and incline (G, nu, rho; friction mu).
     pub material: Material,
-    /// Time step [s].
+    /// Time step \[s\].
     pub dt: f64,
-    /// Duration [s]; slip is measured over the second half.
+    /// Duration \[s\]; slip is measured over the second half.
     pub duration: f64,
     /// The plugin's steady creep law (and the one the expectation uses).
     pub creep_model: CreepModel,
@@ -48,7 +48,7 @@ impl Default for InclineParams {
 
 impl InclineParams {
     /// The closed-form loads of rolling without slip, `(P, Q)` = `(m g cos(theta), (2/7) m g
-    /// sin(theta))` [N] (a uniform solid sphere, `I = (2/5) m R^2`).
+    /// sin(theta))` \[N\] (a uniform solid sphere, `I = (2/5) m R^2`).
     pub fn rolling_loads(&self) -> (f64, f64) {
         let m = crate::measure::sphere_mass(self.material.density(), self.radius);
         (
@@ -58,7 +58,7 @@ impl InclineParams {
     }
 
     /// The steady creepage [-] of the ball on the plane at normal force `pn` and friction force
-    /// `q` [N]: the plugin's steady law (`creep_model`; Kalker's `F_ss(Q/(mu P))` for `Kuhn`,
+    /// `q` \[N\]: the plugin's steady law (`creep_model`; Kalker's `F_ss(Q/(mu P))` for `Kuhn`,
     /// Kalker 2000, Kuhn 2011) with Hertz's contact radius at `pn`.
     pub fn expected_creepage(&self, pn: f64, q: f64) -> Result<f64, SceneError> {
         let pair = PairMaterial::new(
@@ -87,9 +87,9 @@ pub struct InclineRun {
     /// Slip over the second half, `(dx - R dtheta) / dx` from positions [-].
     pub slip: f64,
     /// Mean friction force the contact transmitted over the second half (the plugin's record;
-    /// 0 when the plugin kept no record) [N].
+    /// 0 when the plugin kept no record) \[N\].
     pub q: f64,
-    /// Mean normal force over the second half (idem) [N].
+    /// Mean normal force over the second half (idem) \[N\].
     pub p: f64,
     /// What the plugin did in the last step.
     pub counts: StepCounts,

@@ -17,12 +17,12 @@ pub enum SceneError {
     Parameter(String),
 }
 
-/// Accumulates a body's rotation about a fixed axis from its orientation increments [rad]
+/// Accumulates a body's rotation about a fixed axis from its orientation increments \[rad\]
 /// (robust to the velocity offsets a substepping solver leaves at the end of a step).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RollingMeter {
     last: Option<Rotation>,
-    /// Accumulated angle about the axis [rad].
+    /// Accumulated angle about the axis \[rad\].
     pub angle: f64,
 }
 
@@ -50,8 +50,8 @@ pub(crate) fn positive(name: &str, v: f64) -> Result<f64, SceneError> {
     }
 }
 
-/// Mass of a uniform solid sphere, `rho (4/3) pi R^3` [kg], from its density `rho` [kg/m^3] and
-/// radius `R` [m].
+/// Mass of a uniform solid sphere, `rho (4/3) pi R^3` \[kg\], from its density `rho` [kg/m^3] and
+/// radius `R` \[m\].
 pub fn sphere_mass(density: f64, radius: f64) -> f64 {
     density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3)
 }

@@ -16,13 +16,13 @@
 //! measures the engine's coupling to the law (kinematics, f32 poses, the step), not the law.
 //!
 //! `r = 0` is Cattaneo-Mindlin loading (Mindlin 1949): `delta = 3 mu P/(16 G* a) [1 - (1 -
-//! Q/(mu P))^(2/3)]` (DESIGN.md §2). For large `r` the contact rolls many contact radii before `Q`
+//! Q/(mu P))^(2/3)]` (docs/ARCHITECTURE.md §4). For large `r` the contact rolls many contact radii before `Q`
 //! saturates and tends to steady rolling at creepage `delta / (r delta) = 1/r` (Kalker 2000;
 //! exact: [`creep_reference::bem::SteadySolver`]).
 //!
 //! # Conventions
 //!
-//! DESIGN.md §2 and `creep_reference::bem`: `du_disp = du_q - du_p` is the rigid shift of body q
+//! docs/ARCHITECTURE.md §4 and `creep_reference::bem`: `du_disp = du_q - du_p` is the rigid shift of body q
 //! relative to body p (the boundary elements' `dW`), `Q` is the force on p from q, and `Q`
 //! follows `du_disp` (`Q . du_disp >= 0`). Sliding and rolling are both along `+x` (the
 //! contact moves in `+x` over both surfaces). Reversing the rolling direction gives the same
@@ -447,7 +447,7 @@ impl RollingEffect {
     /// orientations to the identity and their linear velocities to zero, and their angular
     /// velocities (about `z`) set so that the surface velocities at the contact point `c` are
     /// `u'_q = v_roll + v_disp/2` (upper ball) and `u'_p = v_roll - v_disp/2` (lower ball)
-    /// along `+x`: Kuhn & Bagi (2004) rates (DESIGN.md §2) with fixed centres (`c' = 0`) give
+    /// along `+x`: Kuhn & Bagi (2004) rates (docs/ARCHITECTURE.md §4) with fixed centres (`c' = 0`) give
     /// exactly `v_disp = u'_q - u'_p` and `v_roll = (u'_q + u'_p)/2`, and a pure spin leaves the
     /// overlap, hence `P` and `a`, unchanged. Each engine step moves `v_disp dt` = the increment
     /// of one sub-step of [`RollingEffect::kuhn_path`] (`kuhn_substeps` engine steps per

@@ -11,7 +11,7 @@ use creep_scenes::rolling_effect::{
 };
 
 /// Mindlin's closed form for the figure's contact, from the material constants: two spheres of
-/// one material, `1/G* = 2 (2 - nu)/G` (DESIGN.md §2).
+/// one material, `1/G* = 2 (2 - nu)/G` (docs/ARCHITECTURE.md §4).
 fn mindlin(fig: &RollingEffect) -> Mindlin {
     let m = fig.config().material;
     let g_star = m.shear_modulus() / (2.0 * (2.0 - m.poisson_ratio()));

@@ -5,7 +5,7 @@
 use creep_scenes::SceneError;
 use creep_scenes::triaxial::{Specimen, TriaxialParams, compact, shear};
 
-const CONF: &str = include_str!("../../../assets/triaxial.conf");
+const CONF: &str = include_str!("../../cli/assets/triaxial.conf");
 
 #[test]
 fn the_defaults_file_is_the_default() {

@@ -9,7 +9,7 @@ fn pair() -> PairMaterial {
     crate::material::steel_ball_on_plane()
 }
 
-/// Mindlin's slip displacement `delta_s = 3 mu P / (16 G* a)` [m].
+/// Mindlin's slip displacement `delta_s = 3 mu P / (16 G* a)` \[m\].
 fn delta_s(pair: &PairMaterial, p: f64) -> f64 {
     3.0 * pair.mu * p / (16.0 * pair.g_star * hertz::contact_radius(pair, p))
 }
@@ -352,7 +352,7 @@ const CYCLES: usize = 5;
 /// step for every steps-per-cycle used, so that its turning points fall on step boundaries.
 const HALF_PERIOD: f64 = 0.3;
 
-/// A tangential displacement path `U(t) = dir * f(t)` [m], `t` in radius cycles.
+/// A tangential displacement path `U(t) = dir * f(t)` \[m\], `t` in radius cycles.
 #[derive(Clone, Copy)]
 enum Path {
     /// `f = amp t / CYCLES`: monotone.
@@ -374,7 +374,7 @@ impl Path {
     }
 }
 
-/// `a(t) = a0 (1 + EPS sin(2 pi t))` [m].
+/// `a(t) = a0 (1 + EPS sin(2 pi t))` \[m\].
 fn sine_radius(a0: f64, t: f64) -> f64 {
     a0 * (1.0 + EPS * (2.0 * std::f64::consts::PI * t).sin())
 }

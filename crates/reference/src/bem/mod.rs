@@ -15,7 +15,7 @@
 //!   enters the contact at its **leading edge `x = +a`** and leaves at `x = -a`.
 //! * Traction `t` is the traction **on body p from body q** (the project's `Q` is its integral).
 //!   Creepage is the rigid slip velocity of **q relative to p** divided by the rolling speed
-//!   (`v_disp / |v_roll|` of DESIGN.md §2), so the rigid slip per unit rolling distance at
+//!   (`v_disp / |v_roll|` of docs/ARCHITECTURE.md §4), so the rigid slip per unit rolling distance at
 //!   `(x, y)` is `w = (xi - phi y, eta + phi x)` with `xi` longitudinal, `eta` lateral
 //!   \[dimensionless\] and `phi` the spin creepage \[1/m\] (relative angular velocity of q with
 //!   respect to p about the normal from p to q, over the rolling speed).
