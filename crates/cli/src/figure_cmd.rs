@@ -1,16 +1,17 @@
 //! `creep figure ...`: the talk's figures, written as CSV, SVG and PNG into a directory, with the
 //! numbers behind them printed as tables.
 
+use crate::output::{create_dir, write as write_file};
 use crate::plot::{Legend, LineChart, LineStyle, Series};
+use crate::progress::bar as progress;
 use clap::{Args, Subcommand};
+use creep_reference::parallel::parallel_map;
 use creep_scenes::rolling_effect::{
     CompliantPath, CreepEffect, Curve, RATIOS, RollingEffect, RollingEffectConfig,
 };
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 use std::io::Write;
-use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::path::PathBuf;
 
 type Res = Result<(), Box<dyn std::error::Error>>;
 
@@ -70,18 +71,6 @@ pub fn run(cmd: &FigureCommand, out: &mut dyn Write) -> Res {
     }
 }
 
-/// A progress bar on stderr for `len` steps (hidden when stderr is not a terminal).
-fn progress(len: u64, what: &str) -> ProgressBar {
-    let pb = ProgressBar::new(len);
-    if let Ok(style) =
-        ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} ({eta})")
-    {
-        pb.set_style(style);
-    }
-    pb.set_message(what.to_string());
-    pb
-}
-
 /// Every path of `fig`, `threads` at a time; the progress bar advances per boundary-element
 /// step.
 fn run_paths(
@@ -94,41 +83,26 @@ fn run_paths(
     // The longest paths (largest r: most sub-steps) first, for load balance.
     let mut order: Vec<usize> = (0..ratios.len()).collect();
     order.sort_by(|&i, &j| ratios[j].total_cmp(&ratios[i]));
-    let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Result<Curve, String>>>> = Mutex::new(vec![None; ratios.len()]);
-    std::thread::scope(|s| {
-        for _ in 0..threads.clamp(1, ratios.len().max(1)) {
-            s.spawn(|| {
-                while let Some(&i) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
-                    let r = ratios[i];
-                    let mut tick = || pb.inc(1);
-                    let curve = fig
-                        .exact_path(r, grid, &mut tick)
-                        .and_then(|exact| {
-                            Ok(Curve {
-                                r,
-                                delta: fig.deltas(),
-                                exact,
-                                kuhn: fig.kuhn_path(r)?,
-                            })
-                        })
-                        .map_err(|e| e.to_string());
-                    if let Ok(mut v) = results.lock() {
-                        v[i] = Some(curve);
-                    }
-                }
-            });
-        }
-    });
-    let results = results.into_inner().map_err(|e| e.to_string())?;
-    results
-        .into_iter()
-        .map(|c| match c {
-            Some(Ok(c)) => Ok(c),
-            Some(Err(e)) => Err(e.into()),
-            None => Err("a path was not computed".into()),
-        })
-        .collect()
+    let done = parallel_map(&order, threads, |&i| {
+        let r = ratios[i];
+        let mut tick = || pb.inc(1);
+        let exact = fig.exact_path(r, grid, &mut tick)?;
+        Ok::<_, creep_scenes::rolling_effect::RollingEffectError>((
+            i,
+            Curve {
+                r,
+                delta: fig.deltas(),
+                exact,
+                kuhn: fig.kuhn_path(r)?,
+            },
+        ))
+    })?;
+    // Back into the order of `ratios`.
+    let mut curves: Vec<Option<Curve>> = (0..ratios.len()).map(|_| None).collect();
+    for (i, c) in done {
+        curves[i] = Some(c);
+    }
+    Ok(curves.into_iter().flatten().collect())
 }
 
 fn rolling_effect(args: &RollingEffectArgs, out: &mut dyn Write) -> Res {
@@ -156,8 +130,7 @@ fn rolling_effect(args: &RollingEffectArgs, out: &mut dyn Write) -> Res {
     }
     let fig = RollingEffect::new(config)?;
     let ratios = fig.config().ratios.clone();
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("creating {}: {e}", args.out.display()))?;
+    create_dir(&args.out)?;
 
     let m = fig.config().material;
     let c = fig.contact();
@@ -546,8 +519,4 @@ fn check_grid(
         )?;
     }
     Ok(())
-}
-
-fn write_file(path: &Path, text: &str) -> Res {
-    std::fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()).into())
 }

@@ -2,7 +2,9 @@
 mod bench_cmd;
 mod figure_cmd;
 mod law_cmd;
+mod output;
 mod plot;
+mod progress;
 mod ref_cmd;
 mod report_cmd;
 mod run_cmd;

@@ -227,25 +227,66 @@ impl LineChart {
 
     /// Writes `<stem>.svg` and `<stem>.png`; returns the two paths.
     pub fn write(&self, stem: &Path) -> Result<[PathBuf; 2], PlotError> {
-        let svg = stem.with_extension("svg");
-        let png = stem.with_extension("png");
-        self.write_svg(&svg)?;
-        self.write_png(&png)?;
-        Ok([svg, png])
+        self.write_scaled(stem, Scale::Linear)
     }
 
     /// Writes the chart as SVG to `path`.
     pub fn write_svg(&self, path: &Path) -> Result<(), PlotError> {
         register_fonts()?;
-        let root = SVGBackend::new(path, self.size).into_drawing_area();
-        self.draw(&root, path)
+        self.render(
+            &SVGBackend::new(path, self.size).into_drawing_area(),
+            path,
+            Scale::Linear,
+        )
     }
 
     /// Writes the chart as PNG to `path`.
     pub fn write_png(&self, path: &Path) -> Result<(), PlotError> {
         register_fonts()?;
-        let root = BitMapBackend::new(path, self.size).into_drawing_area();
-        self.draw(&root, path)
+        self.render(
+            &BitMapBackend::new(path, self.size).into_drawing_area(),
+            path,
+            Scale::Linear,
+        )
+    }
+
+    /// The one prologue of every chart: the font, then `<stem>.svg` and `<stem>.png` drawn by
+    /// [`LineChart::render`] on the two backends.
+    fn write_scaled(&self, stem: &Path, scale: Scale) -> Result<[PathBuf; 2], PlotError> {
+        register_fonts()?;
+        let svg = stem.with_extension("svg");
+        let png = stem.with_extension("png");
+        self.render(
+            &SVGBackend::new(&svg, self.size).into_drawing_area(),
+            &svg,
+            scale,
+        )?;
+        self.render(
+            &BitMapBackend::new(&png, self.size).into_drawing_area(),
+            &png,
+            scale,
+        )?;
+        Ok([svg, png])
+    }
+
+    /// Draws the chart on `root` (written to `path`, which errors name): white background, the
+    /// axes of `scale` with their series and legend, then presents it.
+    fn render<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        path: &Path,
+        scale: Scale,
+    ) -> Result<(), PlotError> {
+        let err = |e: &dyn std::fmt::Display| PlotError::Draw {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        };
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        match scale {
+            Scale::Linear => self.draw(root, &err)?,
+            Scale::LogLog => self.draw_log_log(root, &err)?,
+        }
+        root.present().map_err(|e| err(&e))
     }
 
     /// The data's bounds `(x0, x1, y0, y1)`, or the fixed ranges.
@@ -284,17 +325,13 @@ impl LineChart {
         Ok((x0, x1, y0, y1))
     }
 
+    /// Linear axes: the series as lines, dashes and/or markers.
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
-        path: &Path,
+        err: &dyn Fn(&dyn std::fmt::Display) -> PlotError,
     ) -> Result<(), PlotError> {
-        let err = |e: &dyn std::fmt::Display| PlotError::Draw {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        };
         let (x0, x1, y0, y1) = self.bounds()?;
-        root.fill(&WHITE).map_err(|e| err(&e))?;
         let mut chart = self
             .frame(root)
             .build_cartesian_2d(x0..x1, y0..y1)
@@ -337,7 +374,6 @@ impl LineChart {
             });
         }
         self.draw_legend(&mut chart).map_err(|e| err(&e))?;
-        root.present().map_err(|e| err(&e))?;
         Ok(())
     }
 }
@@ -423,8 +459,7 @@ fn tick(v: f64) -> String {
 }
 
 // ------------------------------------------------------------------------------------------------
-// Log-log charts (added for `creep report`'s speed-against-error frontier). A separate block: the
-// functions above are unchanged.
+// Log-log charts (`creep report`'s speed-against-error frontier), through the same prologue.
 // ------------------------------------------------------------------------------------------------
 
 impl LineChart {
@@ -432,18 +467,7 @@ impl LineChart {
     /// non-positive coordinate are skipped. Fixed ranges, if set, must be positive. Returns the
     /// two paths.
     pub fn write_log_log(&self, stem: &Path) -> Result<[PathBuf; 2], PlotError> {
-        register_fonts()?;
-        let svg = stem.with_extension("svg");
-        let png = stem.with_extension("png");
-        {
-            let root = SVGBackend::new(&svg, self.size).into_drawing_area();
-            self.draw_log_log(&root, &svg)?;
-        }
-        {
-            let root = BitMapBackend::new(&png, self.size).into_drawing_area();
-            self.draw_log_log(&root, &png)?;
-        }
-        Ok([svg, png])
+        self.write_scaled(stem, Scale::LogLog)
     }
 
     /// Positive data bounds rounded out to decades `(x0, x1, y0, y1)`, or the fixed ranges.
@@ -477,17 +501,13 @@ impl LineChart {
         Ok((x0, x1, y0, y1))
     }
 
+    /// Log-log axes: the series as lines (unless `LineStyle::None`) with markers.
     fn draw_log_log<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
-        path: &Path,
+        err: &dyn Fn(&dyn std::fmt::Display) -> PlotError,
     ) -> Result<(), PlotError> {
-        let err = |e: &dyn std::fmt::Display| PlotError::Draw {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        };
         let (x0, x1, y0, y1) = self.log_bounds()?;
-        root.fill(&WHITE).map_err(|e| err(&e))?;
         let mut chart = self
             .frame(root)
             .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
@@ -516,9 +536,17 @@ impl LineChart {
             }
         }
         self.draw_legend(&mut chart).map_err(|e| err(&e))?;
-        root.present().map_err(|e| err(&e))?;
         Ok(())
     }
+}
+
+/// The axes of a chart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Scale {
+    /// Linear in both axes.
+    Linear,
+    /// Logarithmic in both axes (decades).
+    LogLog,
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@ use crate::bem::{
 };
 use crate::contact::CircularContact;
 use crate::error::{RefError, check_range};
+use crate::parallel::parallel_map;
 
 /// Force ratios `Q/(mu P)` of the steady tables.
 pub const STEADY_RATIOS: [f64; 22] = [
@@ -142,50 +143,13 @@ pub fn steady_curves(
     for &nu in nus {
         check_range("nu", nu, 0.0, 0.5, "in [0, 0.5]")?;
     }
-    let one = |nu: f64| -> Result<[SteadyCurve; 3], RefError> {
+    let one = |&nu: &f64| -> Result<[SteadyCurve; 3], RefError> {
         let coarse = steady_curve(nu, grid / 2)?;
         let fine = steady_curve(nu, grid)?;
         let ext = extrapolate(&fine, &coarse);
         Ok([coarse, fine, ext])
     };
     parallel_map(nus, threads, one)
-}
-
-/// Maps `f` over `items` on up to `threads` scoped threads, keeping the order.
-fn parallel_map<T: Sync + Copy, R: Send>(
-    items: &[T],
-    threads: usize,
-    f: impl Fn(T) -> Result<R, RefError> + Sync,
-) -> Result<Vec<R>, RefError> {
-    let threads = threads.clamp(1, items.len().max(1));
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let mut out: Vec<Option<Result<R, RefError>>> = (0..items.len()).map(|_| None).collect();
-    let results = std::sync::Mutex::new(&mut out);
-    std::thread::scope(|sc| {
-        for _ in 0..threads {
-            sc.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    if i >= items.len() {
-                        break;
-                    }
-                    let r = f(items[i]);
-                    if let Ok(mut g) = results.lock() {
-                        g[i] = Some(r);
-                    }
-                }
-            });
-        }
-    });
-    out.into_iter()
-        .map(|r| {
-            r.unwrap_or(Err(RefError::NoConvergence {
-                solver: "fit worker",
-                iterations: 0,
-                residual: f64::NAN,
-            }))
-        })
-        .collect()
 }
 
 /// One transient case of the tables.
@@ -271,7 +235,7 @@ pub fn transient_curves(
         .iter()
         .flat_map(|&nu| cases.iter().map(move |&c| (nu, c)))
         .collect();
-    parallel_map(&jobs, threads, |(nu, case)| {
+    parallel_map(&jobs, threads, |&(nu, case)| {
         let coarse = transient_curve(nu, grid / 2, case, dq, steps)?;
         let fine = transient_curve(nu, grid, case, dq, steps)?;
         Ok([coarse, fine])

@@ -18,7 +18,8 @@
 //!
 //! Supporting modules: [`material`] (combined elastic constants), [`contact`] (the circular
 //! contact solved numerically), [`grid`] (boundary-element grid), [`influence`] (Boussinesq and
-//! Cerruti influence coefficients), [`error`] (typed errors).
+//! Cerruti influence coefficients), [`error`] (typed errors), [`parallel`] (the project's one
+//! thread pool, also used by the CLI).
 //!
 //! Sign conventions (see [`bem`]): traction and force on body p from body q; creepage is the rigid
 //! slip velocity of q relative to p over the rolling speed; the contact moves in `+x` (leading
@@ -37,6 +38,7 @@ pub mod influence;
 pub mod kalker_linear;
 pub mod material;
 pub mod mindlin;
+pub mod parallel;
 pub mod tiers;
 
 pub use error::RefError;

@@ -15,6 +15,7 @@ pub mod incline;
 mod measure;
 pub mod pile;
 pub mod rolling_effect;
+pub mod stats;
 pub mod triaxial;
 
 pub use measure::{RollingMeter, SceneError, sphere_mass};
