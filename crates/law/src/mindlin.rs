@@ -34,7 +34,9 @@
 //! their summed trial force) — the one approximation, which vanishes as steps get small.
 //! Pieces are merged when equal; a contact keeps at most [`MAX_PIECES`] (see `merge`: two pieces
 //! at the slip limit become one along their summed force, or else the narrowest pair whose
-//! least-squares fit stays within the limit becomes that fit, or as a last resort an inner piece
+//! least-squares fit — or, when the fit's slope exceeds the limit's, the fit with its slope cut
+//! to the limit's and the same force — stays within the limit and adds no energy becomes that
+//! fit, or as a last resort an inner piece
 //! is absorbed into its outer neighbour extended inwards; all keep `|u| <= L`, and any energy the
 //! simplification removes is booked as dissipation, any it adds as `truncation_energy`).
 //!
@@ -533,7 +535,9 @@ fn shifted_slip_work(
 /// (`u = kappa s e1`, `kappa s e2`), which become one at the limit along their summed force
 /// (the stored energy is unchanged and `|u| <= kappa s` still holds); otherwise the narrowest
 /// pair whose least-squares merge stays within the limit (force kept, energy lost booked as
-/// dissipation); as a last resort the inner piece whose absorption by its outer neighbour
+/// dissipation), the merge's slope cut to `kappa` with the force kept where the fit's slope is
+/// over it (taken only if within the limit and not adding energy); as a last resort the inner
+/// piece whose absorption by its outer neighbour
 /// (extended inwards) adds the least energy.
 fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
     let a2 = a * a;
@@ -599,11 +603,30 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
         for &(_, i) in &order[..n - 1] {
             let lo = if i == 0 { 0.0 } else { out[i - 1].x_hi };
             let (p, q) = (out[i], out[i + 1]);
-            let fit = least_squares_piece(&p, &q, a, lo);
-            if fit.beta.length() <= kappa && stick_radius(&fit, kappa, a2) >= fit.x_hi {
-                d_u2 += piece_u2(&fit, a, lo, fit.x_hi)
-                    - piece_u2(&p, a, lo, p.x_hi)
-                    - piece_u2(&q, a, p.x_hi, q.x_hi);
+            let old = piece_u2(&p, a, lo, p.x_hi) + piece_u2(&q, a, p.x_hi, q.x_hi);
+            let mut fit = least_squares_piece(&p, &q, a, lo);
+            let mut ok = fit.beta.length() <= kappa && stick_radius(&fit, kappa, a2) >= fit.x_hi;
+            if !ok && fit.beta.length() > kappa {
+                // The fit's slope over the limit's (two annuli near the limit in different
+                // directions, as a turning path under a rising load leaves them): the slope
+                // cut to `kappa`, the uniform part re-solved to keep the force. Taken only if
+                // within the limit and not adding energy.
+                let len = fit.x_hi - lo;
+                let force = fit.beta * int_s(a, lo, fit.x_hi) + fit.c * len;
+                let beta = fit.beta * (kappa / fit.beta.length());
+                let cut = Piece {
+                    x_hi: fit.x_hi,
+                    beta,
+                    c: (force - beta * int_s(a, lo, fit.x_hi)) * (1.0 / len),
+                };
+                ok = len > 0.0
+                    && cut.c.is_finite()
+                    && stick_radius(&cut, kappa, a2) >= cut.x_hi
+                    && piece_u2(&cut, a, lo, cut.x_hi) <= old;
+                fit = cut;
+            }
+            if ok {
+                d_u2 += piece_u2(&fit, a, lo, fit.x_hi) - old;
                 out[i] = fit;
                 out.copy_within(i + 2..n, i + 1);
                 n -= 1;
