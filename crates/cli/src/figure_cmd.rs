@@ -1,7 +1,7 @@
 //! `creep figure ...`: the talk's figures, written as CSV, SVG and PNG into a directory, with the
 //! numbers behind them printed as tables.
 
-use crate::output::{create_dir, write as write_file};
+use crate::output::{Csv, create_dir};
 use crate::plot::{Legend, LineChart, LineStyle, Series};
 use crate::progress::bar as progress;
 use clap::{Args, Subcommand};
@@ -194,7 +194,7 @@ fn rolling_effect(args: &RollingEffectArgs, out: &mut dyn Write) -> Res {
 
     // The curves.
     let csv = args.out.join("rolling_effect.csv");
-    let mut s = String::from("r,source,delta_normalised,q_over_mu_p\n");
+    let mut s = Csv::new(&["r", "source", "delta_normalised", "q_over_mu_p"]);
     for (cv, en) in curves.iter().zip(&engine) {
         for (source, delta, q) in [
             ("exact", &cv.delta, &cv.exact),
@@ -202,11 +202,16 @@ fn rolling_effect(args: &RollingEffectArgs, out: &mut dyn Write) -> Res {
             ("engine", &en.delta, &en.q),
         ] {
             for (d, q) in delta.iter().zip(q.iter()) {
-                s.push_str(&format!("{},{source},{d:.6},{q:.8}\n", cv.r));
+                s.row(&[
+                    &cv.r,
+                    &source,
+                    &format_args!("{d:.6}"),
+                    &format_args!("{q:.8}"),
+                ]);
             }
         }
     }
-    write_file(&csv, &s)?;
+    s.write(&csv)?;
     let mut chart = LineChart::new(
         "Effect of rolling upon tangential force",
         "sliding displacement  \u{3b4} G a / (\u{3bc} P)",
@@ -276,11 +281,21 @@ fn rolling_effect(args: &RollingEffectArgs, out: &mut dyn Write) -> Res {
         "end",
         "max"
     )?;
-    let mut err_csv = String::from(
-        "r,max_error,rms_error,end_error,end_exact,end_kuhn,steady_exact,steady_kuhn,\
-         engine_max_error,engine_rms_error,engine_end_error,end_engine,\
-         engine_max_error_at_engine_p\n",
-    );
+    let mut err_csv = Csv::new(&[
+        "r",
+        "max_error",
+        "rms_error",
+        "end_error",
+        "end_exact",
+        "end_kuhn",
+        "steady_exact",
+        "steady_kuhn",
+        "engine_max_error",
+        "engine_rms_error",
+        "engine_end_error",
+        "end_engine",
+        "engine_max_error_at_engine_p",
+    ]);
     let mut max_pts = Vec::new();
     let mut rms_pts = Vec::new();
     let (mut engine_worst, mut coupling_worst) = (0.0f64, 0.0f64);
@@ -328,22 +343,21 @@ fn rolling_effect(args: &RollingEffectArgs, out: &mut dyn Write) -> Res {
                 String::new()
             }
         };
-        err_csv.push_str(&format!(
-            "{},{:.6},{:.6},{:.6},{:.6},{:.6},{},{},{:.3e},{:.3e},{:.3e},{:.8},{:.3e}\n",
-            cv.r,
-            e.max,
-            e.rms,
-            e.end,
-            end_e,
-            end_k,
-            opt(ss_exact),
-            opt(ss_kuhn),
-            ee.max,
-            ee.rms,
-            ee.end,
-            en.q.last().unwrap_or(&0.0),
-            coupling
-        ));
+        err_csv.row(&[
+            &cv.r,
+            &format_args!("{:.6}", e.max),
+            &format_args!("{:.6}", e.rms),
+            &format_args!("{:.6}", e.end),
+            &format_args!("{end_e:.6}"),
+            &format_args!("{end_k:.6}"),
+            &opt(ss_exact),
+            &opt(ss_kuhn),
+            &format_args!("{:.3e}", ee.max),
+            &format_args!("{:.3e}", ee.rms),
+            &format_args!("{:.3e}", ee.end),
+            &format_args!("{:.8}", en.q.last().unwrap_or(&0.0)),
+            &format_args!("{coupling:.3e}"),
+        ]);
         max_pts.push((cv.r, e.max));
         rms_pts.push((cv.r, e.rms));
     }
@@ -353,7 +367,7 @@ fn rolling_effect(args: &RollingEffectArgs, out: &mut dyn Write) -> Res {
          coupling: kinematics, f32, the step): largest |dQ|/(mu P) over all paths {engine_worst:.1e}; \
          against Kuhn's rule at the engine's P (Hertz at its f32 overlap) {coupling_worst:.1e}"
     )?;
-    write_file(&args.out.join("rolling_effect_error.csv"), &err_csv)?;
+    err_csv.write(&args.out.join("rolling_effect_error.csv"))?;
     let [esvg, epng] = LineChart::new(
         "Error of Kuhn's rule against the exact theory",
         "ratio of rolling to sliding  r = |du_roll| / |du_disp|",

@@ -29,6 +29,58 @@ pub fn write(path: &Path, text: &str) -> Result<(), OutputError> {
     })
 }
 
+/// A CSV table (RFC 4180) built in memory: a header, then rows of as many fields, each written
+/// with its own `Display` (so a caller keeps its number formats); a field holding a comma, a
+/// quote or a line break is quoted. The CLI's one way of writing CSV.
+#[derive(Debug, Clone)]
+pub struct Csv {
+    text: String,
+    columns: usize,
+}
+
+impl Csv {
+    /// A table with these column names.
+    pub fn new(header: &[&str]) -> Self {
+        let mut t = Self {
+            text: String::new(),
+            columns: header.len(),
+        };
+        let fields: Vec<&dyn std::fmt::Display> =
+            header.iter().map(|h| h as &dyn std::fmt::Display).collect();
+        t.push(&fields);
+        t
+    }
+
+    /// Appends one row; it must have as many fields as the header (a programming error
+    /// otherwise, caught in debug builds).
+    pub fn row(&mut self, fields: &[&dyn std::fmt::Display]) {
+        debug_assert_eq!(fields.len(), self.columns, "CSV row width");
+        self.push(fields);
+    }
+
+    fn push(&mut self, fields: &[&dyn std::fmt::Display]) {
+        for (i, f) in fields.iter().enumerate() {
+            if i > 0 {
+                self.text.push(',');
+            }
+            let v = f.to_string();
+            if v.contains([',', '"', '\n', '\r']) {
+                self.text.push('"');
+                self.text.push_str(&v.replace('"', "\"\""));
+                self.text.push('"');
+            } else {
+                self.text.push_str(&v);
+            }
+        }
+        self.text.push('\n');
+    }
+
+    /// Writes the table to `path`.
+    pub fn write(&self, path: &Path) -> Result<(), OutputError> {
+        write(path, &self.text)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -48,5 +100,16 @@ mod tests {
         let e = create_dir(&dir.join("a/b/x.csv/sub")).unwrap_err();
         assert!(e.to_string().contains("x.csv/sub"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn csv_rows_keep_formats_and_quote_separators() {
+        let mut t = Csv::new(&["name", "value"]);
+        t.row(&[&"plain", &format_args!("{:.3}", 1.23456)]);
+        t.row(&[&"a, b", &"say \"hi\""]);
+        assert_eq!(
+            t.text,
+            "name,value\nplain,1.235\n\"a, b\",\"say \"\"hi\"\"\"\n"
+        );
     }
 }

@@ -12,7 +12,8 @@ use creep_scenes::pile::{self, Interleaved};
 use indicatif::ProgressBar;
 
 use super::fit::{PowerFit, power_fit};
-use super::{Config, ReportError, Section, write_file};
+use super::{Config, ReportError, Section};
+use crate::output::Csv;
 use crate::plot::{Legend, LineChart, Series};
 
 /// One pile's measurement.
@@ -66,28 +67,35 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
         pb.inc(1);
     }
     pb.set_message("scale: writing");
-    let mut csv = String::from(
-        "spheres,active_contact_pairs,settle_steps,settle_s,max_speed_m_s,pairs,plain_step_s,\
-         plugin_step_s,ratio_median_of_pairs,ratio_of_medians,hooks_on\n",
-    );
+    let mut csv = Csv::new(&[
+        "spheres",
+        "active_contact_pairs",
+        "settle_steps",
+        "settle_s",
+        "max_speed_m_s",
+        "pairs",
+        "plain_step_s",
+        "plugin_step_s",
+        "ratio_median_of_pairs",
+        "ratio_of_medians",
+        "hooks_on",
+    ]);
     for r in &rows {
-        let _ = writeln!(
-            csv,
-            "{},{},{},{:.3},{:.3e},{},{:.6e},{:.6e},{:.4},{:.4},{}",
-            r.spheres,
-            r.t.contacts,
-            r.settle_steps,
-            r.settle_seconds,
-            r.max_speed,
-            r.t.pairs,
-            r.t.plain,
-            r.t.plugin,
-            r.t.ratio,
-            r.t.plugin / r.t.plain,
-            r.t.hooks_on
-        );
+        csv.row(&[
+            &r.spheres,
+            &r.t.contacts,
+            &r.settle_steps,
+            &format_args!("{:.3}", r.settle_seconds),
+            &format_args!("{:.3e}", r.max_speed),
+            &r.t.pairs,
+            &format_args!("{:.6e}", r.t.plain),
+            &format_args!("{:.6e}", r.t.plugin),
+            &format_args!("{:.4}", r.t.ratio),
+            &format_args!("{:.4}", r.t.plugin / r.t.plain),
+            &r.t.hooks_on,
+        ]);
     }
-    write_file(&dir.join("scale.csv"), &csv)?;
+    csv.write(&dir.join("scale.csv"))?;
     let plain_pts: Vec<(f64, f64)> = rows
         .iter()
         .map(|r| (r.t.contacts as f64, r.t.plain))
@@ -97,7 +105,13 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
         .map(|r| (r.t.contacts as f64, r.t.plugin))
         .collect();
     let (fit_plain, fit_plugin) = (power_fit(&plain_pts), power_fit(&plugin_pts));
-    let mut csv = String::from("variant,exponent_vs_contacts,prefactor_s,r2,points\n");
+    let mut csv = Csv::new(&[
+        "variant",
+        "exponent_vs_contacts",
+        "prefactor_s",
+        "r2",
+        "points",
+    ]);
     for (name, f) in [("plain", fit_plain), ("plugin_auto", fit_plugin)] {
         let (k, c, r2, n) = f.map_or((String::new(), String::new(), String::new(), 0), |f| {
             (
@@ -107,9 +121,9 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
                 f.points,
             )
         });
-        let _ = writeln!(csv, "{name},{k},{c},{r2},{n}");
+        csv.row(&[&name, &k, &c, &r2, &n]);
     }
-    write_file(&dir.join("scale_fit.csv"), &csv)?;
+    csv.write(&dir.join("scale_fit.csv"))?;
 
     // The plot: step time against contacts, both variants, with the fitted power laws.
     let mut chart = LineChart::new(

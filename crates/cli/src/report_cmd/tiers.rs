@@ -2,7 +2,8 @@
 //! against its error (graded against the boundary-element solution of Kalker's exact theory,
 //! `creep-reference`), the speed-against-error frontier and the steady-curve errors.
 
-use super::{Config, ReportError, Section, write_file};
+use super::{Config, ReportError, Section};
+use crate::output::Csv;
 use crate::plot::{Legend, LineChart, LineStyle, Series};
 use creep_law::{
     CreepInput, CreepLaw, CreepModel, CreepState, Material, PairMaterial, SteadyLaw, Surface, Vec2,
@@ -344,34 +345,39 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
     pb.set_message("writing");
 
     // CSVs.
-    let mut csv = String::from("tier,cost_ns_per_update\n");
+    let mut csv = Csv::new(&["tier", "cost_ns_per_update"]);
     for (t, c) in Tier::ALL.iter().zip(&cost) {
-        let _ = writeln!(csv, "{},{c:.3}", t.name());
+        csv.row(&[&t.name(), &format_args!("{c:.3}")]);
     }
-    write_file(&dir.join("tiers_cost.csv"), &csv)?;
-    let mut csv = String::from("tier,case,detail,max_error,rms_error\n");
+    csv.write(&dir.join("tiers_cost.csv"))?;
+    let mut csv = Csv::new(&["tier", "case", "detail", "max_error", "rms_error"]);
     for r in &rows {
         // A tier without a version of the case: empty fields.
         let (m, s) = r.err.map_or((String::new(), String::new()), |e| {
             (format!("{:.6e}", e.max), format!("{:.6e}", e.rms))
         });
-        let _ = writeln!(csv, "{},{},{},{m},{s}", r.tier.name(), r.case, r.detail);
+        csv.row(&[&r.tier.name(), &r.case, &r.detail, &m, &s]);
     }
-    write_file(&dir.join("tiers_errors.csv"), &csv)?;
-    let mut csv = String::from("tier,cost_ns_per_update,case,max_error,rms_error\n");
+    csv.write(&dir.join("tiers_errors.csv"))?;
+    let mut csv = Csv::new(&[
+        "tier",
+        "cost_ns_per_update",
+        "case",
+        "max_error",
+        "rms_error",
+    ]);
     let mut series = Vec::new();
     for (k, tier) in Tier::ALL.into_iter().enumerate() {
         let mut pts = Vec::new();
         for case in CASES {
             if let Some(e) = aggregate(&rows, tier, case) {
-                let _ = writeln!(
-                    csv,
-                    "{},{:.3},{case},{:.6e},{:.6e}",
-                    tier.name(),
-                    cost_of(tier),
-                    e.max,
-                    e.rms
-                );
+                csv.row(&[
+                    &tier.name(),
+                    &format_args!("{:.3}", cost_of(tier)),
+                    &case,
+                    &format_args!("{:.6e}", e.max),
+                    &format_args!("{:.6e}", e.rms),
+                ]);
                 pts.push((cost_of(tier), e.max.max(PLOT_FLOOR)));
             }
         }
@@ -395,7 +401,7 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
         }
     }
     series.push(Series::line("frontier: worst point-contact error", front).dashed());
-    write_file(&dir.join("frontier.csv"), &csv)?;
+    csv.write(&dir.join("frontier.csv"))?;
     let mut chart = LineChart::new(
         "Speed against error: one point per tier per case",
         "cost per contact update [ns]",
@@ -433,13 +439,13 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
 /// nu = 0.25 for the tiers with creep (`steady_errors.svg`/`.png`; the compliant tiers' steady
 /// limits are the rigid tiers' laws).
 fn steady_curves(rows: &[Row], dir: &Path) -> Result<(), ReportError> {
-    let mut csv = String::from("tier,case,q_over_mu_p,relative_creepage_error\n");
+    let mut csv = Csv::new(&["tier", "case", "q_over_mu_p", "relative_creepage_error"]);
     for r in rows.iter().filter(|r| !r.curve.is_empty()) {
         for (q, e) in &r.curve {
-            let _ = writeln!(csv, "{},{},{q},{e:.6e}", r.tier.name(), r.case);
+            csv.row(&[&r.tier.name(), &r.case, q, &format_args!("{e:.6e}")]);
         }
     }
-    write_file(&dir.join("steady_errors.csv"), &csv)?;
+    csv.write(&dir.join("steady_errors.csv"))?;
     let mut chart = LineChart::new(
         "Steady creepage error against the exact theory, nu = 0.25",
         "Q/(mu P)",

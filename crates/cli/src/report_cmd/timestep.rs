@@ -16,7 +16,8 @@ use creep_scenes::{friction_drive, impact, incline};
 use indicatif::ProgressBar;
 
 use super::fit::{local_orders, power_fit};
-use super::{Config, ReportError, Section, write_file};
+use super::{Config, ReportError, Section};
+use crate::output::Csv;
 use crate::plot::{Legend, LineChart, Series};
 
 /// Steps per second of the rigid regime's runs (dt = 1/n s).
@@ -173,8 +174,15 @@ pub fn section(_cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, R
     pb.set_length((RIGID_STEPS_PER_SECOND.len() + DEM_FRACTIONS.len()) as u64);
     let studies = measure(pb)?;
     pb.set_message("time step: writing");
-    let mut csv =
-        String::from("regime,quantity,dt_s,dt_over_rayleigh,value,expected,relative_error\n");
+    let mut csv = Csv::new(&[
+        "regime",
+        "quantity",
+        "dt_s",
+        "dt_over_rayleigh",
+        "value",
+        "expected",
+        "relative_error",
+    ]);
     for s in &studies {
         for (p, e) in s.points.iter().zip(s.errors()) {
             let frac = if p.1.is_finite() {
@@ -182,19 +190,19 @@ pub fn section(_cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, R
             } else {
                 String::new()
             };
-            let _ = writeln!(
-                csv,
-                "{},{},{:.9e},{frac},{:.9e},{:.9e},{e:.6e}",
-                s.regime,
-                s.name.replace(',', ";"),
-                p.0,
-                p.2,
-                p.3
-            );
+            csv.row(&[
+                &s.regime,
+                &s.name.replace(',', ";"),
+                &format_args!("{:.9e}", p.0),
+                &frac,
+                &format_args!("{:.9e}", p.2),
+                &format_args!("{:.9e}", p.3),
+                &format_args!("{e:.6e}"),
+            ]);
         }
     }
-    write_file(&dir.join("timestep.csv"), &csv)?;
-    let mut csv = String::from("regime,quantity,observed_order,r2,points\n");
+    csv.write(&dir.join("timestep.csv"))?;
+    let mut csv = Csv::new(&["regime", "quantity", "observed_order", "r2", "points"]);
     for s in &studies {
         // A study without two usable points has no order: empty fields, never a NaN.
         let (k, r2, n) =
@@ -205,14 +213,9 @@ pub fn section(_cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, R
                     f.points,
                 )
             });
-        let _ = writeln!(
-            csv,
-            "{},{},{k},{r2},{n}",
-            s.regime,
-            s.name.replace(',', ";")
-        );
+        csv.row(&[&s.regime, &s.name.replace(',', ";"), &k, &r2, &n]);
     }
-    write_file(&dir.join("timestep_orders.csv"), &csv)?;
+    csv.write(&dir.join("timestep_orders.csv"))?;
     let mut md = String::from("## Time step: error against the step\n\n");
     md += "Relative error `value / closed form - 1` of each regime as the step shrinks, and the \
            observed order: the least-squares slope of `ln |error|` against `ln dt` over all \
