@@ -1,0 +1,44 @@
+// creep-lammps plugin shim - GPL-2.0-only (see LICENSE-NOTE.md in this directory).
+//
+// Plugin entry point: registers pair_style granular/creep and fix creep/history.
+#include "lammpsplugin_decl.h"
+
+#include "fix_creep_history.h"
+#include "lammps.h"
+#include "pair_granular_creep.h"
+
+using namespace LAMMPS_NS;
+
+static void *pair_creator(void *lmp)
+{
+  return new PairGranularCreep(static_cast<LAMMPS *>(lmp));
+}
+
+static void *fix_creator(void *lmp, int narg, char **arg)
+{
+  return new FixCreepHistory(static_cast<LAMMPS *>(lmp), narg, arg);
+}
+
+extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+{
+  auto reg = reinterpret_cast<creep_lammpsplugin_regfunc>(regfunc);
+  // The version of the running LAMMPS: the plugin must be built against the same version's
+  // headers (the loader compares this string with its own).
+  const char *version = static_cast<LAMMPS *>(lmp)->version;
+
+  creep_lammpsplugin_t plugin;
+  plugin.version = version;
+  plugin.style = "pair";
+  plugin.name = "granular/creep";
+  plugin.info = "Kuhn's creep-friction (Hertz, Tsuji damping, Cattaneo-Mindlin + creep) via creep-lammps";
+  plugin.author = "creep-friction contributors";
+  plugin.creator.v1 = &pair_creator;
+  plugin.handle = handle;
+  reg(&plugin, lmp);
+
+  plugin.style = "fix";
+  plugin.name = "creep/history";
+  plugin.info = "per-atom contact history of pair_style granular/creep, keyed by partner tag";
+  plugin.creator.v2 = &fix_creator;
+  reg(&plugin, lmp);
+}

@@ -1,0 +1,131 @@
+//! `creep-lammps-ref`: the reference side of the LAMMPS plugin's tests (see `test.sh`).
+//!
+//! ```text
+//! creep-lammps-ref gen DIR [N]            test packing: N^3 spheres (default 8) -> DIR/packing.data, DIR/params.lmp
+//! creep-lammps-ref shear IN OUT RATE      IN data file + shear v_x += RATE (z - z_mid) -> OUT
+//! creep-lammps-ref run DATA PARAMS STEPS [exact|spring] [creep|nocreep]
+//!                                         prints `step pressure ke contacts` per step (17 digits)
+//! ```
+
+use creep_lammps::driver::{Packing, Sim, lammps_variable};
+use creep_lammps::{Model, Settings, Tier};
+use std::process::ExitCode;
+
+type Res<T> = Result<T, Box<dyn std::error::Error>>;
+
+/// Material of the test packing: the triaxial test's glass-like spheres of `creep bench dem`
+/// (G = 29 MPa, nu = 0.2, rho = 2500 kg/m^3, e = 0.5, mu = 0.5), radius 1 mm.
+const G: f64 = 29e6;
+const NU: f64 = 0.2;
+const RHO: f64 = 2500.0;
+const E_REST: f64 = 0.5;
+const MU: f64 = 0.5;
+const RADIUS: f64 = 1e-3;
+
+fn generate(dir: &str, n: usize) -> Res<()> {
+    std::fs::create_dir_all(dir)?;
+    // Overlaps of ~1e-3 of the diameter (the compacted packing's order at 100 kPa).
+    let p = Packing::lattice(n, RADIUS, RHO, 1e-3, 4e-4);
+    std::fs::write(
+        format!("{dir}/packing.data"),
+        p.write_data(&format!("creep-lammps-ref gen: {n}^3 spheres on a perturbed lattice (SI)")),
+    )?;
+    let young = 2.0 * G * (1.0 + NU);
+    let r_min = p.radius.iter().cloned().fold(f64::INFINITY, f64::min);
+    let material = creep_law::Material::new(G, NU, MU, RHO)?;
+    let dt = 0.2 * creep_law::hertz::rayleigh_time_step(&material, r_min);
+    let mut s = String::from("# creep-lammps-ref gen: material and time step (SI)\n");
+    for (name, v) in [
+        ("xlo", p.lo[0]),
+        ("xhi", p.hi[0]),
+        ("ylo", p.lo[1]),
+        ("yhi", p.hi[1]),
+        ("zlo", p.lo[2]),
+        ("zhi", p.hi[2]),
+        ("dt", dt),
+        ("young", young),
+        ("shear", G),
+        ("poisson", NU),
+        ("density", RHO),
+        ("mu", MU),
+        ("restitution", E_REST),
+        ("skin", 0.02 * 2.0 * RADIUS),
+    ] {
+        s.push_str(&format!("variable {name} equal {v:.16e}\n"));
+    }
+    std::fs::write(format!("{dir}/params.lmp"), s)?;
+    println!("wrote {dir}/packing.data ({} spheres) and {dir}/params.lmp (dt {dt:.6e} s)", p.tag.len());
+    Ok(())
+}
+
+fn shear(input: &str, output: &str, rate: f64) -> Res<()> {
+    let mut p = Packing::read_data(&std::fs::read_to_string(input)?)?;
+    p.add_shear(rate);
+    std::fs::write(output, p.write_data(&format!("{input} with shear rate {rate:e} 1/s (SI)")))?;
+    Ok(())
+}
+
+fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()> {
+    let p = Packing::read_data(&std::fs::read_to_string(data)?)?;
+    let vars = std::fs::read_to_string(params)?;
+    let v = |n| lammps_variable(&vars, n);
+    let model = Model::new(&Settings {
+        young_modulus: v("young")?,
+        poisson_ratio: v("poisson")?,
+        restitution: v("restitution")?,
+        friction: v("mu")?,
+        tier,
+        creep,
+        rolling: None,
+    })?;
+    let (mut sim, th) = Sim::new(p, model, v("dt")?)?;
+    println!("step pressure ke contacts");
+    let print = |t: &creep_lammps::driver::Thermo| {
+        println!("{} {:.17e} {:.17e} {}", t.step, t.pressure, t.ke, t.contacts)
+    };
+    print(&th);
+    for _ in 0..steps {
+        print(&sim.step()?);
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let a: Vec<String> = std::env::args().skip(1).collect();
+    let arg = |i: usize| a.get(i).map(String::as_str);
+    let r: Res<()> = (|| match arg(0) {
+        Some("gen") => generate(arg(1).ok_or("gen DIR [N]")?, arg(2).unwrap_or("8").parse()?),
+        Some("shear") => shear(
+            arg(1).ok_or("shear IN OUT RATE")?,
+            arg(2).ok_or("shear IN OUT RATE")?,
+            arg(3).ok_or("shear IN OUT RATE")?.parse()?,
+        ),
+        Some("run") => {
+            let tier = match arg(4).unwrap_or("exact") {
+                "exact" => Tier::Exact,
+                "spring" => Tier::Spring,
+                t => return Err(format!("tier must be exact or spring, not {t}").into()),
+            };
+            let creep = match arg(5).unwrap_or("creep") {
+                "creep" => true,
+                "nocreep" => false,
+                c => return Err(format!("creep or nocreep, not {c}").into()),
+            };
+            run(
+                arg(1).ok_or("run DATA PARAMS STEPS")?,
+                arg(2).ok_or("run DATA PARAMS STEPS")?,
+                arg(3).ok_or("run DATA PARAMS STEPS")?.parse()?,
+                tier,
+                creep,
+            )
+        }
+        _ => Err("usage: creep-lammps-ref gen DIR [N] | shear IN OUT RATE | run DATA PARAMS STEPS [exact|spring] [creep|nocreep]".into()),
+    })();
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("creep-lammps-ref: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
