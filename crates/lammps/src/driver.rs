@@ -56,6 +56,8 @@ pub struct Packing {
     pub hi: [f64; 3],
     /// Number of atom types declared.
     pub types: i64,
+    /// Periodic in x, y and z (LAMMPS `boundary p p p`); otherwise open (`f f f`, no walls).
+    pub periodic: bool,
 }
 
 fn nums(line: &str) -> Result<Vec<f64>, DriverError> {
@@ -76,10 +78,9 @@ impl Packing {
     pub fn read_data(text: &str) -> Result<Self, DriverError> {
         let mut p = Packing::default();
         let mut atoms = 0usize;
-        let mut lines = text.lines().skip(1).peekable();
         let mut section = "";
         let mut index = std::collections::HashMap::new();
-        while let Some(line) = lines.next() {
+        for line in text.lines().skip(1) {
             let t = line.trim();
             if t.is_empty() {
                 continue;
@@ -87,7 +88,11 @@ impl Packing {
             let head = t.split('#').next().unwrap_or("").trim();
             match head {
                 "Atoms" | "Velocities" => {
-                    section = if head == "Atoms" { "Atoms" } else { "Velocities" };
+                    section = if head == "Atoms" {
+                        "Atoms"
+                    } else {
+                        "Velocities"
+                    };
                     continue;
                 }
                 _ => {}
@@ -151,7 +156,10 @@ impl Packing {
             )));
         }
         if let Some(i) = (0..atoms).find(|&i| !(p.radius[i] > 0.0 && p.mass[i] > 0.0)) {
-            return Err(perr(format!("atom {} has no positive size and mass", p.tag[i])));
+            return Err(perr(format!(
+                "atom {} has no positive size and mass",
+                p.tag[i]
+            )));
         }
         Ok(p)
     }
@@ -159,9 +167,16 @@ impl Packing {
     /// The packing as a LAMMPS data file (`atom_style sphere`), every number with 17
     /// significant digits so LAMMPS reads back the same doubles.
     pub fn write_data(&self, title: &str) -> String {
-        let mut s = format!("{title}\n\n{} atoms\n{} atom types\n\n", self.tag.len(), self.types.max(1));
+        let mut s = format!(
+            "{title}\n\n{} atoms\n{} atom types\n\n",
+            self.tag.len(),
+            self.types.max(1)
+        );
         for (a, n) in ["x", "y", "z"].iter().enumerate() {
-            s.push_str(&format!("{:.16e} {:.16e} {n}lo {n}hi\n", self.lo[a], self.hi[a]));
+            s.push_str(&format!(
+                "{:.16e} {:.16e} {n}lo {n}hi\n",
+                self.lo[a], self.hi[a]
+            ));
         }
         s.push_str("\nAtoms\n\n");
         for i in 0..self.tag.len() {
@@ -227,18 +242,22 @@ impl Packing {
                 }
             }
         }
-        let ext = (n as f64 - 1.0) * s;
-        p.lo = [-2.0 * r; 3];
-        p.hi = [ext + 2.0 * r; 3];
+        // A periodic box of exactly n spacings: every sphere is squeezed by its neighbours on
+        // all sides, also across the boundaries.
+        p.lo = [-0.5 * s; 3];
+        p.hi = [(n as f64 - 0.5) * s; 3];
+        p.periodic = true;
         p
     }
 
-    /// Adds the simple-shear velocity field `v_x += rate (z - z_mid)` [m/s] (`rate` in 1/s,
-    /// `z_mid` the middle of the box).
+    /// Adds the periodic shear velocity field `v_x += rate L / (2 pi) sin(2 pi (z - z_lo) / L)`
+    /// [m/s], `L` the box height: a shear rate of at most `rate` [1/s], continuous across a
+    /// periodic boundary.
     pub fn add_shear(&mut self, rate: f64) {
-        let zc = 0.5 * (self.lo[2] + self.hi[2]);
+        let l = self.hi[2] - self.lo[2];
+        let amp = rate * l / (2.0 * PI);
         for (v, x) in self.v.iter_mut().zip(&self.x) {
-            v[0] += rate * (x[2] - zc);
+            v[0] += amp * (2.0 * PI * (x[2] - self.lo[2]) / l).sin();
         }
     }
 
@@ -289,7 +308,8 @@ pub struct Sim {
     f: Vec<[f64; 3]>,
     t: Vec<[f64; 3]>,
     // Batch buffers.
-    pairs: Vec<(usize, usize)>,
+    /// Touching pairs `(p, q, image shift of q)`.
+    pairs: Vec<(usize, usize, [f64; 3])>,
     contacts: Vec<Contact>,
     hist: Vec<f64>,
     out: Vec<ContactOutput>,
@@ -322,24 +342,45 @@ impl Sim {
         Ok((s, th))
     }
 
-    /// Finds the overlapping pairs `(p, q)`, `tag[p] < tag[q]`, with a cell list of cell size
-    /// twice the largest radius.
-    fn find_pairs(&mut self) {
+    /// Finds the overlapping pairs `(p, q, shift)`, `tag[p] < tag[q]`, with a cell list of cell
+    /// size at least twice the largest radius; with a periodic box, q's nearest image is
+    /// `x_q + shift` with `shift` a box length or zero per axis (as LAMMPS' ghosts: `x + L`).
+    fn find_pairs(&mut self) -> Result<(), DriverError> {
         let p = &self.packing;
         let n = p.tag.len();
         let rmax = p.radius.iter().cloned().fold(0.0, f64::max);
         let h = 2.0 * rmax;
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for x in &p.x {
-            for a in 0..3 {
-                lo[a] = lo[a].min(x[a]);
-                hi[a] = hi[a].max(x[a]);
+        let (lo, hi) = if p.periodic {
+            (p.lo, p.hi)
+        } else {
+            let mut lo = [f64::INFINITY; 3];
+            let mut hi = [f64::NEG_INFINITY; 3];
+            for x in &p.x {
+                for a in 0..3 {
+                    lo[a] = lo[a].min(x[a]);
+                    hi[a] = hi[a].max(x[a]);
+                }
             }
+            (lo, hi)
+        };
+        let len: [f64; 3] = std::array::from_fn(|a| p.hi[a] - p.lo[a]);
+        let dims: [usize; 3] = if p.periodic {
+            std::array::from_fn(|a| ((hi[a] - lo[a]) / h) as usize)
+        } else {
+            std::array::from_fn(|a| (((hi[a] - lo[a]) / h) as usize + 1).max(1))
+        };
+        if p.periodic && dims.iter().any(|&d| d < 3) {
+            return Err(perr("periodic box shorter than three contact diameters"));
         }
-        let dims: [usize; 3] = std::array::from_fn(|a| (((hi[a] - lo[a]) / h) as usize + 1).max(1));
         let cell = |x: &[f64; 3]| -> [usize; 3] {
-            std::array::from_fn(|a| (((x[a] - lo[a]) / h) as usize).min(dims[a] - 1))
+            std::array::from_fn(|a| {
+                let c = ((x[a] - lo[a]) / h).floor();
+                if p.periodic {
+                    (c as i64).rem_euclid(dims[a] as i64) as usize
+                } else {
+                    (c.max(0.0) as usize).min(dims[a] - 1)
+                }
+            })
         };
         let ncell = dims[0] * dims[1] * dims[2];
         self.cells.resize_with(ncell, Vec::new);
@@ -356,34 +397,52 @@ impl Sim {
             for dz in -1i64..=1 {
                 for dy in -1i64..=1 {
                     for dx in -1i64..=1 {
-                        let cc = [c[0] as i64 + dx, c[1] as i64 + dy, c[2] as i64 + dz];
-                        if (0..3).any(|a| cc[a] < 0 || cc[a] >= dims[a] as i64) {
+                        let mut cc = [c[0] as i64 + dx, c[1] as i64 + dy, c[2] as i64 + dz];
+                        if p.periodic {
+                            for a in 0..3 {
+                                cc[a] = cc[a].rem_euclid(dims[a] as i64);
+                            }
+                        } else if (0..3).any(|a| cc[a] < 0 || cc[a] >= dims[a] as i64) {
                             continue;
                         }
-                        let idx = cc[0] as usize + dims[0] * (cc[1] as usize + dims[1] * cc[2] as usize);
+                        let idx =
+                            cc[0] as usize + dims[0] * (cc[1] as usize + dims[1] * cc[2] as usize);
                         for &j in &self.cells[idx] {
                             if p.tag[j] <= p.tag[i] {
                                 continue;
                             }
-                            let d: [f64; 3] = std::array::from_fn(|a| p.x[j][a] - p.x[i][a]);
+                            let mut shift = [0.0; 3];
+                            if p.periodic {
+                                for a in 0..3 {
+                                    let d = p.x[j][a] - p.x[i][a];
+                                    if d > 0.5 * len[a] {
+                                        shift[a] = -len[a];
+                                    } else if d < -0.5 * len[a] {
+                                        shift[a] = len[a];
+                                    }
+                                }
+                            }
+                            let d: [f64; 3] =
+                                std::array::from_fn(|a| (p.x[j][a] + shift[a]) - p.x[i][a]);
                             let rs = p.radius[i] + p.radius[j];
                             if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rs * rs {
-                                self.pairs.push((i, j));
+                                self.pairs.push((i, j, shift));
                             }
                         }
                     }
                 }
             }
         }
+        Ok(())
     }
 
     /// Zeroes and computes the forces and torques at the current state; `commit` false leaves
     /// the histories as they were (LAMMPS' set-up forces).
     fn forces(&mut self, commit: bool) -> Result<Thermo, DriverError> {
-        self.find_pairs();
+        self.find_pairs()?;
         let p = &self.packing;
-        let body = |i: usize| Body {
-            x: p.x[i],
+        let body = |i: usize, shift: [f64; 3]| Body {
+            x: std::array::from_fn(|a| p.x[i][a] + shift[a]),
             v: p.v[i],
             omega: p.omega[i],
             radius: p.radius[i],
@@ -391,18 +450,20 @@ impl Sim {
         };
         self.contacts.clear();
         self.hist.clear();
-        for &(i, j) in &self.pairs {
+        for &(i, j, shift) in &self.pairs {
             self.contacts.push(Contact {
-                p: body(i),
-                q: body(j),
+                p: body(i, [0.0; 3]),
+                q: body(j, shift),
             });
             let at = self.hist.len();
             self.hist.resize(at + self.stride, 0.0);
             if let Some(&(_, off)) = self.partners[i].iter().find(|(q, _)| *q == j) {
-                self.hist[at..at + self.stride].copy_from_slice(&self.store[off..off + self.stride]);
+                self.hist[at..at + self.stride]
+                    .copy_from_slice(&self.store[off..off + self.stride]);
             }
         }
-        self.out.resize(self.contacts.len(), ContactOutput::default());
+        self.out
+            .resize(self.contacts.len(), ContactOutput::default());
         let model = &self.model;
         Model::compute_by(
             |_| Some(model),
@@ -417,14 +478,15 @@ impl Sim {
         }
         let mut virial = 0.0;
         let mut touching = 0;
-        for (k, &(i, j)) in self.pairs.iter().enumerate() {
+        for (k, &(i, j, shift)) in self.pairs.iter().enumerate() {
             let o = &self.out[k];
+            #[allow(clippy::needless_range_loop)] // four arrays indexed alike
             for a in 0..3 {
                 self.f[i][a] += o.force_p[a];
                 self.f[j][a] -= o.force_p[a];
                 self.t[i][a] += o.torque_p[a];
                 self.t[j][a] += o.torque_q[a];
-                virial += (p.x[i][a] - p.x[j][a]) * o.force_p[a];
+                virial += (p.x[i][a] - (p.x[j][a] + shift[a])) * o.force_p[a];
             }
             touching += o.touching as usize;
         }
@@ -433,7 +495,7 @@ impl Sim {
                 l.clear();
             }
             self.store.clear();
-            for (k, &(i, j)) in self.pairs.iter().enumerate() {
+            for (k, &(i, j, _)) in self.pairs.iter().enumerate() {
                 if self.out[k].touching == 1 {
                     let off = self.store.len();
                     self.store
@@ -474,6 +536,20 @@ impl Sim {
             let dtirotate = dtfrot / (p.radius[i] * p.radius[i] * p.mass[i]);
             for a in 0..3 {
                 p.omega[i][a] += dtirotate * self.t[i][a];
+            }
+        }
+        if p.periodic {
+            // Back into the box (LAMMPS remaps at its neighbour-list builds; either way the
+            // image used for a pair is the nearest one).
+            for x in &mut p.x {
+                for (a, xa) in x.iter_mut().enumerate() {
+                    let l = p.hi[a] - p.lo[a];
+                    if *xa >= p.hi[a] {
+                        *xa -= l;
+                    } else if *xa < p.lo[a] {
+                        *xa += l;
+                    }
+                }
             }
         }
         self.step += 1;

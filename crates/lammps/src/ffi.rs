@@ -51,7 +51,6 @@ pub struct CreepLammpsSettings {
 /// Opaque per-pair-type constants.
 pub struct CreepLammpsModel(Model);
 
-
 /// Copies `msg` (truncated, NUL-terminated) into `err[..err_len]`.
 ///
 /// # Safety
@@ -80,10 +79,13 @@ fn settings_from(s: &CreepLammpsSettings) -> Result<Settings, String> {
             Some(RollingModel::constant_torque(s.rolling_friction).map_err(|e| e.to_string())?)
         }
         CREEP_LAMMPS_ROLLING_EPSD => Some(
-            RollingModel::epsd(s.rolling_friction, s.rolling_damping)
-                .map_err(|e| e.to_string())?,
+            RollingModel::epsd(s.rolling_friction, s.rolling_damping).map_err(|e| e.to_string())?,
         ),
-        r => return Err(format!("unknown rolling model {r} (0 none, 1 constant, 2 epsd)")),
+        r => {
+            return Err(format!(
+                "unknown rolling model {r} (0 none, 1 constant, 2 epsd)"
+            ));
+        }
     };
     let creep = match s.creep {
         0 => false,
@@ -119,9 +121,8 @@ pub unsafe extern "C" fn creep_lammps_model_new(
         unsafe { write_error(err, err_len, "settings is null") };
         return std::ptr::null_mut();
     };
-    let built = catch_unwind(|| {
-        settings_from(s).and_then(|s| Model::new(&s).map_err(|e| e.to_string()))
-    });
+    let built =
+        catch_unwind(|| settings_from(s).and_then(|s| Model::new(&s).map_err(|e| e.to_string())));
     match built {
         Ok(Ok(m)) => Box::into_raw(Box::new(CreepLammpsModel(m))),
         Ok(Err(msg)) => {

@@ -71,7 +71,9 @@ pub enum ModelError {
     #[error("all models of one batch must use the same tangential tier")]
     MixedTiers,
     /// A sphere radius or mass that is not finite and > 0.
-    #[error("contact {index}: radius and mass must be finite and > 0 (radius {radius} m, mass {mass} kg)")]
+    #[error(
+        "contact {index}: radius and mass must be finite and > 0 (radius {radius} m, mass {mass} kg)"
+    )]
     Body {
         /// Index in the batch.
         index: usize,
@@ -212,7 +214,8 @@ impl Model {
         };
         let (p, q) = (body(&c.p), body(&c.q));
         let mut h = ContactHistory::<T>::read(history)?;
-        let Some(g) = ContactGeometry::sphere_sphere(p.position, c.p.radius, q.position, c.q.radius)
+        let Some(g) =
+            ContactGeometry::sphere_sphere(p.position, c.p.radius, q.position, c.q.radius)
         else {
             // Coincident centres: no normal; the contact is dropped.
             ContactHistory::<T>::default().write(history)?;
@@ -240,7 +243,14 @@ impl Model {
         stride: usize,
         out: &mut [ContactOutput],
     ) -> Result<(), ModelError> {
-        Self::compute_by(|k| models.get(k).copied(), dt, contacts, history, stride, out)
+        Self::compute_by(
+            |k| models.get(k).copied(),
+            dt,
+            contacts,
+            history,
+            stride,
+            out,
+        )
     }
 
     /// [`Model::compute`] with the model of contact `k` given by `model_of(k)` (`None`: a missing
@@ -276,8 +286,7 @@ impl Model {
                 return Err(ModelError::MixedTiers);
             }
             for b in [&c.p, &c.q] {
-                if !(b.radius.is_finite() && b.radius > 0.0 && b.mass.is_finite() && b.mass > 0.0)
-                {
+                if !(b.radius.is_finite() && b.radius > 0.0 && b.mass.is_finite() && b.mass > 0.0) {
                     return Err(ModelError::Body {
                         index: k,
                         radius: b.radius,

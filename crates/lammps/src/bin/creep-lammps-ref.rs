@@ -26,15 +26,20 @@ fn generate(dir: &str, n: usize) -> Res<()> {
     std::fs::create_dir_all(dir)?;
     // Overlaps of ~1e-3 of the diameter (the compacted packing's order at 100 kPa).
     let p = Packing::lattice(n, RADIUS, RHO, 1e-3, 4e-4);
+    let boundary = if p.periodic { "p p p" } else { "f f f" };
     std::fs::write(
         format!("{dir}/packing.data"),
-        p.write_data(&format!("creep-lammps-ref gen: {n}^3 spheres on a perturbed lattice (SI)")),
+        p.write_data(&format!(
+            "creep-lammps-ref gen: {n}^3 spheres on a perturbed lattice (SI)"
+        )),
     )?;
     let young = 2.0 * G * (1.0 + NU);
     let r_min = p.radius.iter().cloned().fold(f64::INFINITY, f64::min);
     let material = creep_law::Material::new(G, NU, MU, RHO)?;
     let dt = 0.2 * creep_law::hertz::rayleigh_time_step(&material, r_min);
-    let mut s = String::from("# creep-lammps-ref gen: material and time step (SI)\n");
+    let mut s = format!(
+        "# creep-lammps-ref gen: material and time step (SI)\nvariable boundary string \"{boundary}\"\n"
+    );
     for (name, v) in [
         ("xlo", p.lo[0]),
         ("xhi", p.hi[0]),
@@ -50,24 +55,33 @@ fn generate(dir: &str, n: usize) -> Res<()> {
         ("mu", MU),
         ("restitution", E_REST),
         ("skin", 0.02 * 2.0 * RADIUS),
+        ("periodic", 1.0),
     ] {
         s.push_str(&format!("variable {name} equal {v:.16e}\n"));
     }
     std::fs::write(format!("{dir}/params.lmp"), s)?;
-    println!("wrote {dir}/packing.data ({} spheres) and {dir}/params.lmp (dt {dt:.6e} s)", p.tag.len());
+    println!(
+        "wrote {dir}/packing.data ({} spheres) and {dir}/params.lmp (dt {dt:.6e} s)",
+        p.tag.len()
+    );
     Ok(())
 }
 
 fn shear(input: &str, output: &str, rate: f64) -> Res<()> {
     let mut p = Packing::read_data(&std::fs::read_to_string(input)?)?;
     p.add_shear(rate);
-    std::fs::write(output, p.write_data(&format!("{input} with shear rate {rate:e} 1/s (SI)")))?;
+    std::fs::write(
+        output,
+        p.write_data(&format!("{input} with shear rate {rate:e} 1/s (SI)")),
+    )?;
     Ok(())
 }
 
 fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()> {
-    let p = Packing::read_data(&std::fs::read_to_string(data)?)?;
+    let mut p = Packing::read_data(&std::fs::read_to_string(data)?)?;
     let vars = std::fs::read_to_string(params)?;
+    // `variable periodic equal 1` in the parameters: LAMMPS runs it with `boundary p p p`.
+    p.periodic = lammps_variable(&vars, "periodic").unwrap_or(0.0) == 1.0;
     let v = |n| lammps_variable(&vars, n);
     let model = Model::new(&Settings {
         young_modulus: v("young")?,
@@ -81,7 +95,10 @@ fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()>
     let (mut sim, th) = Sim::new(p, model, v("dt")?)?;
     println!("step pressure ke contacts");
     let print = |t: &creep_lammps::driver::Thermo| {
-        println!("{} {:.17e} {:.17e} {}", t.step, t.pressure, t.ke, t.contacts)
+        println!(
+            "{} {:.17e} {:.17e} {}",
+            t.step, t.pressure, t.ke, t.contacts
+        )
     };
     print(&th);
     for _ in 0..steps {
@@ -93,7 +110,8 @@ fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()>
 fn main() -> ExitCode {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let arg = |i: usize| a.get(i).map(String::as_str);
-    let r: Res<()> = (|| match arg(0) {
+    let r: Res<()> = (|| {
+        match arg(0) {
         Some("gen") => generate(arg(1).ok_or("gen DIR [N]")?, arg(2).unwrap_or("8").parse()?),
         Some("shear") => shear(
             arg(1).ok_or("shear IN OUT RATE")?,
@@ -120,6 +138,7 @@ fn main() -> ExitCode {
             )
         }
         _ => Err("usage: creep-lammps-ref gen DIR [N] | shear IN OUT RATE | run DATA PARAMS STEPS [exact|spring] [creep|nocreep]".into()),
+    }
     })();
     match r {
         Ok(()) => ExitCode::SUCCESS,
