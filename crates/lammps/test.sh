@@ -110,20 +110,23 @@ fi
 if [ "${BENCH:-0}" = 1 ]; then
   ROUNDS=${ROUNDS:-5}
   BENCH_STEPS=${BENCH_STEPS:-500}
-  if [ -n "${EXPORT_DIR:-}" ]; then BD=$EXPORT_DIR/packing.data BP=$EXPORT_DIR/params.lmp; else
+  if [ -n "${EXPORT_DIR:-}" ]; then # the compacted packing in its box: LAMMPS' own walls for both
+    BD=$EXPORT_DIR/packing.data BP=$EXPORT_DIR/params.lmp WALLS=1
+  else
     "$REF" gen "$R/bench" 16 > /dev/null
-    BD=$R/bench/packing.data BP=$R/bench/params.lmp
+    BD=$R/bench/packing.data BP=$R/bench/params.lmp WALLS=0
   fi
   echo "== 7. Throughput on $BD: $ROUNDS interleaved rounds of $BENCH_STEPS steps"
   : > "$R/bench.tsv"
   for round in $(seq "$ROUNDS"); do
-    for v in "granular 1" "creep 1" "creep 2"; do
+    for v in "granular exact 1" "creep exact 1" "creep spring 1" "creep exact 2"; do
       set -- $v
-      "$MPIRUN" -np "$2" "$LMP" -var plugin "$PLUGIN" -var params "$BP" -var data "$BD" -var steps "$BENCH_STEPS" \
-        -var style "$1" -in "$T/in.bench" -log none > "$R/bench.out" 2>&1 || { tail "$R/bench.out"; exit 1; }
+      "$MPIRUN" -np "$3" "$LMP" -var plugin "$PLUGIN" -var params "$BP" -var data "$BD" -var steps "$BENCH_STEPS" \
+        -var style "$1" -var tier "$2" -var walls "$WALLS" -in "$T/in.bench" -log none > "$R/bench.out" 2>&1 \
+        || { tail "$R/bench.out"; exit 1; }
       atoms=$(grep -m1 -oE "with [0-9]+ atoms" "$R/bench.out" | grep -oE "[0-9]+")
       loop=$(grep -m1 -oE "Loop time of [0-9.e+-]+" "$R/bench.out" | awk '{print $4}')
-      echo -e "$1\t$2\t$loop\t$atoms" >> "$R/bench.tsv"
+      echo -e "$1/$2\t$3\t$loop\t$atoms" >> "$R/bench.tsv"
     done
   done
   "$PY" - "$R/bench.tsv" "$BENCH_STEPS" <<'PYEOF'
@@ -131,14 +134,18 @@ import sys, statistics
 rows = [l.split() for l in open(sys.argv[1])]
 steps = int(sys.argv[2])
 med = {}
-for style, ranks in [("granular", "1"), ("creep", "1"), ("creep", "2")]:
+variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("creep/exact", "2")]
+atoms = int(rows[0][3])
+for style, ranks in variants:
     t = [float(r[2]) for r in rows if r[0] == style and r[1] == ranks]
     med[(style, ranks)] = statistics.median(t)
-    atoms = int(rows[0][3])
-    print(f"{style:9s} {ranks} rank(s): median loop {med[(style, ranks)]:.3f} s over {len(t)} rounds, "
-          f"{atoms * steps / med[(style, ranks)]:.3e} particle-steps/s")
-print(f"ratio plugin / LAMMPS granular (1 rank, particle-steps/s): {med[('granular', '1')] / med[('creep', '1')]:.3f}")
-print(f"plugin 2 ranks / 1 rank speed-up: {med[('creep', '1')] / med[('creep', '2')]:.3f}")
+    name = "LAMMPS granular" if style.startswith("granular") else "plugin, tier " + style.split("/")[1]
+    print(f"{name:22s} {ranks} rank(s): median loop {med[(style, ranks)]:.3f} s over {len(t)} rounds "
+          f"(range {min(t):.3f}-{max(t):.3f}), {atoms * steps / med[(style, ranks)]:.3e} particle-steps/s")
+g = med[("granular/exact", "1")]
+print(f"ratio plugin / LAMMPS granular, 1 rank (particle-steps/s): tier exact {g / med[('creep/exact', '1')]:.3f}, "
+      f"tier spring {g / med[('creep/spring', '1')]:.3f}")
+print(f"plugin (tier exact) 2 ranks vs 1 rank: speed-up {med[('creep/exact', '1')] / med[('creep/exact', '2')]:.3f}")
 PYEOF
 fi
 

@@ -12,7 +12,7 @@ using namespace LAMMPS_NS;
 
 // fix ID group creep/history maxpartners hlen
 FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), maxpartners(0), hlen(0), rowlen(0), rows(nullptr)
+    Fix(lmp, narg, arg), maxpartners(0), hlen(0), rowlen(0), rows(nullptr), spare(nullptr)
 {
   if (narg != 5) error->all(FLERR, "Illegal fix creep/history command: expected maxpartners hlen");
   maxpartners = utils::inumeric(FLERR, arg[3], false, lmp);
@@ -34,6 +34,7 @@ FixCreepHistory::~FixCreepHistory()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(rows);
+  memory->destroy(spare);
 }
 
 int FixCreepHistory::setmask()
@@ -44,6 +45,7 @@ int FixCreepHistory::setmask()
 void FixCreepHistory::grow_arrays(int nmax)
 {
   memory->grow(rows, nmax, rowlen, "creep/history:rows");
+  memory->grow(spare, nmax, rowlen, "creep/history:spare");
 }
 
 void FixCreepHistory::copy_arrays(int i, int j, int /*delflag*/)
@@ -105,5 +107,5 @@ int FixCreepHistory::maxsize_restart()
 
 double FixCreepHistory::memory_usage()
 {
-  return static_cast<double>(atom->nmax) * rowlen * sizeof(double);
+  return 2.0 * static_cast<double>(atom->nmax) * rowlen * sizeof(double);
 }

@@ -40,6 +40,16 @@ class FixCreepHistory : public Fix {
   int rowlen;
   // Per-atom rows, nmax x rowlen.
   double **rows;
+  // Second buffer of the same shape: the pair style writes the step's new rows here, then
+  // swap_rows() makes them current (no copy back).
+  double **spare;
+
+  void swap_rows()
+  {
+    double **t = rows;
+    rows = spare;
+    spare = t;
+  }
 
   // Number of doubles of atom i's row in use.
   int used(int i) const { return 1 + static_cast<int>(rows[i][0]) * (1 + hlen); }

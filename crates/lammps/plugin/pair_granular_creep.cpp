@@ -196,7 +196,6 @@ void PairGranularCreep::compute(int eflag, int vflag)
   const int nlocal = atom->nlocal;
   const bool commit = update->setupflag == 0;    // setup forces must not advance the history
   const int hlen = fix_history->hlen;
-  const int rowlen = fix_history->rowlen;
   double **rows = fix_history->rows;
 
   const int inum = list->inum;
@@ -266,10 +265,9 @@ void PairGranularCreep::compute(int eflag, int vflag)
   }
 
   // 3. Forces, torques, virial; the new histories into fresh rows of the owned atoms.
-  if (commit) {
-    if (newrows.size() < static_cast<size_t>(nlocal) * rowlen) newrows.resize(static_cast<size_t>(nlocal) * rowlen);
-    for (int i = 0; i < nlocal; i++) newrows[static_cast<size_t>(i) * rowlen] = 0.0;
-  }
+  double **newrows = fix_history->spare;
+  if (commit)
+    for (int i = 0; i < nlocal; i++) newrows[i][0] = 0.0;
   for (size_t k = 0; k < n; k++) {
     const int i = batch_i[k], j = batch_j[k];
     const CreepLammpsOutput &o = batch_out[k];
@@ -305,7 +303,7 @@ void PairGranularCreep::compute(int eflag, int vflag)
     for (int side = 0; side < 2; side++) {
       const int a = side == 0 ? i : j, b = side == 0 ? j : i;
       if (a >= nlocal) continue;
-      double *row = &newrows[static_cast<size_t>(a) * rowlen];
+      double *row = newrows[a];
       const int cnt = static_cast<int>(row[0]);
       if (cnt >= maxpartners)
         error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
@@ -316,10 +314,5 @@ void PairGranularCreep::compute(int eflag, int vflag)
       row[0] = cnt + 1;
     }
   }
-  if (commit) {
-    for (int i = 0; i < nlocal; i++) {
-      const double *row = &newrows[static_cast<size_t>(i) * rowlen];
-      std::memcpy(rows[i], row, sizeof(double) * (1 + static_cast<int>(row[0]) * (1 + hlen)));
-    }
-  }
+  if (commit) fix_history->swap_rows();
 }

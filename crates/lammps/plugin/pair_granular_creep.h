@@ -43,7 +43,6 @@ class PairGranularCreep : public Pair {
   std::vector<CreepLammpsOutput> batch_out;
   std::vector<int> batch_i, batch_j, batch_swap;
   std::vector<const CreepLammpsModel *> batch_model;
-  std::vector<double> newrows;          // new per-atom history rows (nlocal x rowlen)
 };
 
 }    // namespace LAMMPS_NS
