@@ -83,6 +83,13 @@ impl CreepState {
         self.mindlin.force()
     }
 
+    /// A state from its parts: a Cattaneo-Mindlin memory and the transient tier's lag state
+    /// (`[Vec2::ZERO; 2]` unless [`CreepModel::FittedTransient`] is used), e.g. read back from
+    /// a flat history array.
+    pub fn from_parts(mindlin: MindlinState, lag: [Vec2; 2]) -> Self {
+        Self { mindlin, lag }
+    }
+
     /// The underlying Cattaneo-Mindlin state (load history).
     #[inline]
     pub fn mindlin(&self) -> &MindlinState {
