@@ -119,8 +119,13 @@ if [ "${BENCH:-0}" = 1 ]; then
   echo "== 7. Throughput on $BD: $ROUNDS interleaved rounds of $BENCH_STEPS steps"
   : > "$R/bench.tsv"
   for round in $(seq "$ROUNDS"); do
-    for v in "granular exact 1" "creep exact 1" "creep spring 1" "creep exact 2"; do
+    for v in "granular exact 1" "creep exact 1" "creep spring 1" "creep exact 2" "kernel exact 1" "kernel spring 1"; do
       set -- $v
+      if [ "$1" = kernel ]; then # the law alone in Rust, same contacts, no LAMMPS and no C ABI
+        loop=$("$REF" kernel "$BD" "$BP" "$BENCH_STEPS" "$2" | awk '{print $4}')
+        echo -e "$1/$2\t$3\t$loop\t$atoms" >> "$R/bench.tsv"
+        continue
+      fi
       "$MPIRUN" -np "$3" "$LMP" -var plugin "$PLUGIN" -var params "$BP" -var data "$BD" -var steps "$BENCH_STEPS" \
         -var style "$1" -var tier "$2" -var walls "$WALLS" -in "$T/in.bench" -log none > "$R/bench.out" 2>&1 \
         || { tail "$R/bench.out"; exit 1; }
@@ -134,17 +139,23 @@ import sys, statistics
 rows = [l.split() for l in open(sys.argv[1])]
 steps = int(sys.argv[2])
 med = {}
-variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("creep/exact", "2")]
+variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("creep/exact", "2"),
+            ("kernel/exact", "1"), ("kernel/spring", "1")]
 atoms = int(rows[0][3])
 for style, ranks in variants:
     t = [float(r[2]) for r in rows if r[0] == style and r[1] == ranks]
     med[(style, ranks)] = statistics.median(t)
-    name = "LAMMPS granular" if style.startswith("granular") else "plugin, tier " + style.split("/")[1]
+    kind, tier = style.split("/")
+    name = {"granular": "LAMMPS granular", "creep": "plugin, tier " + tier, "kernel": "kernel alone, " + tier}[kind]
     print(f"{name:22s} {ranks} rank(s): median loop {med[(style, ranks)]:.3f} s over {len(t)} rounds "
           f"(range {min(t):.3f}-{max(t):.3f}), {atoms * steps / med[(style, ranks)]:.3e} particle-steps/s")
 g = med[("granular/exact", "1")]
 print(f"ratio plugin / LAMMPS granular, 1 rank (particle-steps/s): tier exact {g / med[('creep/exact', '1')]:.3f}, "
       f"tier spring {g / med[('creep/spring', '1')]:.3f}")
+print(f"kernel alone (no LAMMPS, no C ABI) / LAMMPS granular: tier exact {g / med[('kernel/exact', '1')]:.3f}, "
+      f"tier spring {g / med[('kernel/spring', '1')]:.3f}: the bound on the plugin's ratio")
+print(f"plugin's time over the kernel's: tier exact {med[('creep/exact', '1')] / med[('kernel/exact', '1')]:.2f}, "
+      f"tier spring {med[('creep/spring', '1')] / med[('kernel/spring', '1')]:.2f} (LAMMPS' neighbour lists and integration, the shim's gathering, the C ABI)")
 print(f"plugin (tier exact) 2 ranks vs 1 rank: speed-up {med[('creep/exact', '1')] / med[('creep/exact', '2')]:.3f}")
 PYEOF
 fi

@@ -518,6 +518,31 @@ impl Sim {
         })
     }
 
+    /// Throughput of the kernel alone: evaluates the touching pairs of the current state
+    /// `steps` times through [`Model::compute`] (one batch, histories advancing, no neighbour
+    /// search, no integration) and returns the seconds per batch and the batch size. What a
+    /// host pays for the law itself, without the C ABI's gathering or LAMMPS.
+    pub fn time_kernel(&mut self, steps: usize) -> Result<(f64, usize), DriverError> {
+        self.forces(false)?;
+        let mut hist = vec![0.0; self.contacts.len() * self.stride];
+        let model = &self.model;
+        let start = std::time::Instant::now();
+        for _ in 0..steps {
+            Model::compute_by(
+                |_| Some(model),
+                self.dt,
+                &self.contacts,
+                &mut hist,
+                self.stride,
+                &mut self.out,
+            )?;
+        }
+        Ok((
+            start.elapsed().as_secs_f64() / steps.max(1) as f64,
+            self.contacts.len(),
+        ))
+    }
+
     /// One velocity-Verlet step as LAMMPS' `fix nve/sphere` does it (inertia factor 0.4 of a
     /// solid sphere); returns the step's thermo.
     pub fn step(&mut self) -> Result<Thermo, DriverError> {

@@ -5,6 +5,9 @@
 //! creep-lammps-ref shear IN OUT RATE      IN data file + shear v_x += RATE (z - z_mid) -> OUT
 //! creep-lammps-ref run DATA PARAMS STEPS [exact|spring] [creep|nocreep]
 //!                                         prints `step pressure ke contacts` per step (17 digits)
+//! creep-lammps-ref kernel DATA PARAMS STEPS [exact|spring]
+//!                                         the kernel alone on the packing's contacts: prints
+//!                                         `Loop time of S` (S = STEPS batches) and the batch size
 //! ```
 
 use creep_lammps::driver::{Packing, Sim, lammps_variable};
@@ -77,7 +80,12 @@ fn shear(input: &str, output: &str, rate: f64) -> Res<()> {
     Ok(())
 }
 
-fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()> {
+fn sim(
+    data: &str,
+    params: &str,
+    tier: Tier,
+    creep: bool,
+) -> Res<(Sim, creep_lammps::driver::Thermo)> {
     let mut p = Packing::read_data(&std::fs::read_to_string(data)?)?;
     let vars = std::fs::read_to_string(params)?;
     // `variable periodic equal 1` in the parameters: LAMMPS runs it with `boundary p p p`.
@@ -92,7 +100,11 @@ fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()>
         creep,
         rolling: None,
     })?;
-    let (mut sim, th) = Sim::new(p, model, v("dt")?)?;
+    Ok(Sim::new(p, model, v("dt")?)?)
+}
+
+fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()> {
+    let (mut sim, th) = sim(data, params, tier, creep)?;
     println!("step pressure ke contacts");
     let print = |t: &creep_lammps::driver::Thermo| {
         println!(
@@ -136,6 +148,23 @@ fn main() -> ExitCode {
                 tier,
                 creep,
             )
+        }
+        Some("kernel") => {
+            let tier = match arg(4).unwrap_or("exact") {
+                "exact" => Tier::Exact,
+                "spring" => Tier::Spring,
+                t => return Err(format!("tier must be exact or spring, not {t}").into()),
+            };
+            let steps: usize = arg(3).ok_or("kernel DATA PARAMS STEPS")?.parse()?;
+            let (mut s, _) = sim(
+                arg(1).ok_or("kernel DATA PARAMS STEPS")?,
+                arg(2).ok_or("kernel DATA PARAMS STEPS")?,
+                tier,
+                true,
+            )?;
+            let (per, n) = s.time_kernel(steps)?;
+            println!("Loop time of {:.6} for {steps} batches of {n} contacts", per * steps as f64);
+            Ok(())
         }
         _ => Err("usage: creep-lammps-ref gen DIR [N] | shear IN OUT RATE | run DATA PARAMS STEPS [exact|spring] [creep|nocreep]".into()),
     }
