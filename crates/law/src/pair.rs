@@ -633,8 +633,14 @@ pub fn pair_force<T: TangentialLaw>(
     let inv_sum = p.inv_mass() + q.inv_mass();
     let pm = c.pair_material(p.surface, q.surface);
     if !(delta > 0.0 && inv_sum > 0.0 && pm.r_star.is_finite()) {
-        *h = ContactHistory::default();
-        return PairForces::default();
+        let released = release(c, p.surface, q.surface, h);
+        return PairForces {
+            dissipation: PairDissipation {
+                slip: released,
+                ..PairDissipation::default()
+            },
+            ..PairForces::default()
+        };
     }
     let m_star = 1.0 / inv_sum;
     let n = g.normal;
@@ -731,6 +737,25 @@ pub fn pair_force<T: TangentialLaw>(
             truncation: step.truncation,
         },
     }
+}
+
+/// Opens a contact: resets its history and returns the tangential elastic energy it still
+/// held [J], which the springs release as they leave the contact (booked as slip dissipation,
+/// as creep-law's Cattaneo-Mindlin memory books springs leaving a shrinking contact). Hosts
+/// call it when they find a contact apart without calling [`pair_force`].
+#[inline]
+pub fn release<T: TangentialLaw>(
+    c: &PairConstants,
+    sp: Surface,
+    sq: Surface,
+    h: &mut ContactHistory<T>,
+) -> f64 {
+    if h.is_virgin() {
+        return 0.0;
+    }
+    let (_, wt) = h.elastic_energy(c, sp, sq);
+    *h = ContactHistory::default();
+    if wt.is_finite() { wt } else { 0.0 }
 }
 
 /// `v` turned by the smallest rotation taking the unit vector `from` to the unit vector `to`
