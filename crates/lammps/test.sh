@@ -87,6 +87,9 @@ check "$STEPS steps of shear, 1 rank: pressure and kinetic energy = reference to
 check "2 and 4 ranks = 1 rank to 1e-6 (history migrates with the atoms)" \
   "$PY" "$T/compare.py" 1e-6 "$R/np1.log" "$R/np2.log" "$R/np4.log"
 check "2 and 4 ranks = reference to 1e-6" "$PY" "$T/compare.py" 1e-6 "$R/ref.txt" "$R/np2.log" "$R/np4.log"
+"$REF" dem "$R/shear.data" "$R/pack/params.lmp" "$STEPS" > "$R/dem.txt"
+check "$STEPS steps, 1 and 4 ranks: kinetic energy = the creep-dem engine's to 1e-6" \
+  "$PY" "$T/compare.py" --ke 1e-6 "$R/dem.txt" "$R/np1.log" "$R/np4.log"
 "$REF" run "$R/shear.data" "$R/pack/params.lmp" "$STEPS" spring > "$R/ref_spring.txt"
 lmp_run 2 "$R/spring.log" -var data "$R/shear.data" -var steps "$STEPS" -var tier spring -in "$T/in.creep"
 check "tier spring, 2 ranks = reference to 1e-6" "$PY" "$T/compare.py" 1e-6 "$R/ref_spring.txt" "$R/spring.log"

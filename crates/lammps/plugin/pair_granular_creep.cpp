@@ -194,7 +194,11 @@ void PairGranularCreep::compute(int eflag, int vflag)
   const int *type = atom->type;
   const tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
-  const bool commit = update->setupflag == 0;    // setup forces must not advance the history
+  // Set-up forces (start of a run) see no displacement: dt = 0, as creep-dem's initial forces.
+  // Their history update only sets the contact's basis and radius (an identity for a contact
+  // that was stepped before), so `run N; run M` and a restart continue alike.
+  const double dt = update->setupflag ? 0.0 : update->dt;
+  const bool commit = true;
   const int hlen = fix_history->hlen;
   double **rows = fix_history->rows;
 
@@ -263,7 +267,7 @@ void PairGranularCreep::compute(int eflag, int vflag)
   batch_out.resize(n);
   if (n > 0) {
     char msg[512] = {0};
-    const int rc = creep_lammps_compute(batch_model.data(), update->dt, n, batch.data(), batch_hist.data(),
+    const int rc = creep_lammps_compute(batch_model.data(), dt, n, batch.data(), batch_hist.data(),
                                         static_cast<size_t>(hlen), batch_out.data(), msg, sizeof(msg));
     if (rc != 0) error->one(FLERR, "pair granular/creep: {}", msg);
   }

@@ -3,8 +3,8 @@
 //! touching pairs with a cell list, evaluates them with [`Model::compute`] and integrates with
 //! the velocity-Verlet scheme of LAMMPS' `fix nve/sphere` (same operations in the same order:
 //! `v += (dt/2) f/m; x += dt v; w += (dt/2) T / (0.4 m r^2)` before the forces, the two kicks
-//! after). The forces of the set-up step (step 0) do not advance the contact histories, as in
-//! the plugin (LAMMPS' `update->setupflag`). Contacts are oriented from the lower atom tag to
+//! after). The forces of the set-up step (step 0) are evaluated with no displacement (`dt = 0`),
+//! as in the plugin (LAMMPS' `update->setupflag`) and in creep-dem's initial forces. Contacts are oriented from the lower atom tag to
 //! the higher, as in the plugin, so both evaluate each pair identically; only the order in
 //! which pair forces are summed per atom differs (rounding).
 //!
@@ -319,7 +319,7 @@ pub struct Sim {
 
 impl Sim {
     /// A driver over `packing` with `model` for every pair and time step `dt` [s]; computes the
-    /// set-up forces (step 0) without advancing any history.
+    /// set-up forces (step 0) with no displacement (`dt = 0`).
     pub fn new(packing: Packing, model: Model, dt: f64) -> Result<(Self, Thermo), DriverError> {
         let n = packing.tag.len();
         let mut s = Sim {
@@ -338,7 +338,7 @@ impl Sim {
             cells: Vec::new(),
             step: 0,
         };
-        let th = s.forces(false)?;
+        let th = s.forces_with(0.0, true)?;
         Ok((s, th))
     }
 
@@ -436,9 +436,14 @@ impl Sim {
         Ok(())
     }
 
-    /// Zeroes and computes the forces and torques at the current state; `commit` false leaves
-    /// the histories as they were (LAMMPS' set-up forces).
+    /// Zeroes and computes the forces and torques at the current state over one step `dt`;
+    /// `commit` false leaves the histories as they were (evaluated with `dt = 0`).
     fn forces(&mut self, commit: bool) -> Result<Thermo, DriverError> {
+        self.forces_with(if commit { self.dt } else { 0.0 }, commit)
+    }
+
+    /// [`Sim::forces`] with the step `dt` given [s].
+    fn forces_with(&mut self, dt: f64, commit: bool) -> Result<Thermo, DriverError> {
         self.find_pairs()?;
         let p = &self.packing;
         let body = |i: usize, shift: [f64; 3]| Body {
@@ -467,7 +472,7 @@ impl Sim {
         let model = &self.model;
         Model::compute_by(
             |_| Some(model),
-            self.dt,
+            dt,
             &self.contacts,
             &mut self.hist,
             self.stride,

@@ -5,6 +5,9 @@
 //! creep-lammps-ref shear IN OUT RATE      IN data file + shear v_x += RATE (z - z_mid) -> OUT
 //! creep-lammps-ref run DATA PARAMS STEPS [exact|spring] [creep|nocreep]
 //!                                         prints `step pressure ke contacts` per step (17 digits)
+//! creep-lammps-ref dem DATA PARAMS STEPS [exact|spring]
+//!                                         the same with the creep-dem engine: prints
+//!                                         `step nan ke contacts` (it reports no pair virial)
 //! creep-lammps-ref kernel DATA PARAMS STEPS [exact|spring]
 //!                                         the kernel alone on the packing's contacts: prints
 //!                                         `Loop time of S` (S = STEPS batches) and the batch size
@@ -119,6 +122,61 @@ fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()>
     Ok(())
 }
 
+/// The packing in creep-dem (one material from PARAMS and the data file's density), stepped
+/// `steps` times: translational kinetic energy per step.
+fn dem<T: creep_law::pair::TangentialLaw>(data: &str, params: &str, steps: u64) -> Res<()> {
+    use creep_dem::{Dem, DemConfig, MaterialTable, Particle};
+    let mut p = Packing::read_data(&std::fs::read_to_string(data)?)?;
+    let vars = std::fs::read_to_string(params)?;
+    p.periodic = lammps_variable(&vars, "periodic").unwrap_or(0.0) == 1.0;
+    let v = |n| lammps_variable(&vars, n);
+    let rho = p.density[0];
+    if p.density.iter().any(|&d| d != rho) {
+        return Err("dem: one density for all spheres expected".into());
+    }
+    let nu = v("poisson")?;
+    let m = creep_law::Material::new(v("young")? / (2.0 * (1.0 + nu)), nu, v("mu")?, rho)?;
+    let table = MaterialTable::new(
+        &[m],
+        v("restitution")?,
+        Some(creep_law::CreepModel::Kuhn),
+        None,
+    )?;
+    let mut cfg = DemConfig {
+        dt: v("dt")?,
+        skin: v("skin")?,
+        ..DemConfig::default()
+    };
+    if p.periodic {
+        cfg.periodic = std::array::from_fn(|a| Some((p.lo[a], p.hi[a])));
+    }
+    let v3 = |a: [f64; 3]| creep_law::Vec3::new(a[0], a[1], a[2]);
+    let particles: Vec<Particle> = (0..p.tag.len())
+        .map(|i| Particle {
+            position: v3(p.x[i]),
+            velocity: v3(p.v[i]),
+            angular_velocity: v3(p.omega[i]),
+            radius: p.radius[i],
+            material: 0,
+        })
+        .collect();
+    let mut d = Dem::<T>::new(cfg, table, &particles, &[])?;
+    let ke = |d: &Dem<T>| {
+        d.velocities()
+            .iter()
+            .zip(d.ids())
+            .map(|(v, &id)| 0.5 * d.mass(id as usize) * v.dot(*v))
+            .sum::<f64>()
+    };
+    println!("step pressure ke contacts");
+    println!("0 nan {:.17e} {}", ke(&d), d.counts().contacts);
+    for s in 1..=steps {
+        d.step()?;
+        println!("{s} nan {:.17e} {}", ke(&d), d.counts().contacts);
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let a: Vec<String> = std::env::args().skip(1).collect();
     let arg = |i: usize| a.get(i).map(String::as_str);
@@ -148,6 +206,15 @@ fn main() -> ExitCode {
                 tier,
                 creep,
             )
+        }
+        Some("dem") => {
+            let (data, params) = (arg(1).ok_or("dem DATA PARAMS STEPS")?, arg(2).ok_or("dem DATA PARAMS STEPS")?);
+            let steps: u64 = arg(3).ok_or("dem DATA PARAMS STEPS")?.parse()?;
+            match arg(4).unwrap_or("exact") {
+                "exact" => dem::<creep_law::pair::Exact>(data, params, steps),
+                "spring" => dem::<creep_law::pair::Cheap>(data, params, steps),
+                t => Err(format!("tier must be exact or spring, not {t}").into()),
+            }
         }
         Some("kernel") => {
             let tier = match arg(4).unwrap_or("exact") {
