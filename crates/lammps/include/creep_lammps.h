@@ -82,6 +82,19 @@ typedef struct CreepLammpsOutput {
   uint32_t touching;
 } CreepLammpsOutput;
 
+// One sphere against a plane wall (the wall is body p: the normal points from the wall into
+// the domain, towards the sphere).
+typedef struct CreepLammpsWallContact {
+  // A point on the wall plane [m].
+  double point[3];
+  // Unit normal of the wall, pointing into the domain [-].
+  double normal[3];
+  // Velocity of the wall [m/s] (it does not rotate).
+  double wall_velocity[3];
+  // The sphere (body q).
+  struct CreepLammpsBody sphere;
+} CreepLammpsWallContact;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -124,6 +137,21 @@ int32_t creep_lammps_compute(const struct CreepLammpsModel *const *models,
                              struct CreepLammpsOutput *out,
                              char *err,
                              size_t err_len);
+
+// Steps `n` sphere-wall contacts by `dt` [s], as [`creep_lammps_compute`]: the wall is body p
+// (`out[k].force_p` is the force on the wall, `out[k].torque_q` the torque on the sphere).
+//
+// # Safety
+// As [`creep_lammps_compute`], with `contacts` pointing to `n` wall contacts.
+int32_t creep_lammps_compute_walls(const struct CreepLammpsModel *const *models,
+                                   double dt,
+                                   size_t n,
+                                   const struct CreepLammpsWallContact *contacts,
+                                   double *history,
+                                   size_t stride,
+                                   struct CreepLammpsOutput *out,
+                                   char *err,
+                                   size_t err_len);
 
 #ifdef __cplusplus
 }  // extern "C"

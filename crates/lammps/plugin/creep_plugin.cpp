@@ -1,10 +1,11 @@
 // creep-lammps plugin shim - GPL-2.0-only (see LICENSE-NOTE.md in this directory).
 //
-// Plugin entry point: registers pair_style granular/creep and fix creep/history.
+// Plugin entry point: registers pair_style granular/creep, fix creep/history and fix wall/creep.
 #include "lammpsplugin_decl.h"
 
 #include "fix_creep_history.h"
 #include "lammps.h"
+#include "fix_wall_creep.h"
 #include "pair_granular_creep.h"
 
 using namespace LAMMPS_NS;
@@ -17,6 +18,11 @@ static void *pair_creator(void *lmp)
 static void *fix_creator(void *lmp, int narg, char **arg)
 {
   return new FixCreepHistory(static_cast<LAMMPS *>(lmp), narg, arg);
+}
+
+static void *wall_creator(void *lmp, int narg, char **arg)
+{
+  return new FixWallCreep(static_cast<LAMMPS *>(lmp), narg, arg);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
@@ -40,5 +46,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "creep/history";
   plugin.info = "per-atom contact history of pair_style granular/creep, keyed by partner tag";
   plugin.creator.v2 = &fix_creator;
+  reg(&plugin, lmp);
+
+  plugin.name = "wall/creep";
+  plugin.info = "flat walls (x/y/z planes) with Kuhn's creep-friction law via creep-lammps";
+  plugin.creator.v2 = &wall_creator;
   reg(&plugin, lmp);
 }

@@ -18,6 +18,18 @@ FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg) :
   maxpartners = utils::inumeric(FLERR, arg[3], false, lmp);
   hlen = utils::inumeric(FLERR, arg[4], false, lmp);
   if (maxpartners < 1 || hlen < 1) error->all(FLERR, "fix creep/history: maxpartners and hlen must be >= 1");
+  init_storage();
+}
+
+FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg, int maxp, int hl) :
+    Fix(lmp, narg, arg), maxpartners(maxp), hlen(hl), rowlen(0), rows(nullptr), spare(nullptr)
+{
+  if (maxpartners < 1 || hlen < 1) error->all(FLERR, "fix {}: no walls or no history", style);
+  init_storage();
+}
+
+void FixCreepHistory::init_storage()
+{
   rowlen = 1 + maxpartners * (1 + hlen);
   restart_peratom = 1;
   create_attribute = 1;

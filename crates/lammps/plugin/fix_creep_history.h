@@ -22,6 +22,13 @@ class FixCreepHistory : public Fix {
  public:
   FixCreepHistory(class LAMMPS *, int, char **);
   ~FixCreepHistory() override;
+
+ protected:
+  // For fixes that keep their own contact histories (fix wall/creep): storage only.
+  FixCreepHistory(class LAMMPS *, int, char **, int maxpartners, int hlen);
+  void init_storage();
+
+ public:
   int setmask() override;
 
   void grow_arrays(int) override;

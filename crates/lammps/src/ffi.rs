@@ -11,7 +11,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use creep_law::rolling_torque::RollingModel;
 
-use crate::model::{Contact, ContactOutput, Model, Settings, Tier};
+use crate::model::{Contact, ContactOutput, Model, Settings, Tier, WallContact};
 
 /// Tangential tier: Cattaneo-Mindlin with exact load-history memory and Kuhn's creep.
 pub const CREEP_LAMMPS_TIER_EXACT: u32 = 0;
@@ -215,6 +215,62 @@ pub unsafe extern "C" fn creep_lammps_compute(
         Ok(Ok(())) => return 0,
         Ok(Err(e)) => e.to_string(),
         Err(_) => "internal error (panic) in the pair law".to_string(),
+    };
+    // SAFETY: `err` as the contract says.
+    unsafe { write_error(err, err_len, &msg) };
+    1
+}
+
+/// Steps `n` sphere-wall contacts by `dt` [s], as [`creep_lammps_compute`]: the wall is body p
+/// (`out[k].force_p` is the force on the wall, `out[k].torque_q` the torque on the sphere).
+///
+/// # Safety
+/// As [`creep_lammps_compute`], with `contacts` pointing to `n` wall contacts.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn creep_lammps_compute_walls(
+    models: *const *const CreepLammpsModel,
+    dt: f64,
+    n: usize,
+    contacts: *const WallContact,
+    history: *mut f64,
+    stride: usize,
+    out: *mut ContactOutput,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    if n == 0 {
+        return 0;
+    }
+    if models.is_null() || contacts.is_null() || history.is_null() || out.is_null() {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null buffer") };
+        return 1;
+    }
+    // SAFETY: sizes and validity as the contract says.
+    let (models, contacts, history, out) = unsafe {
+        (
+            std::slice::from_raw_parts(models, n),
+            std::slice::from_raw_parts(contacts, n),
+            std::slice::from_raw_parts_mut(history, n * stride),
+            std::slice::from_raw_parts_mut(out, n),
+        )
+    };
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        Model::compute_walls_by(
+            // SAFETY: each pointer is null or a live model, as the contract says.
+            |k| unsafe { models[k].as_ref() }.map(|m| &m.0),
+            dt,
+            contacts,
+            history,
+            stride,
+            out,
+        )
+    }));
+    let msg = match result {
+        Ok(Ok(())) => return 0,
+        Ok(Err(e)) => e.to_string(),
+        Err(_) => "internal error (panic) in the wall law".to_string(),
     };
     // SAFETY: `err` as the contract says.
     unsafe { write_error(err, err_len, &msg) };

@@ -24,4 +24,4 @@ pub mod driver;
 pub mod ffi;
 pub mod model;
 
-pub use model::{Body, Contact, ContactOutput, Model, ModelError, Settings, Tier};
+pub use model::{Body, Contact, ContactOutput, Model, ModelError, Settings, Tier, WallContact};

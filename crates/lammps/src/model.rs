@@ -93,6 +93,9 @@ pub enum ModelError {
         /// Needed.
         want: usize,
     },
+    /// A wall normal that is not a unit vector.
+    #[error("wall contact {0}: the wall normal must be a unit vector")]
+    WallNormal(usize),
     /// The time step is not finite and >= 0.
     #[error("time step must be finite and >= 0 s, got {0}")]
     TimeStep(f64),
@@ -137,6 +140,21 @@ pub struct Contact {
     pub p: Body,
     /// Body q.
     pub q: Body,
+}
+
+/// One sphere against a plane wall (the wall is body p: the normal points from the wall into
+/// the domain, towards the sphere).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WallContact {
+    /// A point on the wall plane [m].
+    pub point: [f64; 3],
+    /// Unit normal of the wall, pointing into the domain [-].
+    pub normal: [f64; 3],
+    /// Velocity of the wall [m/s] (it does not rotate).
+    pub wall_velocity: [f64; 3],
+    /// The sphere (body q).
+    pub sphere: Body,
 }
 
 /// What one contact gives back.
@@ -229,6 +247,126 @@ impl Model {
             torque_q: arr(f.torque_q),
             touching: u32::from(f.touching),
         })
+    }
+
+    /// One sphere-wall contact (the wall is p, immovable for the damping's reduced mass): as
+    /// [`Model::step`], with `force_p` the force on the wall and `torque_q` the torque on the
+    /// sphere.
+    pub fn step_wall(
+        &self,
+        c: &WallContact,
+        history: &mut [f64],
+        dt: f64,
+    ) -> Result<ContactOutput, LawError> {
+        match self.tier {
+            Tier::Exact => self.step_wall_tier::<Exact>(c, history, dt),
+            Tier::Spring => self.step_wall_tier::<Cheap>(c, history, dt),
+        }
+    }
+
+    #[inline]
+    fn step_wall_tier<T: TangentialLaw>(
+        &self,
+        c: &WallContact,
+        history: &mut [f64],
+        dt: f64,
+    ) -> Result<ContactOutput, LawError> {
+        let b = &c.sphere;
+        let p = PairBody {
+            position: v3(c.point),
+            velocity: v3(c.wall_velocity),
+            angular_velocity: Vec3::ZERO,
+            surface: Surface::Plane,
+            mass: f64::INFINITY,
+        };
+        let q = PairBody {
+            position: v3(b.x),
+            velocity: v3(b.v),
+            angular_velocity: v3(b.omega),
+            surface: Surface::Sphere(b.radius),
+            mass: b.mass,
+        };
+        let mut h = ContactHistory::<T>::read(history)?;
+        let g = ContactGeometry::plane_sphere(p.position, v3(c.normal), q.position, b.radius);
+        let f = pair_force(&self.constants, &p, &q, &g, &mut h, dt);
+        h.write(history)?;
+        Ok(ContactOutput {
+            force_p: arr(f.force_p),
+            torque_p: arr(f.torque_p),
+            torque_q: arr(f.torque_q),
+            touching: u32::from(f.touching),
+        })
+    }
+
+    /// A batch of sphere-wall contacts, as [`Model::compute`]; wall normals must be unit
+    /// vectors (within 1e-9).
+    pub fn compute_walls(
+        models: &[&Model],
+        dt: f64,
+        contacts: &[WallContact],
+        history: &mut [f64],
+        stride: usize,
+        out: &mut [ContactOutput],
+    ) -> Result<(), ModelError> {
+        Self::compute_walls_by(
+            |k| models.get(k).copied(),
+            dt,
+            contacts,
+            history,
+            stride,
+            out,
+        )
+    }
+
+    /// [`Model::compute_walls`] with the model of contact `k` given by `model_of(k)`.
+    pub(crate) fn compute_walls_by<'a>(
+        model_of: impl Fn(usize) -> Option<&'a Model>,
+        dt: f64,
+        contacts: &[WallContact],
+        history: &mut [f64],
+        stride: usize,
+        out: &mut [ContactOutput],
+    ) -> Result<(), ModelError> {
+        if !(dt.is_finite() && dt >= 0.0) {
+            return Err(ModelError::TimeStep(dt));
+        }
+        if contacts.is_empty() {
+            return Ok(());
+        }
+        if out.len() < contacts.len() {
+            return Err(ModelError::Output {
+                got: out.len(),
+                want: contacts.len(),
+            });
+        }
+        let first = model_of(0).ok_or(ModelError::MissingModel(0))?;
+        let want = first.tier.history_len();
+        if stride != want || history.len() < stride * contacts.len() {
+            return Err(ModelError::Stride { got: stride, want });
+        }
+        for (k, (c, o)) in contacts.iter().zip(out.iter_mut()).enumerate() {
+            let m = model_of(k).ok_or(ModelError::MissingModel(k))?;
+            if m.tier != first.tier {
+                return Err(ModelError::MixedTiers);
+            }
+            let b = &c.sphere;
+            if !(b.radius.is_finite() && b.radius > 0.0 && b.mass.is_finite() && b.mass > 0.0) {
+                return Err(ModelError::Body {
+                    index: k,
+                    radius: b.radius,
+                    mass: b.mass,
+                });
+            }
+            let unit = (v3(c.normal).length() - 1.0).abs() <= 1e-9; // false for NaN too
+            if !unit {
+                return Err(ModelError::WallNormal(k));
+            }
+            let h = &mut history[k * stride..(k + 1) * stride];
+            *o = m
+                .step_wall(c, h, dt)
+                .map_err(|source| ModelError::History { index: k, source })?;
+        }
+        Ok(())
     }
 
     /// A batch: contact `k` uses `models[k]`, its history is `history[k * stride ..][..stride]`

@@ -7,7 +7,7 @@ use creep_lammps::ffi::{
     CreepLammpsSettings, creep_lammps_compute, creep_lammps_history_len, creep_lammps_model_free,
     creep_lammps_model_new,
 };
-use creep_lammps::{Body, Contact, ContactOutput, Model, Settings, Tier};
+use creep_lammps::{Body, Contact, ContactOutput, Model, Settings, Tier, WallContact};
 use std::ffi::{CStr, c_char};
 
 fn settings(tier: u32, e: f64) -> CreepLammpsSettings {
@@ -230,4 +230,49 @@ fn data_file_round_trips_and_driver_conserves_momentum() {
     for a in 0..3 {
         assert!((m1[a] - m0[a]).abs() < 1e-12 * scale, "{m0:?} {m1:?}");
     }
+}
+
+#[test]
+fn sphere_on_a_wall_is_pushed_off_it_with_hertz() {
+    let m = Model::new(&Settings {
+        young_modulus: 69.6e6,
+        poisson_ratio: 0.2,
+        restitution: 0.5,
+        friction: 0.5,
+        tier: Tier::Exact,
+        creep: true,
+        rolling: None,
+    })
+    .expect("model");
+    let delta = 1e-6;
+    let c = WallContact {
+        point: [0.0, 0.0, -1.0],
+        normal: [0.0, 0.0, 1.0],
+        wall_velocity: [0.0; 3],
+        sphere: sphere([0.0, 0.0, -1.0 + 1e-3 - delta], [0.0; 3], [0.0; 3]),
+    };
+    let mut h = vec![0.0; Tier::Exact.history_len()];
+    let o = m.step_wall(&c, &mut h, 1e-6).expect("step");
+    assert_eq!(o.touching, 1);
+    // Hertz against a half-space: P = (4/3) E* sqrt(R) delta^1.5, E* = E / (2 (1 - nu^2)) for
+    // two bodies of one material (creep-law's convention), R = the sphere's radius.
+    let e_star = 69.6e6 / (2.0 * (1.0 - 0.04));
+    let p = 4.0 / 3.0 * e_star * (1e-3f64).sqrt() * delta.powf(1.5);
+    assert!(
+        (-o.force_p[2] - p).abs() < 1e-6 * p,
+        "{} vs {p}",
+        -o.force_p[2]
+    );
+    let mut bad = c;
+    bad.normal = [0.0, 0.0, 2.0];
+    let mut out = [ContactOutput::default()];
+    let e = Model::compute_walls(
+        &[&m],
+        1e-6,
+        &[bad],
+        &mut h,
+        Tier::Exact.history_len(),
+        &mut out,
+    );
+    assert!(e.is_err());
 }

@@ -147,9 +147,25 @@ fn dem<T: creep_law::pair::TangentialLaw>(data: &str, params: &str, steps: u64) 
         skin: v("skin")?,
         ..DemConfig::default()
     };
+    // `variable zwalls equal 1`: flat walls at the box's z faces instead of periodic z (LAMMPS:
+    // `boundary p p f` and `fix wall/creep ... zplane zlo zhi`).
+    let zwalls = lammps_variable(&vars, "zwalls").unwrap_or(0.0) == 1.0;
     if p.periodic {
-        cfg.periodic = std::array::from_fn(|a| Some((p.lo[a], p.hi[a])));
+        cfg.periodic = std::array::from_fn(|a| (a < 2 || !zwalls).then_some((p.lo[a], p.hi[a])));
     }
+    let walls: Vec<creep_dem::Wall> = if zwalls {
+        [(p.lo[2], 1.0), (p.hi[2], -1.0)]
+            .iter()
+            .map(|&(z, side)| creep_dem::Wall {
+                point: creep_law::Vec3::new(0.0, 0.0, z),
+                normal: creep_law::Vec3::new(0.0, 0.0, side),
+                velocity: creep_law::Vec3::ZERO,
+                material: 0,
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     let v3 = |a: [f64; 3]| creep_law::Vec3::new(a[0], a[1], a[2]);
     let particles: Vec<Particle> = (0..p.tag.len())
         .map(|i| Particle {
@@ -160,7 +176,7 @@ fn dem<T: creep_law::pair::TangentialLaw>(data: &str, params: &str, steps: u64) 
             material: 0,
         })
         .collect();
-    let mut d = Dem::<T>::new(cfg, table, &particles, &[])?;
+    let mut d = Dem::<T>::new(cfg, table, &particles, &walls)?;
     let ke = |d: &Dem<T>| {
         d.velocities()
             .iter()
