@@ -56,6 +56,20 @@ impl CreepLaw {
         }
     }
 
+    /// The law of `model` for `pair` with its steady law given, for a host that builds the
+    /// steady law once per pair of materials and meets contacts of other radii (the DEM pair
+    /// kernel, creep-law `pair`): `steady` must be `SteadyLaw::with_c11(model, pair.nu,
+    /// pair.c11)` (checked in debug builds).
+    #[inline]
+    pub fn from_parts(pair: PairMaterial, model: CreepModel, steady: SteadyLaw) -> Self {
+        debug_assert_eq!(steady, SteadyLaw::with_c11(model, pair.nu, pair.c11));
+        Self {
+            pair,
+            model,
+            steady,
+        }
+    }
+
     /// Kuhn's rule ([`CreepModel::Kuhn`], the talk's model) for `pair`.
     pub fn kuhn(pair: PairMaterial) -> Self {
         Self::new(pair, CreepModel::Kuhn)
@@ -163,6 +177,13 @@ impl CreepState {
     #[inline]
     pub fn force(&self) -> Vec2 {
         self.mindlin.force()
+    }
+
+    /// A state from its parts: a Cattaneo-Mindlin memory and the transient tier's lag state
+    /// (`[Vec2::ZERO; 2]` unless [`CreepModel::FittedTransient`] is used), e.g. read back from
+    /// a flat history array.
+    pub fn from_parts(mindlin: MindlinState, lag: [Vec2; 2]) -> Self {
+        Self { mindlin, lag }
     }
 
     /// The underlying Cattaneo-Mindlin state (load history).

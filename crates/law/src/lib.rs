@@ -12,6 +12,7 @@ pub mod kalker;
 pub mod kinematics;
 pub mod material;
 pub mod mindlin;
+pub mod pair;
 pub mod rolling_torque;
 pub mod root;
 pub mod steady_law;

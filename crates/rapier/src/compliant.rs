@@ -4,7 +4,7 @@
 //!
 //! # The contact law (all in f64)
 //! Bodies p (the narrow phase's collider1) and q, unit normal `n` from p to q, overlap `delta`,
-//! contact point `c` in the middle of the overlap (DESIGN §2 conventions).
+//! contact point `c` in the middle of the overlap (conventions: docs/ARCHITECTURE.md §4).
 //! * Normal: Hertz `P_e = (4/3) E* sqrt(R*) delta^(3/2)` (Johnson 1985, §4.2) plus the damping
 //!   of Tsuji et al. (1992), `alpha sqrt(m* k_H) delta^(1/4) delta_dot`, with `alpha` chosen so
 //!   that the impact rebounds with the pair's restitution `e` exactly (see [`damping`]); the
@@ -80,11 +80,11 @@
 pub mod damping;
 mod geometry;
 
-use creep_law::kinematics::contact_rates;
-use creep_law::rolling_torque::{RollingInput, RollingState, epsd_rolling_inertia};
-use creep_law::{
-    CreepInput, CreepLaw, CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz,
+use creep_law::pair::{
+    ContactGeometry, ContactHistory, Exact, PairBody, PairConstants, pair_force,
 };
+use creep_law::rolling_torque::RollingState;
+use creep_law::{CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz};
 use rapier3d::prelude::*;
 
 pub use damping::{
@@ -473,17 +473,34 @@ impl CompliantRegime {
             if !(inv_sum > 0.0) {
                 continue;
             }
-            let m_star = 1.0 / inv_sum;
             let n = touch.normal;
             let c = touch.point;
             let p_motion = motion(b1, c - n, s1);
             let q_motion = motion(b2, c + n, s2);
-            let rates = contact_rates(&p_motion, &q_motion, c, n);
-            let delta_dot = -(q_motion.velocity_at(c) - p_motion.velocity_at(c)).dot(n);
+            let mass = |b: Option<&RigidBody>| match b {
+                Some(rb) if rb.is_dynamic() && rb.mass() > 0.0 => f64::from(rb.mass()),
+                _ => f64::INFINITY,
+            };
+            let body = |m: &creep_law::kinematics::BodyMotion, mass: f64| PairBody {
+                position: m.position,
+                velocity: m.velocity,
+                angular_velocity: m.angular_velocity,
+                surface: m.surface,
+                mass,
+            };
+            let (bp, bq) = (body(&p_motion, mass(b1)), body(&q_motion, mass(b2)));
+            let rolling = match (m1.rolling, m2.rolling) {
+                (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
+                _ => None,
+            };
+            let creep = self.settings.creep.then_some(self.settings.creep_model);
+            let Ok(constants) = PairConstants::from_parts(&pm, alpha, creep, rolling) else {
+                self.counts.unsupported += 1;
+                continue;
+            };
 
-            // Contact record and its tangent basis, carried with the contact.
+            // Contact record, its tangent basis carried with the contact.
             let generation = self.generation;
-            let spin = 0.5 * (p_motion.angular_velocity + q_motion.angular_velocity).dot(n);
             let rec = self.contacts.entry((c1, c2)).or_insert_with(|| {
                 let (t1, _) = n.tangent_basis();
                 CompliantContact {
@@ -503,107 +520,74 @@ impl CompliantRegime {
                     generation,
                 }
             });
-            let t1 = rotate_to(rec.t1, rec.normal, n);
-            let t1 = rotate_about(t1, n, spin * dt);
-            let Some(t1) = t1.reject(n).try_normalize() else {
-                continue;
+            let mut history = ContactHistory::<Exact> {
+                tangential: rec.state,
+                t1: rec.t1,
+                normal: rec.normal,
+                rolling: rec.rolling,
+                overlap: rec.overlap,
             };
-            let t2 = n.cross(t1);
-
-            // Normal force: Hertz + Tsuji damping tuned to e, never attractive.
-            let delta = touch.overlap;
-            let p_el = hertz::normal_force(&pm, delta);
-            let k_h = 4.0 / 3.0 * pm.e_star * pm.r_star.sqrt();
-            let damp = alpha * (m_star * k_h).sqrt() * delta.sqrt().sqrt();
-            let p_tot = (p_el + damp * delta_dot).max(0.0);
-            self.energy.damping += (p_tot - p_el) * delta_dot * dt;
-
-            // Tangential force: Cattaneo-Mindlin with Kuhn's creep term.
-            let a = hertz::contact_radius_from_overlap(&pm, delta);
-            let du_disp = Vec2::from_basis(rates.v_disp * dt, t1, t2);
-            let du_roll = if self.settings.creep {
-                Vec2::from_basis(rates.v_roll * dt, t1, t2)
-            } else {
-                Vec2::ZERO
-            };
-            let step = rec.state.update(
-                &CreepLaw::new(pm, self.settings.creep_model),
-                CreepInput::new(p_el, du_disp, du_roll).with_radius(a),
+            // The pure pair kernel (creep-law `pair`): the DEM engine calls the same function.
+            let f = pair_force(
+                &constants,
+                &bp,
+                &bq,
+                &touch_geometry(&touch),
+                &mut history,
+                dt,
             );
-            self.energy.slip += step.slip_dissipation;
-            self.energy.creep += step.creep_dissipation;
-            self.energy.truncation += step.truncation_energy;
-            let q_world = step.q.to_3d(t1, t2);
-            let sliding = pm.mu.is_finite() && step.q.length() >= (1.0 - 1e-9) * pm.mu * p_el;
-
-            // Contact-torque rolling resistance (on q; -M on p).
-            let rolling = match (m1.rolling, m2.rolling) {
-                (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
-                _ => None,
-            };
-            let mut torque_q = Vec3::ZERO;
-            if let Some(model) = rolling {
-                let term = |b: Option<&RigidBody>, s: Surface| match (b, s) {
-                    (Some(rb), Surface::Sphere(r)) if rb.is_dynamic() => {
-                        let m = f64::from(rb.mass());
-                        (m, 0.4 * m * r * r, r)
-                    }
-                    _ => (f64::INFINITY, f64::INFINITY, 1.0),
-                };
-                let (ma, ia, ra) = term(b1, s1);
-                let (mb, ib, rb_) = term(b2, s2);
-                let input = RollingInput {
-                    p: p_tot,
-                    r_star: pm.r_star,
-                    k_n: hertz::normal_stiffness(&pm, delta),
-                    w_roll: rates.w_roll,
-                    normal: n,
-                    dt,
-                    rolling_inertia: epsd_rolling_inertia(ma, ia, ra, mb, ib, rb_),
-                };
-                let r = model.torque(&mut rec.rolling, &input);
-                torque_q = r.torque;
-                self.energy.rolling += r.dissipation;
+            if !f.touching {
+                continue; // degenerate basis: the record is swept below
             }
+            let d = f.dissipation;
+            self.energy.damping += d.damping;
+            self.energy.slip += d.slip;
+            self.energy.creep += d.creep;
+            self.energy.truncation += d.truncation;
+            self.energy.rolling += d.rolling;
 
-            rec.t1 = t1;
-            rec.t2 = t2;
-            rec.normal = n;
+            rec.state = history.tangential;
+            rec.t1 = history.t1;
+            rec.t2 = history.normal.cross(history.t1);
+            rec.normal = history.normal;
+            rec.rolling = history.rolling;
             rec.point = c;
-            rec.overlap = delta;
-            rec.normal_force = p_tot;
-            rec.tangential_force = q_world;
-            rec.sliding = sliding;
-            let slid = du_disp.length();
-            rec.creep_ratio = if slid > 0.0 {
-                step.creep_displacement.length() / slid
-            } else if step.creep_displacement != Vec2::ZERO {
+            rec.overlap = history.overlap;
+            rec.normal_force = f.normal_force;
+            rec.tangential_force = f.tangential_force;
+            rec.sliding = f.sliding;
+            let creep_len = f.creep_displacement.length();
+            rec.creep_ratio = if f.slide_length > 0.0 {
+                creep_len / f.slide_length
+            } else if f.creep_displacement != Vec2::ZERO {
                 f64::INFINITY
             } else {
                 0.0
             };
-            rec.v_disp = rates.v_disp;
-            rec.v_roll = rates.v_roll;
+            rec.v_disp = f.v_disp;
+            rec.v_roll = f.v_roll;
             rec.generation = generation;
-            normal_elastic += hertz::normal_energy(&pm, delta);
-            tangential_elastic += rec.state.mindlin().elastic_energy(&pm);
+            let (wn, wt) = history.elastic_energy(&constants, s1, s2);
+            normal_elastic += wn;
+            tangential_elastic += wt;
             self.counts.contacts += 1;
-            self.counts.sliding += usize::from(sliding);
-            self.counts.creeping += usize::from(step.creep_displacement != Vec2::ZERO);
+            self.counts.sliding += usize::from(f.sliding);
+            self.counts.creeping += usize::from(f.creep_displacement != Vec2::ZERO);
 
-            // Forces at the contact point, equal and opposite.
-            let f_p = q_world - n * p_tot;
-            for (b, h, f, m) in [(b1, h1, f_p, -torque_q), (b2, h2, -f_p, torque_q)] {
+            // Forces and torques (about the centres of mass), equal and opposite.
+            for (b, h, f, m) in [
+                (b1, h1, f.force_p, f.torque_p),
+                (b2, h2, -f.force_p, f.torque_q),
+            ] {
                 let (Some(rb), Some(h)) = (b, h) else {
                     continue;
                 };
                 if !rb.is_dynamic() {
                     continue;
                 }
-                let arm = c - v3(rb.center_of_mass());
                 let e = accum.entry(h).or_insert((Vec3::ZERO, Vec3::ZERO));
                 e.0 += f;
-                e.1 += arm.cross(f) + m;
+                e.1 += m;
             }
         }
         let g = self.generation;
@@ -670,40 +654,11 @@ fn touch_of(co1: &Collider, co2: &Collider) -> Option<Touch> {
     }
 }
 
-/// `v` turned by the smallest rotation taking the unit vector `from` to the unit vector `to`
-/// (Rodrigues' formula; identity when they coincide, any half turn when opposite).
-fn rotate_to(v: Vec3, from: Vec3, to: Vec3) -> Vec3 {
-    let axis = from.cross(to);
-    let s = axis.length();
-    let c = from.dot(to);
-    if !(s > 1e-15) {
-        return if c >= 0.0 { v } else { -v };
-    }
-    let k = axis * (1.0 / s);
-    v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
-}
-
-/// `v` turned by `angle` [rad] about the unit `axis` (Rodrigues).
-fn rotate_about(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
-    if angle == 0.0 {
-        return v;
-    }
-    let (s, c) = angle.sin_cos();
-    v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn basis_rotation() {
-        let n0 = Vec3::Z;
-        let n1 = Vec3::new(0.0, 0.6, 0.8);
-        let t = rotate_to(Vec3::Y, n0, n1);
-        assert!(t.dot(n1).abs() < 1e-15 && (t.length() - 1.0).abs() < 1e-15);
-        assert!((rotate_to(Vec3::X, n0, n1) - Vec3::X).length() < 1e-15);
-        let r = rotate_about(Vec3::X, Vec3::Z, std::f64::consts::FRAC_PI_2);
-        assert!((r - Vec3::Y).length() < 1e-15);
+/// The kernel's geometry of a touch.
+fn touch_geometry(t: &Touch) -> ContactGeometry {
+    ContactGeometry {
+        normal: t.normal,
+        point: t.point,
+        overlap: t.overlap,
     }
 }

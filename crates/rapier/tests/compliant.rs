@@ -645,3 +645,129 @@ fn driven_rolling_creeps_at_kalkers_rate() {
         }
     }
 }
+
+/// The compliant regime's forces are creep-law's pure pair kernel (`creep_law::pair`): on the
+/// same configuration (poses, velocities, contact history) a direct kernel call gives the same
+/// normal force, tangential force and contact history to rounding.
+#[test]
+fn forces_equal_a_direct_kernel_call() {
+    use creep_law::pair::{
+        ContactGeometry, ContactHistory, Exact, PairBody, PairConstants, pair_force,
+    };
+    use creep_law::{CreepModel, Surface, Vec3};
+    let glass = Material::glass();
+    let r = 0.01;
+    let t_r = creep_law::hertz::rayleigh_time_step(&glass, r);
+    let dt = 0.1 * t_r;
+    let mut w = world(dt);
+    // Three spheres squeezed in a bent chain, moving and spinning: sliding, rolling, creep.
+    let specs = [
+        (
+            Vector::new(0.0, 0.0, 0.0),
+            Vector::new(0.2, 0.05, 0.0),
+            Vector::new(0.0, 0.0, 3.0),
+        ),
+        (
+            Vector::new(0.0199, 0.001, 0.0),
+            Vector::new(-0.1, 0.0, 0.02),
+            Vector::new(1.0, -2.0, 0.0),
+        ),
+        (
+            Vector::new(0.0398, -0.001, 0.0005),
+            Vector::new(-0.2, 0.0, 0.0),
+            Vector::new(0.0, 4.0, 1.0),
+        ),
+    ];
+    for (x, v, om) in specs {
+        w.insert(
+            RigidBodyBuilder::dynamic()
+                .translation(x)
+                .linvel(v)
+                .angvel(om),
+            ball(r, &glass, 0.5, 0.5),
+            compliant(glass),
+        );
+    }
+    for _ in 0..20 {
+        w.step().unwrap();
+    }
+    let before: Vec<_> = w.compliant.contacts().map(|(k, c)| (*k, *c)).collect();
+    assert_eq!(before.len(), 2, "both contacts closed");
+    let body = |w: &CreepWorld, c: ColliderHandle| {
+        let co = &w.physics.colliders[c];
+        let rb = &w.physics.bodies[co.parent().unwrap()];
+        let v3 = |v: Vector| Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z));
+        let centre = v3(co.position().translation);
+        let b = PairBody {
+            position: v3(rb.center_of_mass()),
+            velocity: v3(rb.linvel()),
+            angular_velocity: v3(rb.angvel()),
+            surface: Surface::Sphere(f64::from(co.shape().as_ball().unwrap().radius)),
+            mass: f64::from(rb.mass()),
+        };
+        (centre, b)
+    };
+    let constants = PairConstants::new(
+        &glass,
+        &glass,
+        f64::from(0.5f32),
+        f64::from(0.5f32),
+        Some(CreepModel::Kuhn),
+        None,
+    )
+    .unwrap();
+    let direct: Vec<_> = before
+        .iter()
+        .map(|((c1, c2), rec)| {
+            let (x1, p) = body(&w, *c1);
+            let (x2, q) = body(&w, *c2);
+            let g = ContactGeometry::sphere_sphere(x1, p.surface.radius(), x2, q.surface.radius())
+                .unwrap();
+            let mut h = ContactHistory::<Exact> {
+                tangential: rec.state,
+                t1: rec.t1,
+                normal: rec.normal,
+                rolling: rec.rolling,
+                overlap: rec.overlap,
+            };
+            let f = pair_force(&constants, &p, &q, &g, &mut h, f64::from(dt as f32));
+            ((*c1, *c2), f, h)
+        })
+        .collect();
+    // The regime's next step from the same state.
+    let wp = &mut w.physics;
+    w.compliant
+        .begin_step(
+            w.hooks.registry(),
+            &wp.integration_parameters,
+            &mut wp.bodies,
+            &wp.colliders,
+            &wp.narrow_phase,
+        )
+        .unwrap();
+    let after: std::collections::HashMap<_, _> =
+        w.compliant.contacts().map(|(k, c)| (*k, *c)).collect();
+    w.compliant.end_step(&mut w.physics.bodies);
+    for (key, f, h) in direct {
+        let rec = after[&key];
+        let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;
+        let scale = f.normal_force;
+        assert!(f.touching && f.tangential_force.length() > 0.0);
+        assert!(
+            close(rec.normal_force, f.normal_force, scale),
+            "{} vs {}",
+            rec.normal_force,
+            f.normal_force
+        );
+        assert!((rec.tangential_force - f.tangential_force).length() <= 1e-12 * scale);
+        assert_eq!(rec.state, h.tangential);
+        assert!((rec.t1 - h.t1).length() < 1e-15);
+        println!(
+            "kernel vs compliant regime: P = {:.6e} N (diff {:.1e}), |Q| = {:.6e} N (diff {:.1e})",
+            f.normal_force,
+            rec.normal_force - f.normal_force,
+            f.tangential_force.length(),
+            (rec.tangential_force - f.tangential_force).length()
+        );
+    }
+}

@@ -1,0 +1,123 @@
+// creep-lammps plugin shim - GPL-2.0-only (see LICENSE-NOTE.md in this directory).
+#include "fix_creep_history.h"
+
+#include "atom.h"
+#include "error.h"
+#include "memory.h"
+#include "utils.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+// fix ID group creep/history maxpartners hlen
+FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), maxpartners(0), hlen(0), rowlen(0), rows(nullptr), spare(nullptr)
+{
+  if (narg != 5) error->all(FLERR, "Illegal fix creep/history command: expected maxpartners hlen");
+  maxpartners = utils::inumeric(FLERR, arg[3], false, lmp);
+  hlen = utils::inumeric(FLERR, arg[4], false, lmp);
+  if (maxpartners < 1 || hlen < 1) error->all(FLERR, "fix creep/history: maxpartners and hlen must be >= 1");
+  init_storage();
+}
+
+FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg, int maxp, int hl) :
+    Fix(lmp, narg, arg), maxpartners(maxp), hlen(hl), rowlen(0), rows(nullptr), spare(nullptr)
+{
+  if (maxpartners < 1 || hlen < 1) error->all(FLERR, "fix {}: no walls or no history", style);
+  init_storage();
+}
+
+void FixCreepHistory::init_storage()
+{
+  rowlen = 1 + maxpartners * (1 + hlen);
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange = rowlen;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) rows[i][0] = 0.0;
+}
+
+FixCreepHistory::~FixCreepHistory()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(rows);
+  memory->destroy(spare);
+}
+
+int FixCreepHistory::setmask()
+{
+  return 0;
+}
+
+void FixCreepHistory::grow_arrays(int nmax)
+{
+  memory->grow(rows, nmax, rowlen, "creep/history:rows");
+  memory->grow(spare, nmax, rowlen, "creep/history:spare");
+}
+
+void FixCreepHistory::copy_arrays(int i, int j, int /*delflag*/)
+{
+  std::memcpy(rows[j], rows[i], sizeof(double) * used(i));
+}
+
+void FixCreepHistory::set_arrays(int i)
+{
+  rows[i][0] = 0.0;
+}
+
+int FixCreepHistory::pack_exchange(int i, double *buf)
+{
+  const int n = used(i);
+  std::memcpy(buf, rows[i], sizeof(double) * n);
+  return n;
+}
+
+int FixCreepHistory::unpack_exchange(int nlocal, double *buf)
+{
+  const int count = static_cast<int>(buf[0]);
+  if (count < 0 || count > maxpartners) error->one(FLERR, "fix creep/history: corrupt exchange buffer");
+  const int n = used_for(count);
+  std::memcpy(rows[nlocal], buf, sizeof(double) * n);
+  return n;
+}
+
+// Restart: [n + 1, row...], LAMMPS' convention that the first value counts the values.
+int FixCreepHistory::pack_restart(int i, double *buf)
+{
+  const int n = used(i);
+  buf[0] = n + 1;
+  std::memcpy(buf + 1, rows[i], sizeof(double) * n);
+  return n + 1;
+}
+
+void FixCreepHistory::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  const int n = static_cast<int>(extra[nlocal][m]) - 1;
+  const int count = static_cast<int>(extra[nlocal][m + 1]);
+  if (count < 0 || count > maxpartners || n != used_for(count))
+    error->one(FLERR, "fix creep/history: restart row does not match maxpartners/hlen of this build");
+  std::memcpy(rows[nlocal], &extra[nlocal][m + 1], sizeof(double) * n);
+}
+
+int FixCreepHistory::size_restart(int i)
+{
+  return used(i) + 1;
+}
+
+int FixCreepHistory::maxsize_restart()
+{
+  return rowlen + 1;
+}
+
+double FixCreepHistory::memory_usage()
+{
+  return 2.0 * static_cast<double>(atom->nmax) * rowlen * sizeof(double);
+}

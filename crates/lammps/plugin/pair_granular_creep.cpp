@@ -1,0 +1,325 @@
+// creep-lammps plugin shim - GPL-2.0-only (see LICENSE-NOTE.md in this directory).
+//
+// pair_style granular/creep [tier exact|spring] [creep yes|no] [maxpartners N]
+//                           [rolling none | rolling constant MU_R | rolling epsd MU_R ETA]
+// pair_coeff I J E e nu mu          (Young's modulus [Pa], restitution, Poisson ratio, friction)
+//
+// Requirements (checked in init_style): atom_style sphere, comm_modify vel yes, newton off
+// (for pairs: each rank then computes every owned-ghost pair itself and keeps its history
+// under its owned atom, so no history has to be sent back to the ghost's owner).
+//
+// Contact orientation: body p is the atom with the lower tag, so the two ranks that compute an
+// owned-ghost pair (newton off) evaluate it identically and keep the same history.
+#include "pair_granular_creep.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_creep_history.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+#include <cstring>
+#include <algorithm>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+static const char HISTORY_FIX_ID[] = "CREEP_HISTORY";
+
+PairGranularCreep::PairGranularCreep(LAMMPS *lmp) :
+    Pair(lmp), maxpartners(24), tier(CREEP_LAMMPS_TIER_EXACT), creep(1), rolling(CREEP_LAMMPS_ROLLING_NONE),
+    rolling_friction(0.0), rolling_damping(0.0),
+    models(nullptr), maxrad(0.0), fix_history(nullptr)
+{
+  single_enable = 0;
+  restartinfo = 0;    // re-issue pair_style and pair_coeff after read_restart
+  no_virial_fdotr_compute = 1;
+  finitecutflag = 1;
+  centroidstressflag = CENTROID_SAME;
+}
+
+PairGranularCreep::~PairGranularCreep()
+{
+  if (allocated) {
+    const int n = atom->ntypes;
+    for (int i = 1; i <= n; i++)
+      for (int j = i; j <= n; j++) creep_lammps_model_free(models[i][j]);
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    for (int i = 0; i <= n; i++) delete[] models[i];
+    delete[] models;
+  }
+}
+
+void PairGranularCreep::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  models = new CreepLammpsModel **[n + 1];
+  for (int i = 0; i <= n; i++) {
+    models[i] = new CreepLammpsModel *[n + 1];
+    for (int j = 0; j <= n; j++) {
+      models[i][j] = nullptr;
+      setflag[i][j] = 0;
+    }
+  }
+}
+
+void PairGranularCreep::settings(int narg, char **arg)
+{
+  int iarg = 0;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (key == "rolling") {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style granular/creep: rolling needs a model");
+      const std::string model = arg[iarg + 1];
+      if (model == "none") {
+        rolling = CREEP_LAMMPS_ROLLING_NONE;
+        iarg += 2;
+      } else if (model == "constant" && iarg + 2 < narg) {
+        rolling = CREEP_LAMMPS_ROLLING_CONSTANT;
+        rolling_friction = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        iarg += 3;
+      } else if (model == "epsd" && iarg + 3 < narg) {
+        rolling = CREEP_LAMMPS_ROLLING_EPSD;
+        rolling_friction = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        rolling_damping = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+        iarg += 4;
+      } else {
+        error->all(FLERR, "pair_style granular/creep: rolling none | constant MU_R | epsd MU_R ETA");
+      }
+      continue;
+    }
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style granular/creep: keyword {} needs a value", key);
+    const std::string val = arg[iarg + 1];
+    if (key == "tier") {
+      if (val == "exact") tier = CREEP_LAMMPS_TIER_EXACT;
+      else if (val == "spring") tier = CREEP_LAMMPS_TIER_SPRING;
+      else error->all(FLERR, "pair_style granular/creep: tier must be exact or spring, not {}", val);
+    } else if (key == "creep") {
+      creep = utils::logical(FLERR, val, false, lmp);
+    } else if (key == "maxpartners") {
+      maxpartners = utils::inumeric(FLERR, val, false, lmp);
+      if (maxpartners < 1) error->all(FLERR, "pair_style granular/creep: maxpartners must be >= 1");
+    } else {
+      error->all(FLERR, "pair_style granular/creep: unknown keyword {}", key);
+    }
+    iarg += 2;
+  }
+}
+
+void PairGranularCreep::coeff(int narg, char **arg)
+{
+  if (narg != 6) error->all(FLERR, "pair_coeff I J E e nu mu: expected 6 arguments for granular/creep");
+  if (!allocated) allocate();
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  CreepLammpsSettings s;
+  s.young_modulus = utils::numeric(FLERR, arg[2], false, lmp);
+  s.restitution = utils::numeric(FLERR, arg[3], false, lmp);
+  s.poisson_ratio = utils::numeric(FLERR, arg[4], false, lmp);
+  s.friction = utils::numeric(FLERR, arg[5], false, lmp);
+  s.rolling = rolling;
+  s.rolling_friction = rolling_friction;
+  s.rolling_damping = rolling_damping;
+  s.tier = tier;
+  s.creep = creep ? 1 : 0;
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++) {
+    for (int j = std::max(jlo, i); j <= jhi; j++) {
+      char msg[512] = {0};
+      CreepLammpsModel *m = creep_lammps_model_new(&s, msg, sizeof(msg));
+      if (!m) error->all(FLERR, "pair_coeff granular/creep: {}", msg);
+      creep_lammps_model_free(models[i][j]);
+      models[i][j] = m;
+      setflag[i][j] = 1;
+      count++;
+    }
+  }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
+}
+
+void PairGranularCreep::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "pair granular/creep requires atom_style sphere (radius, rmass, omega, torque)");
+  if (comm->ghost_velocity == 0) error->all(FLERR, "pair granular/creep requires comm_modify vel yes");
+  if (force->newton_pair) error->all(FLERR, "pair granular/creep requires newton off (for pairs)");
+
+  neighbor->add_request(this, NeighConst::REQ_SIZE);
+
+  const int hlen = static_cast<int>(creep_lammps_history_len(tier));
+  fix_history = dynamic_cast<FixCreepHistory *>(modify->get_fix_by_id(HISTORY_FIX_ID));
+  if (!fix_history) {
+    fix_history = dynamic_cast<FixCreepHistory *>(modify->add_fix(
+        fmt::format("{} all creep/history {} {}", HISTORY_FIX_ID, maxpartners, hlen)));
+    if (!fix_history) error->all(FLERR, "pair granular/creep: could not create fix creep/history");
+  }
+  if (fix_history->hlen != hlen || fix_history->maxpartners != maxpartners)
+    error->all(FLERR, "pair granular/creep: fix {} has maxpartners {} hlen {}, need {} {}", HISTORY_FIX_ID,
+               fix_history->maxpartners, fix_history->hlen, maxpartners, hlen);
+
+  double mine = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) mine = std::max(mine, atom->radius[i]);
+  MPI_Allreduce(&mine, &maxrad, 1, MPI_DOUBLE, MPI_MAX, world);
+}
+
+double PairGranularCreep::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) {
+    if (setflag[j][i] == 0 && !(i > j && setflag[j][i]))
+      error->all(FLERR, "pair granular/creep: pair_coeff {} {} not set", i, j);
+  }
+  // Cut-off: the largest contact distance (sizes set the real one per pair).
+  return 2.0 * maxrad;
+}
+
+void PairGranularCreep::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  double **omega = atom->omega, **torque = atom->torque;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *type = atom->type;
+  const tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  // Set-up forces (start of a run) see no displacement: dt = 0, as creep-dem's initial forces.
+  // Their history update only sets the contact's basis and radius (an identity for a contact
+  // that was stepped before), so `run N; run M` and a restart continue alike.
+  const double dt = update->setupflag ? 0.0 : update->dt;
+  const bool commit = true;
+  const int hlen = fix_history->hlen;
+  double **rows = fix_history->rows;
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  batch.clear();
+  batch_i.clear();
+  batch_j.clear();
+  batch_swap.clear();
+  batch_model.clear();
+  batch_hist.clear();
+
+  // 1. Gather the touching pairs and their histories (looked up in atom i's row by tag).
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    double *rowi = rows[i];
+    const int ni = static_cast<int>(rowi[0]);
+    const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double rsum = radius[i] + radius[j];
+      if (dx * dx + dy * dy + dz * dz >= rsum * rsum) continue;
+      const bool swap = tag[i] > tag[j];
+      const int p = swap ? j : i, q = swap ? i : j;
+      CreepLammpsContact c;
+      for (int k = 0; k < 3; k++) {
+        c.p.x[k] = x[p][k];
+        c.p.v[k] = v[p][k];
+        c.p.omega[k] = omega[p][k];
+        c.q.x[k] = x[q][k];
+        c.q.v[k] = v[q][k];
+        c.q.omega[k] = omega[q][k];
+      }
+      c.p.radius = radius[p];
+      c.p.mass = rmass[p];
+      c.q.radius = radius[q];
+      c.q.mass = rmass[q];
+      batch.push_back(c);
+      batch_i.push_back(i);
+      batch_j.push_back(j);
+      batch_swap.push_back(swap ? 1 : 0);
+      const int ti = type[i], tj = type[j];
+      batch_model.push_back(ti <= tj ? models[ti][tj] : models[tj][ti]);
+      const size_t at = batch_hist.size();
+      batch_hist.resize(at + hlen);
+      const double partner = static_cast<double>(tag[j]);
+      int found = -1;
+      for (int e = 0; e < ni; e++)
+        if (tagsi[e] == partner) {
+          found = e;
+          break;
+        }
+      if (found >= 0)
+        std::memcpy(&batch_hist[at], fix_history->hist_of(rowi, found), sizeof(double) * hlen);
+      else
+        std::memset(&batch_hist[at], 0, sizeof(double) * hlen);
+    }
+  }
+
+  // 2. One call into the law for all of them.
+  const size_t n = batch.size();
+  batch_out.resize(n);
+  if (n > 0) {
+    char msg[512] = {0};
+    const int rc = creep_lammps_compute(batch_model.data(), dt, n, batch.data(), batch_hist.data(),
+                                        static_cast<size_t>(hlen), batch_out.data(), msg, sizeof(msg));
+    if (rc != 0) error->one(FLERR, "pair granular/creep: {}", msg);
+  }
+
+  // 3. Forces, torques, virial; the new histories into fresh rows of the owned atoms.
+  double **newrows = fix_history->spare;
+  if (commit)
+    for (int i = 0; i < nlocal; i++) newrows[i][0] = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    const int i = batch_i[k], j = batch_j[k];
+    const CreepLammpsOutput &o = batch_out[k];
+    double fi[3], ti[3], tj[3];
+    if (batch_swap[k]) {    // p = j, q = i
+      for (int d = 0; d < 3; d++) {
+        fi[d] = -o.force_p[d];
+        ti[d] = o.torque_q[d];
+        tj[d] = o.torque_p[d];
+      }
+    } else {
+      for (int d = 0; d < 3; d++) {
+        fi[d] = o.force_p[d];
+        ti[d] = o.torque_p[d];
+        tj[d] = o.torque_q[d];
+      }
+    }
+    for (int d = 0; d < 3; d++) {
+      f[i][d] += fi[d];
+      torque[i][d] += ti[d];
+    }
+    if (j < nlocal) {
+      for (int d = 0; d < 3; d++) {
+        f[j][d] -= fi[d];
+        torque[j][d] += tj[d];
+      }
+    }
+    if (evflag)
+      ev_tally_xyz(i, j, nlocal, 0, 0.0, 0.0, fi[0], fi[1], fi[2], x[i][0] - x[j][0], x[i][1] - x[j][1],
+                   x[i][2] - x[j][2]);
+    if (!commit || !o.touching) continue;
+    const double *h = &batch_hist[k * hlen];
+    for (int side = 0; side < 2; side++) {
+      const int a = side == 0 ? i : j, b = side == 0 ? j : i;
+      if (a >= nlocal) continue;
+      double *row = newrows[a];
+      const int cnt = static_cast<int>(row[0]);
+      if (cnt >= maxpartners)
+        error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
+                   tag[a], maxpartners);
+      *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag[b]);
+      std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
+      row[0] = cnt + 1;
+    }
+  }
+  if (commit) fix_history->swap_rows();
+}

