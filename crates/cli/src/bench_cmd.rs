@@ -12,8 +12,10 @@ use creep_law::{PairMaterial, Surface, hertz};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use creep_dem::{Cheap, Exact};
 use creep_scenes::triaxial::{
-    Specimen, TriaxialParams, compact, time_compliant_steps, time_plain_rapier_steps,
+    Specimen, TriaxialParams, compact, dem_engine_tiled, time_compliant_steps, time_dem_steps,
+    time_plain_rapier_steps,
 };
 
 type Res = Result<(), Box<dyn std::error::Error>>;
@@ -44,6 +46,14 @@ pub enum BenchCommand {
         /// round (1-based), e.g. the peers' runs, so that they interleave with ours.
         #[arg(long, value_name = "CMD")]
         between: Option<String>,
+        /// Threads of the DEM engine's second set of rows (0: none); the first set is one
+        /// thread.
+        #[arg(long, default_value_t = 2)]
+        dem_threads: usize,
+        /// Scale table instead: the DEM engine (cheap tier with creep, one thread) on the
+        /// packing tiled k x k x k for each k given (e.g. `1,2,4`: 4k, 32k, 256k spheres).
+        #[arg(long, value_delimiter = ',', value_name = "K,K,..")]
+        scale: Vec<usize>,
     },
 }
 
@@ -69,6 +79,8 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
             export,
             rounds,
             between,
+            dem_threads,
+            scale,
         } => {
             if *steps == 0 {
                 return Err("--steps must be at least 1".into());
@@ -118,59 +130,120 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
                 )?;
                 out.flush()?;
             }
+            if !scale.is_empty() {
+                return scale_table(&s, scale, *steps, out);
+            }
             // Interleave the variants in blocks so the machine's load drifts hit all alike.
-            let (mut cm, mut cr, mut pr) = (vec![], vec![], vec![]);
+            let two = *dem_threads > 1;
+            let names = [
+                "cm",
+                "creep",
+                "plain",
+                "dem-cheap",
+                "dem-exact",
+                "dem-cheap-mt",
+                "dem-exact-mt",
+            ];
+            let mut all: Vec<Vec<f64>> = vec![vec![]; names.len()];
             let block = (*steps / 4).max(1);
             for round in 1..=*rounds {
-                let (mut rcm, mut rcr, mut rpr) = (vec![], vec![], vec![]);
+                let mut r: Vec<Vec<f64>> = vec![vec![]; names.len()];
                 let mut left = *steps;
                 while left > 0 {
                     let k = block.min(left);
-                    rcm.extend(time_compliant_steps(&s, false, k)?);
-                    rcr.extend(time_compliant_steps(&s, true, k)?);
-                    rpr.extend(time_plain_rapier_steps(&s, k));
+                    r[0].extend(time_compliant_steps(&s, false, k)?);
+                    r[1].extend(time_compliant_steps(&s, true, k)?);
+                    r[2].extend(time_plain_rapier_steps(&s, k));
+                    r[3].extend(time_dem_steps::<Cheap>(&s, true, 1, k)?);
+                    r[4].extend(time_dem_steps::<Exact>(&s, true, 1, k)?);
+                    if two {
+                        r[5].extend(time_dem_steps::<Cheap>(&s, true, *dem_threads, k)?);
+                        r[6].extend(time_dem_steps::<Exact>(&s, true, *dem_threads, k)?);
+                    }
                     left -= k;
                 }
                 if *rounds > 1 || between.is_some() {
                     // Means, like a loop time divided by its steps (LAMMPS' "Loop time").
+                    let cols: Vec<String> = names
+                        .iter()
+                        .zip(&r)
+                        .filter(|(_, v)| !v.is_empty())
+                        .map(|(n, v)| format!("{n} {:.6e}", mean(v)))
+                        .collect();
                     writeln!(
                         out,
-                        "round {round} of {rounds}, mean s/step: cm {:.6e} creep {:.6e} plain {:.6e}",
-                        mean(&rcm),
-                        mean(&rcr),
-                        mean(&rpr)
+                        "round {round} of {rounds}, mean s/step: {}",
+                        cols.join(" ")
                     )?;
                     out.flush()?;
                 }
-                cm.extend(rcm);
-                cr.extend(rcr);
-                pr.extend(rpr);
+                for (a, b) in all.iter_mut().zip(r) {
+                    a.extend(b);
+                }
                 if let Some(command) = between {
                     run_between(command, round)?;
                 }
             }
-            let (m_cm, m_cr, m_pr) = (median(cm), median(cr), median(pr));
-            writeln!(
-                out,
-                "| variant | ms/step (median) | particle-steps/s | vs plain Rapier |"
-            )?;
-            writeln!(out, "|---|---|---|---|")?;
-            for (name, m) in [
-                ("compliant, Coulomb-Mindlin", m_cm),
-                ("compliant, creep-friction", m_cr),
-                ("plain Rapier (rigid contacts)", m_pr),
-            ] {
+            let med: Vec<f64> = all.into_iter().map(median).collect();
+            writeln!(out, "engine,threads,particles,steps,particle_steps_per_s")?;
+            let total = *steps * *rounds;
+            let mut rows = vec![("dem-cheap", 1, med[3]), ("dem-exact", 1, med[4])];
+            if two {
+                rows.push(("dem-cheap", *dem_threads, med[5]));
+                rows.push(("dem-exact", *dem_threads, med[6]));
+            }
+            rows.push(("rapier-compliant", 1, med[1]));
+            rows.push(("rapier-compliant-cm", 1, med[0]));
+            rows.push(("rapier-plain", 1, med[2]));
+            for (name, threads, m) in rows {
                 writeln!(
                     out,
-                    "| {name} | {:.3} | {:.3e} | {:.2} |",
-                    m * 1e3,
-                    count / m,
-                    m / m_pr
+                    "{name},{threads},{},{total},{:.4e}",
+                    n.pow(3),
+                    count / m
                 )?;
             }
             Ok(())
         }
     }
+}
+
+/// The DEM engine's scale table: the cheap tier with creep, one thread, on the packing tiled
+/// `k^3` times for each `k`, particle-step cost relative to the first; and the engine's memory
+/// per particle (both tiers, arrays + neighbour list + histories).
+fn scale_table(s: &Specimen, tiles: &[usize], steps: usize, out: &mut dyn Write) -> Res {
+    writeln!(
+        out,
+        "engine,threads,particles,steps,particle_steps_per_s,cost_vs_first,bytes_per_particle"
+    )?;
+    let mut first = None;
+    for &k in tiles {
+        let mut d = dem_engine_tiled::<Cheap>(s, true, false, k)?;
+        let n = d.len();
+        let mut times = Vec::with_capacity(steps);
+        for _ in 0..steps {
+            let t = std::time::Instant::now();
+            d.step().map_err(|e| format!("DEM engine: {e}"))?;
+            times.push(t.elapsed().as_secs_f64());
+        }
+        let per = median(times) / n as f64;
+        let f = *first.get_or_insert(per);
+        let exact = dem_engine_tiled::<Exact>(s, true, false, k)?;
+        writeln!(
+            out,
+            "dem-cheap,1,{n},{steps},{:.4e},{:.3},{:.0}",
+            1.0 / per,
+            per / f,
+            d.bytes_per_particle()
+        )?;
+        writeln!(
+            out,
+            "# dem-exact memory at {n} particles: {:.0} bytes per particle",
+            exact.bytes_per_particle()
+        )?;
+        out.flush()?;
+    }
+    Ok(())
 }
 
 /// Runs `command` with `sh -c`, its output going to ours; an error if it cannot start or
@@ -533,6 +606,8 @@ mod tests {
             export: None,
             rounds,
             between: None,
+            dem_threads: 2,
+            scale: vec![],
         };
         assert!(run(&dem(0, 2), &mut out).is_err());
         assert!(run(&dem(1, 0), &mut out).is_err());

@@ -37,12 +37,12 @@
 mod grid;
 
 use creep_law::pair::{
-    ContactGeometry, ContactHistory, PairBody, PairConstants, TangentialLaw, pair_force, release,
+    ContactGeometry, ContactHistory, PairBody, PairConstants, pair_force, release,
 };
 use creep_law::rolling_torque::RollingModel;
 use creep_law::{CreepModel, LawError, Material, Surface, Vec3};
 
-pub use creep_law::pair::{Cheap, Exact};
+pub use creep_law::pair::{Cheap, Exact, TangentialLaw};
 
 /// Errors of the engine's constructors and steps.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -1031,3 +1031,39 @@ impl<T: TangentialLaw> Carry<T> {
 
 #[cfg(feature = "parallel")]
 mod par;
+
+/// Runs `f` on a rayon pool of `threads` threads (the engines it steps with
+/// [`DemConfig::parallel`] use them). Without the `parallel` feature only `threads == 1` runs.
+pub fn with_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> Result<R, DemError> {
+    if threads == 0 {
+        return Err(DemError::Parameter {
+            name: "threads",
+            value: 0.0,
+            why: "at least one thread",
+        });
+    }
+    #[cfg(feature = "parallel")]
+    {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|_| DemError::Parameter {
+                name: "threads",
+                value: threads as f64,
+                why: "rayon could not start the pool",
+            })?;
+        Ok(pool.install(f))
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        if threads == 1 {
+            Ok(f())
+        } else {
+            Err(DemError::Parameter {
+                name: "threads",
+                value: threads as f64,
+                why: "more than one thread needs creep-dem's `parallel` feature",
+            })
+        }
+    }
+}

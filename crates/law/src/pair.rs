@@ -203,7 +203,10 @@ impl ContactGeometry {
     pub fn sphere_sphere(xp: Vec3, rp: f64, xq: Vec3, rq: f64) -> Option<Self> {
         let d = xq - xp;
         let dist = d.length();
-        let normal = d.try_normalize()?;
+        if !(dist.is_finite() && dist > f64::MIN_POSITIVE) {
+            return None;
+        }
+        let normal = d * (1.0 / dist);
         let overlap = rp + rq - dist;
         Some(Self {
             normal,
@@ -665,15 +668,17 @@ pub fn pair_force<T: TangentialLaw>(
     };
     let t2 = n.cross(t1);
 
-    // Normal force: Hertz + Tsuji damping tuned to e, never attractive.
-    let p_el = hertz::normal_force(&pm, delta);
-    let k_h = 4.0 / 3.0 * pm.e_star * pm.r_star.sqrt();
-    let damp = c.alpha * (m_star * k_h).sqrt() * delta.sqrt().sqrt();
+    // Normal force: Hertz `(4/3) E* sqrt(R* delta) delta = (4/3) E* a delta` (Johnson 1985,
+    // §4.2) + Tsuji damping tuned to e, `alpha sqrt(m* k_H) delta^(1/4)` with
+    // `k_H = (4/3) E* sqrt(R*)`, i.e. `alpha sqrt((4/3) E* m* a)`; never attractive.
+    let a = (pm.r_star * delta).sqrt();
+    let e43 = 4.0 / 3.0 * pm.e_star;
+    let p_el = e43 * a * delta;
+    let damp = c.alpha * (e43 * m_star * a).sqrt();
     let p_tot = (p_el + damp * delta_dot).max(0.0);
     let damping = (p_tot - p_el) * delta_dot * dt;
 
     // Tangential force.
-    let a = hertz::contact_radius_from_overlap(&pm, delta);
     let du_disp = Vec2::from_basis(rates.v_disp * dt, t1, t2);
     let du_roll = if c.creep.is_some() {
         Vec2::from_basis(rates.v_roll * dt, t1, t2)
@@ -779,7 +784,14 @@ pub fn rotate_about(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
     if angle == 0.0 {
         return v;
     }
-    let (s, c) = angle.sin_cos();
+    // DEM steps turn a contact by micro-radians: the Taylor series is exact to rounding below
+    // 1e-3 rad (next terms a^5/120, a^6/720 < 1e-17) and saves the libm call.
+    let (s, c) = if angle.abs() < 1e-3 {
+        let a2 = angle * angle;
+        (angle * (1.0 - a2 / 6.0), 1.0 - 0.5 * a2 * (1.0 - a2 / 12.0))
+    } else {
+        angle.sin_cos()
+    };
     v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
 }
 

@@ -1035,3 +1035,137 @@ pub fn time_plain_rapier_steps(specimen: &Specimen, steps: usize) -> Vec<f64> {
         })
         .collect()
 }
+
+/// The specimen's packing in the creep-dem engine ([`creep_dem::Dem`]): the same balls (radius,
+/// position, velocities), the six walls as planes at their inner faces (normals into the box,
+/// frictionless: the walls' friction 0 under Rapier's `Min` rule), the balls' friction
+/// [`TriaxialParams::mu`] and restitution, the same time step, creep on or off (Kuhn's model),
+/// neighbour skin 2 % of the mean diameter (the peers' skin in `bench/peers`). `parallel` runs
+/// the force loop on rayon's threads.
+pub fn dem_engine<T: creep_dem::TangentialLaw>(
+    specimen: &Specimen,
+    creep: bool,
+    parallel: bool,
+) -> Result<creep_dem::Dem<T>, SceneError> {
+    dem_engine_tiled(specimen, creep, parallel, 1)
+}
+
+/// [`dem_engine`] with the packing repeated `tiles` times along each axis (`tiles^3` copies
+/// side by side, box dimensions apart, inside walls around the whole): a larger dense packing
+/// for the engine's scale table (`creep bench dem --scale`). The copies' seams are as dense as
+/// the packing at its walls.
+pub fn dem_engine_tiled<T: creep_dem::TangentialLaw>(
+    specimen: &Specimen,
+    creep: bool,
+    parallel: bool,
+    tiles: usize,
+) -> Result<creep_dem::Dem<T>, SceneError> {
+    if !(1..=16).contains(&tiles) {
+        return Err(SceneError::Parameter(format!(
+            "tiles must be in [1, 16], got {tiles}"
+        )));
+    }
+    use creep_dem::{Dem, DemConfig, MaterialTable, Particle};
+    use creep_law::pair::PairConstants;
+    use creep_law::{CreepModel, Vec3};
+    let err = |e: creep_dem::DemError| SceneError::Parameter(format!("DEM engine: {e}"));
+    let p = &specimen.params;
+    let physics = &specimen.world.physics;
+    let v3 = |v: Vector| Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z));
+    let dims = specimen.dims();
+    let lo: [f64; 3] = std::array::from_fn(|a| specimen.face(&specimen.walls[2 * a]));
+    let mut particles = Vec::with_capacity(specimen.balls.len() * tiles.pow(3));
+    for &(b, c) in &specimen.balls {
+        let body = &physics.bodies[b];
+        let radius = physics.colliders[c]
+            .shape()
+            .as_ball()
+            .map(|ball| f64::from(ball.radius))
+            .ok_or_else(|| SceneError::Parameter("a ball collider is not a ball".into()))?;
+        particles.push(Particle {
+            position: v3(body.translation()),
+            velocity: v3(body.linvel()),
+            angular_velocity: v3(body.angvel()),
+            radius,
+            material: 0,
+        });
+    }
+    let one = particles.len();
+    for t in 1..tiles.pow(3) {
+        let (i, j, k) = (t % tiles, (t / tiles) % tiles, t / (tiles * tiles));
+        let shift = Vec3::new(i as f64 * dims[0], j as f64 * dims[1], k as f64 * dims[2]);
+        for q in 0..one {
+            let mut copy = particles[q];
+            copy.position += shift;
+            particles.push(copy);
+        }
+    }
+    let walls: Vec<creep_dem::Wall> = specimen
+        .walls
+        .iter()
+        .map(|w| {
+            let mut point = [0.0; 3];
+            point[w.axis] = if w.side > 0.0 {
+                lo[w.axis] + tiles as f64 * dims[w.axis]
+            } else {
+                specimen.face(w)
+            };
+            let mut normal = [0.0; 3];
+            normal[w.axis] = -w.side;
+            let mut vel = [0.0; 3];
+            vel[w.axis] = f64::from(physics.bodies[w.body].linvel()[w.axis]);
+            creep_dem::Wall {
+                point: Vec3::new(point[0], point[1], point[2]),
+                normal: Vec3::new(normal[0], normal[1], normal[2]),
+                velocity: Vec3::new(vel[0], vel[1], vel[2]),
+                material: 1,
+            }
+        })
+        .collect();
+    let ball = p.material.with_friction(p.mu)?;
+    let wall = p.material.with_friction(0.0)?;
+    let model = creep.then_some(CreepModel::Kuhn);
+    let mut table = MaterialTable::new(&[ball, wall], p.restitution, model, None).map_err(err)?;
+    // Ball-wall pairs frictionless (Rapier's `Min` rule with the walls' 0).
+    table
+        .set_pair(
+            0,
+            1,
+            PairConstants::new(&ball, &wall, 0.0, p.restitution, model, None)?,
+        )
+        .map_err(err)?;
+    let cfg = DemConfig {
+        dt: f64::from(physics.integration_parameters.dt),
+        skin: 0.02 * p.mean_diameter(),
+        parallel,
+        ..DemConfig::default()
+    };
+    Dem::new(cfg, table, &particles, &walls).map_err(err)
+}
+
+/// Wall-clock seconds of each of `steps` steps of the packing at rest in the creep-dem engine
+/// ([`dem_engine`], the balls' friction on), on `threads` threads (1: the serial force loop;
+/// more: rayon's, which needs creep-dem's `parallel` feature).
+pub fn time_dem_steps<T: creep_dem::TangentialLaw>(
+    specimen: &Specimen,
+    creep: bool,
+    threads: usize,
+    steps: usize,
+) -> Result<Vec<f64>, SceneError> {
+    let run = || -> Result<Vec<f64>, SceneError> {
+        let mut d = dem_engine::<T>(specimen, creep, threads > 1)?;
+        let mut times = Vec::with_capacity(steps);
+        for _ in 0..steps {
+            let t = std::time::Instant::now();
+            d.step()
+                .map_err(|e| SceneError::Parameter(format!("DEM engine: {e}")))?;
+            times.push(t.elapsed().as_secs_f64());
+        }
+        Ok(times)
+    };
+    if threads <= 1 {
+        return run();
+    }
+    creep_dem::with_threads(threads, run)
+        .map_err(|e| SceneError::Parameter(format!("DEM engine: {e}")))?
+}

@@ -85,3 +85,33 @@ fn a_small_packing_compacts_and_shears_quasi_statically() {
         runs.push(r);
     }
 }
+
+/// The specimen in the creep-dem engine: the same balls, the six walls at the inner faces, the
+/// same time step; the tiled packing has `k^3` times the balls; both tiers step.
+#[test]
+fn the_packing_moves_to_the_dem_engine() {
+    use creep_scenes::triaxial::{dem_engine, dem_engine_tiled};
+    let params = TriaxialParams {
+        n_per_side: 3,
+        ..TriaxialParams::default()
+    };
+    let s = Specimen::generate(params).unwrap();
+    let mut d = dem_engine::<creep_dem::Cheap>(&s, true, false).unwrap();
+    assert_eq!(d.len(), 27);
+    assert_eq!(d.walls().len(), 6);
+    assert!((d.config().dt / params.time_step() - 1.0).abs() < 1e-6);
+    // The generated packing has no overlaps: no contact, no wall force.
+    d.step().unwrap();
+    assert_eq!(d.counts().contacts + d.counts().wall_contacts, 0);
+    // Walls face into the box, the balls lie between them.
+    for k in 0..6 {
+        let w = d.walls()[k];
+        for i in 0..d.len() {
+            let p = d.particle(i);
+            assert!((p.position - w.point).dot(w.normal) > p.radius);
+        }
+    }
+    let t = dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 2).unwrap();
+    assert_eq!(t.len(), 27 * 8);
+    assert!(dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 0).is_err());
+}
