@@ -37,6 +37,7 @@ pub mod influence;
 pub mod kalker_linear;
 pub mod material;
 pub mod mindlin;
+pub mod steady3d;
 pub mod tiers;
 
 pub use error::RefError;

@@ -1,0 +1,342 @@
+//! A fast non-linear steady creep law for elliptic contacts with combined longitudinal, lateral
+//! and spin creepage: `(xi, eta, phi) -> (Fx, Fy, Mz)`, saturating at `mu P`, and its inverse at
+//! zero spin (`(Fx, Fy) -> (xi, eta)`).
+//!
+//! # Units and signs
+//!
+//! Kalker's normalisation with `c = sqrt(a b)` (`a` the semi-axis along the rolling direction):
+//! `xi_n = xi G c^2/(mu P)`, `eta_n = eta G c^2/(mu P)`, `phi_n = phi G c^3/(mu P)`; forces over
+//! `mu P`, moment over `mu P c`. [`Steady3d::loads`] uses the project's signs (creepage of body
+//! q relative to body p, force on body p, DESIGN.md §2: a positive creepage gives a positive
+//! force, the dissipation `Q . v_disp` is positive); [`Steady3d::loads_kalker`] the signs of
+//! Kalker and CONTACT (a positive creepage gives a negative force: every output negated).
+//!
+//! # The law (a fit to the project's boundary elements)
+//!
+//! Linear part: Kalker's theory with the coefficients of [`crate::kalker3d`] (Kalker 1967/1990),
+//! `Fx = C11 xi_n`, `Fy = C22 eta_n + C23 phi_n`, `Mz = -C23 eta_n + C33 phi_n` (normalised,
+//! project signs). Non-linear part, with `g = min(a/b, b/a)`, `h = 1 - g`, and
+//! `M_max = (3/8) a_M E(e)/c` the full-slip spin moment of the Hertz pressure about the centre
+//! over `mu P c` (`integral mu p r dA`; `a_M` the major semi-axis, `E` the complete elliptic
+//! integral of the second kind, [`crate::elliptic::complete_elliptic`]; `3 pi/16` for the circle):
+//!
+//! 1. translation: `t = (C11 xi_n, C22 eta_n)`, `s_t = S(|t|; k)` with the Kalker-type
+//!    saturation `S(x; k) = 1 - (1 - u)^2 (1 + (2 - k) u)`, `u = min(x/k, 1)` (slope 1 at 0, full
+//!    slip `S = 1` from `x = k` on with `1 - S ~ (k - x)^2`, the behaviour of the exact theory
+//!    near full slip, see [`crate::steady_law`]; Kalker's closed form is `k = 3` with a cubic
+//!    tail), `k = kx cos^2 + ky sin^2` of the direction of `t`, `kx = KX0 + KX_NU nu + KX_H h`,
+//!    `ky = KY0 + KY_NU nu + KY_H h`, clamped to `[2, 3]`; the force `s_t t/|t|`;
+//! 2. spin moment: `m = C33 phi_n/M_max`, `s_m = m/(1 + |m|^p)^(1/p)`, `p = P0 + P_H h` (the
+//!    spin moment saturates slowly: the contact centre always sticks);
+//! 3. lateral force of spin: `f_s = C23 phi_n/(1 + z^q)^((1 + e)/q)`, `z = C23 |phi_n|/ks`,
+//!    `ks = KS0 + KS_H h`, `q = Q0 + Q_H h`, `e = E0 + E_H h`: linear at small spin, it peaks
+//!    near `C23 phi_n ~ 0.9` and decays as `phi_n^-e` (in full slip of pure spin the traction
+//!    field is symmetric and carries no force);
+//! 4. combination (shared friction capacity): the translational force times
+//!    `(1 - |s_m|^N_F)^(1/N_F)`, plus `(0, f_s (1 - s_t)^R_F)`, projected onto `|F| <= 1`; the
+//!    moment `Mz = M_max s_m (1 - s_t^N_M)^(1/N_M) - C23 eta_n (1 - s_t)^R_M`.
+//!
+//! The pure cases reduce to one ingredient each, so their constants were fitted separately
+//! (minimax over the boundary-element table of crate creep-reference, module `steady3d`:
+//! `a/b = 1, 0.5, 0.2` x `nu = 0, 0.25, 0.5`, grid-extrapolated), then `N_F, R_F, N_M` on the
+//! combined cases and `R_M` on the pure lateral ones. The error table against the boundary
+//! elements is printed by `cargo run --release -p creep-reference --example steady3d_errors`;
+//! it is **not** within the targets for spin and combined creepage (see the crate
+//! creep-reference test `steady3d_vs_bem`, which asserts the measured errors). For `a/b > 1`
+//! the constants are extrapolated (`h` from `g = b/a`); the table covers `a <= b` only.
+//!
+//! Cost: a handful of `powf`, two square roots and a few multiply-adds per evaluation; measured
+//! against `F_ss` in the criterion group `steady3d` (crate creep-law, benches/steady3d.rs).
+
+use crate::elliptic::complete_elliptic;
+use crate::error::LawError;
+use crate::kalker3d::{self, KalkerCoefficients};
+
+/// Saturation point of the longitudinal force: `kx = KX0 + KX_NU nu + KX_H h` (fitted).
+pub const KX0: f64 = 2.3351;
+/// See [`KX0`].
+pub const KX_NU: f64 = -0.0954;
+/// See [`KX0`].
+pub const KX_H: f64 = -0.1353;
+/// Saturation point of the lateral force: `ky = KY0 + KY_NU nu + KY_H h` (fitted).
+pub const KY0: f64 = 2.401;
+/// See [`KY0`].
+pub const KY_NU: f64 = 0.1877;
+/// See [`KY0`].
+pub const KY_H: f64 = -0.2881;
+/// Spin-moment shape `p = P0 + P_H h` (fitted).
+pub const P0: f64 = 1.1965;
+/// See [`P0`].
+pub const P_H: f64 = 0.3426;
+/// Spin lateral force: `ks = KS0 + KS_H h` (fitted).
+pub const KS0: f64 = 1.0166;
+/// See [`KS0`].
+pub const KS_H: f64 = -0.4941;
+/// Spin lateral force: `q = Q0 + Q_H h` (fitted).
+pub const Q0: f64 = 2.4844;
+/// See [`Q0`].
+pub const Q_H: f64 = -0.633;
+/// Spin lateral force decay exponent `e = E0 + E_H h` (fitted).
+pub const E0: f64 = 0.9659;
+/// See [`E0`].
+pub const E_H: f64 = 0.0189;
+/// Force capacity left by the spin moment, exponent `N_F` (fitted on combined cases).
+pub const N_F: f64 = 2.0302;
+/// Fading of the spin's lateral force with the translational utilisation, `R_F` (fitted).
+pub const R_F: f64 = 0.1532;
+/// Moment capacity left by the translational force, exponent `N_M` (fitted).
+pub const N_M: f64 = 6.9126;
+/// Fading of the lateral creepage's moment, `R_M` (fitted on pure lateral creepage).
+pub const R_M: f64 = 0.7;
+
+/// The law at one axis ratio and Poisson ratio (coefficients precomputed; build once per
+/// contact shape and material pair).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Steady3d {
+    c: KalkerCoefficients,
+    m_max: f64,
+    /// Spin moment over `M_max` per `phi_n`: `C33/M_max`.
+    m_per_phi: f64,
+    kx: f64,
+    ky: f64,
+    p: f64,
+    inv_p: f64,
+    /// `C23/ks`.
+    z_per_phi: f64,
+    q: f64,
+    /// `(1 + e)/q`.
+    f_exp: f64,
+}
+
+/// Normalised loads `(Fx/(mu P), Fy/(mu P), Mz/(mu P c))`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Loads {
+    /// Longitudinal force over `mu P`.
+    pub fx: f64,
+    /// Lateral force over `mu P`.
+    pub fy: f64,
+    /// Spin moment over `mu P c`.
+    pub mz: f64,
+}
+
+/// `S(x; k)` of the module documentation, for `x >= 0`, `k` in `[2, 3]`.
+#[inline]
+fn saturation(x: f64, k: f64) -> f64 {
+    let u = (x / k).min(1.0);
+    let v = 1.0 - u;
+    1.0 - v * v * (1.0 + (2.0 - k) * u)
+}
+
+/// Inverse of [`saturation`] on `[0, 1)`: the `x` with `S(x; k) = s`, by Newton's method on the
+/// cubic in `u` (monotone, `dS/du = (1 - u)(k + 3 (2 - k) u) > 0` for `k` in `[2, 3]`, `u < 1`).
+fn saturation_inverse(s: f64, k: f64) -> f64 {
+    let b = 2.0 - k;
+    let mut u = s / k; // S ~ k u near 0
+    for _ in 0..60 {
+        let v = 1.0 - u;
+        let f = 1.0 - v * v * (1.0 + b * u) - s;
+        let d = v * (k + 3.0 * b * u);
+        if !(d > 0.0) {
+            break;
+        }
+        let step = f / d;
+        u = (u - step).clamp(0.0, 1.0 - 1e-15);
+        if step.abs() < 1e-15 {
+            break;
+        }
+    }
+    k * u
+}
+
+impl Steady3d {
+    /// The law for the axis ratio `ab = a/b` in `[0.1, 10]` (`a` along the rolling direction)
+    /// and Poisson ratio `nu` in `[0, 0.5]` (Kalker's table range).
+    pub fn new(ab: f64, nu: f64) -> Result<Self, LawError> {
+        let c = kalker3d::coefficients(ab, nu)?;
+        let g = ab.min(1.0 / ab);
+        let h = 1.0 - g;
+        let (_, e, _) = complete_elliptic(1.0 - g * g)?;
+        // a_M / c = sqrt(a_M / b_m) = 1/sqrt(g).
+        let m_max = 0.375 * e / g.sqrt();
+        let p = P0 + P_H * h;
+        let q = Q0 + Q_H * h;
+        Ok(Steady3d {
+            c,
+            m_max,
+            m_per_phi: c.c33 / m_max,
+            kx: (KX0 + KX_NU * nu + KX_H * h).clamp(2.0, 3.0),
+            ky: (KY0 + KY_NU * nu + KY_H * h).clamp(2.0, 3.0),
+            p,
+            inv_p: 1.0 / p,
+            z_per_phi: c.c23 / (KS0 + KS_H * h),
+            q,
+            f_exp: (1.0 + E0 + E_H * h) / q,
+        })
+    }
+
+    /// Kalker's coefficients in use.
+    pub fn coefficients(&self) -> KalkerCoefficients {
+        self.c
+    }
+
+    /// The full-slip spin moment `M_max` over `mu P c`.
+    pub fn max_moment(&self) -> f64 {
+        self.m_max
+    }
+
+    /// Saturation point for a translational linear force `(tx, ty)` of magnitude `tm > 0`.
+    #[inline]
+    fn k_of(&self, tx: f64, ty: f64, tm: f64) -> f64 {
+        let (cx, cy) = (tx / tm, ty / tm);
+        self.kx * cx * cx + self.ky * cy * cy
+    }
+
+    /// Loads for normalised creepages, project signs (module documentation). Non-finite
+    /// creepages give zero loads (a sanitised no-contact answer, never NaN).
+    #[inline]
+    pub fn loads(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+        if !(xi_n.is_finite() && eta_n.is_finite() && phi_n.is_finite()) {
+            return Loads::default();
+        }
+        let c = &self.c;
+        // Translation.
+        let tx = c.c11 * xi_n;
+        let ty = c.c22 * eta_n;
+        let tm = (tx * tx + ty * ty).sqrt();
+        let (mut fx, mut fy, st) = if tm > 0.0 {
+            let st = saturation(tm, self.k_of(tx, ty, tm));
+            (tx * st / tm, ty * st / tm, st)
+        } else {
+            (0.0, 0.0, 0.0)
+        };
+        // Spin.
+        let (s_m, f_s) = if phi_n != 0.0 {
+            let m = self.m_per_phi * phi_n;
+            let s_m = m / (1.0 + m.abs().powf(self.p)).powf(self.inv_p);
+            let z = self.z_per_phi * phi_n.abs();
+            let f_s = c.c23 * phi_n / (1.0 + z.powf(self.q)).powf(self.f_exp);
+            (s_m, f_s)
+        } else {
+            (0.0, 0.0)
+        };
+        // Shared capacity.
+        if s_m != 0.0 {
+            let cap = (1.0 - s_m.abs().powf(N_F)).max(0.0).powf(1.0 / N_F);
+            fx *= cap;
+            fy *= cap;
+        }
+        fy += f_s * (1.0 - st).powf(R_F);
+        let f = (fx * fx + fy * fy).sqrt();
+        if f > 1.0 {
+            fx /= f;
+            fy /= f;
+        }
+        let cap_m = (1.0 - st.powf(N_M)).max(0.0).powf(1.0 / N_M);
+        let mz = self.m_max * s_m * cap_m - c.c23 * eta_n * (1.0 - st).powf(R_M);
+        Loads { fx, fy, mz }
+    }
+
+    /// [`Steady3d::loads`] in Kalker's / CONTACT's signs (a positive creepage gives a negative
+    /// force): every output negated.
+    #[inline]
+    pub fn loads_kalker(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+        let l = self.loads(xi_n, eta_n, phi_n);
+        Loads {
+            fx: -l.fx,
+            fy: -l.fy,
+            mz: -l.mz,
+        }
+    }
+
+    /// Inverse at zero spin, project signs: the normalised creepages `(xi_n, eta_n)` that give
+    /// the force `(fx, fy)` (over `mu P`). `|F| < 1` is required (at full slip the creepage is
+    /// not unique): otherwise [`LawError::OutOfRange`].
+    pub fn creepages_for_force(&self, fx: f64, fy: f64) -> Result<(f64, f64), LawError> {
+        let f = (fx * fx + fy * fy).sqrt();
+        if !(f < 1.0) {
+            return Err(LawError::OutOfRange {
+                name: "force ratio |F|/(mu P)",
+                value: f,
+                range: "[0, 1) (full slip has no unique creepage)",
+            });
+        }
+        if f == 0.0 {
+            return Ok((0.0, 0.0));
+        }
+        // At zero spin t is parallel to F, |t| = S^-1(|F|; k) with k from the direction.
+        let tm = saturation_inverse(f, self.k_of(fx, fy, f));
+        Ok((tm * fx / f / self.c.c11, tm * fy / f / self.c.c22))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linear_limit_is_kalkers_theory() {
+        for (ab, nu) in [(1.0, 0.25), (0.5, 0.0), (0.2, 0.5), (3.0, 0.3)] {
+            let law = Steady3d::new(ab, nu).unwrap();
+            let c = law.coefficients();
+            let e = 1e-7;
+            let l = law.loads(e, 0.0, 0.0);
+            assert!((l.fx / e / c.c11 - 1.0).abs() < 1e-5, "{ab} {nu}");
+            let l = law.loads(0.0, e, 0.0);
+            assert!((l.fy / e / c.c22 - 1.0).abs() < 1e-5);
+            assert!((l.mz / e / -c.c23 - 1.0).abs() < 1e-5);
+            let l = law.loads(0.0, 0.0, e);
+            assert!((l.fy / e / c.c23 - 1.0).abs() < 1e-4, "{}", l.fy / e);
+            assert!((l.mz / e / c.c33 - 1.0).abs() < 1e-4, "{}", l.mz / e);
+        }
+    }
+
+    #[test]
+    fn saturates_at_mu_p_and_is_odd() {
+        let law = Steady3d::new(0.5, 0.25).unwrap();
+        for i in 0..200 {
+            let t = i as f64 * 0.37;
+            let (x, y, z) = (t.sin() * 3.0, (1.3 * t).cos() * 2.0, (0.7 * t).sin() * 4.0);
+            let l = law.loads(x, y, z);
+            assert!(l.fx.hypot(l.fy) <= 1.0 + 1e-12);
+            assert!(l.mz.abs() <= law.max_moment() + 1e-12 + 1.0);
+            let m = law.loads(-x, -y, -z);
+            assert!((l.fx + m.fx).abs() < 1e-12 && (l.fy + m.fy).abs() < 1e-12);
+            assert!((l.mz + m.mz).abs() < 1e-12);
+            // Dissipation: the force does positive work on the translational creepage at zero spin.
+            let p = law.loads(x, y, 0.0);
+            assert!(p.fx * x + p.fy * y >= 0.0);
+        }
+        let l = law.loads(100.0, 0.0, 0.0);
+        assert!((l.fx - 1.0).abs() < 1e-12);
+        let k = law.loads_kalker(0.1, 0.0, 0.0);
+        assert!(k.fx < 0.0);
+        assert_eq!(law.loads(f64::NAN, 0.0, 0.0), Loads::default());
+        // Circle: M_max = 3 pi/16.
+        let c = Steady3d::new(1.0, 0.25).unwrap();
+        assert!((c.max_moment() - 3.0 * std::f64::consts::PI / 16.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn inverse_round_trips_at_zero_spin() {
+        for (ab, nu) in [(1.0, 0.25), (0.2, 0.0), (2.0, 0.5)] {
+            let law = Steady3d::new(ab, nu).unwrap();
+            for i in 0..50 {
+                let t = i as f64 * 0.41;
+                let (x, y) = (0.3 * t.cos(), 0.25 * (1.7 * t).sin());
+                let l = law.loads(x, y, 0.0);
+                if l.fx.hypot(l.fy) > 0.999_999 {
+                    continue;
+                }
+                let (bx, by) = law.creepages_for_force(l.fx, l.fy).unwrap();
+                assert!(
+                    (bx - x).abs() < 1e-9 && (by - y).abs() < 1e-9,
+                    "{x} {y}: {bx} {by}"
+                );
+            }
+            assert!(law.creepages_for_force(1.0, 0.0).is_err());
+            assert!(law.creepages_for_force(f64::NAN, 0.0).is_err());
+            assert_eq!(law.creepages_for_force(0.0, 0.0).unwrap(), (0.0, 0.0));
+        }
+        assert!(Steady3d::new(0.01, 0.25).is_err());
+    }
+}
