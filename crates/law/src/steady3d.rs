@@ -26,20 +26,25 @@
 //!    near full slip, see [`crate::steady_law`]; Kalker's closed form is `k = 3` with a cubic
 //!    tail), `k = kx cos^2 + ky sin^2` of the direction of `t`, `kx = KX0 + KX_NU nu + KX_H h`,
 //!    `ky = KY0 + KY_NU nu + KY_H h`, clamped to `[2, 3]`; the force `s_t t/|t|`;
-//! 2. spin moment: `m = C33 phi_n/M_max`, `s_m = m/(1 + |m|^p)^(1/p)`, `p = P0 + P_H h` (the
-//!    spin moment saturates slowly: the contact centre always sticks);
-//! 3. lateral force of spin: `f_s = C23 phi_n/(1 + z^q)^((1 + e)/q)`, `z = C23 |phi_n|/ks`,
-//!    `ks = KS0 + KS_H h`, `q = Q0 + Q_H h`, `e = E0 + E_H h`: linear at small spin, it peaks
-//!    near `C23 phi_n ~ 0.9` and decays as `phi_n^-e` (in full slip of pure spin the traction
-//!    field is symmetric and carries no force);
-//! 4. combination (shared friction capacity): the translational force times
-//!    `(1 - |s_m|^N_F)^(1/N_F)`, plus `(0, f_s (1 - s_t)^R_F)`, projected onto `|F| <= 1`; the
-//!    moment `Mz = M_max s_m (1 - s_t^N_M)^(1/N_M) - C23 eta_n (1 - s_t)^R_M`.
+//! 2. spin moment: `m = C33 phi_n/M_max`, `s_m = m/(1 + |m|^p)^(1/p)`,
+//!    `p = P0 + P_H h + P_NU nu` (the spin moment saturates slowly: the contact centre always
+//!    sticks);
+//! 3. lateral force of spin: `f_s = C23 phi_n/(1 + z^q)^((1 + e)/q)`, `z = C23 |phi_n|/ks`, with
+//!    `ks`, `q`, `e` each linear in `h` and `nu` (`KS*`, `Q*`, `E*` constants): linear at small
+//!    spin, it peaks near `C23 phi_n ~ 0.9` and decays as `phi_n^-e` (in full slip of pure spin
+//!    the traction field is symmetric and carries no force);
+//! 4. combination (shared friction capacity): the translational force's components times
+//!    `(1 - |s_m|^N_X)^(1/N_X)` and `(1 - |s_m|^N_Y)^(1/N_Y)`, plus `(0, f_s (1 - s_t)^R_F)`,
+//!    projected onto `|F| <= 1`; the moment
+//!    `Mz = M_max s_m (1 - s_t^N_M)^(1/N_M) - C23 eta_n (1 - s_t)^R_M
+//!    - nu (T0 + T_H h) s_t^3 eta_n/(xi_n^2 + eta_n^2)`, the last term the moment that the
+//!    normal-tangential coupling of the kernel (`nu > 0`) leaves at full lateral slip, decaying
+//!    as `1/eta_n` (zero slope at the origin, so the linear theory is untouched).
 //!
 //! The pure cases reduce to one ingredient each, so their constants were fitted separately
 //! (minimax over the boundary-element table of crate creep-reference, module `steady3d`:
-//! `a/b = 1, 0.5, 0.2` x `nu = 0, 0.25, 0.5`, grid-extrapolated), then `N_F, R_F, N_M` on the
-//! combined cases and `R_M` on the pure lateral ones. The error table against the boundary
+//! `a/b = 1, 0.5, 0.2` x `nu = 0, 0.25, 0.5`, grid-extrapolated), then `N_X, N_Y, R_F, N_M` on
+//! the combined cases and `R_M, T0, T_H` on the pure lateral ones. The error table against the boundary
 //! elements is printed by `cargo run --release -p creep-reference --example steady3d_errors`;
 //! it is **not** within the targets for spin and combined creepage (see the crate
 //! creep-reference test `steady3d_vs_bem`, which asserts the measured errors). For `a/b > 1`
@@ -64,30 +69,44 @@ pub const KY0: f64 = 2.401;
 pub const KY_NU: f64 = 0.1877;
 /// See [`KY0`].
 pub const KY_H: f64 = -0.2881;
-/// Spin-moment shape `p = P0 + P_H h` (fitted).
-pub const P0: f64 = 1.1965;
+/// Spin-moment shape `p = P0 + P_H h + P_NU nu` (fitted).
+pub const P0: f64 = 1.3341;
 /// See [`P0`].
-pub const P_H: f64 = 0.3426;
-/// Spin lateral force: `ks = KS0 + KS_H h` (fitted).
-pub const KS0: f64 = 1.0166;
+pub const P_H: f64 = 0.2373;
+/// See [`P0`].
+pub const P_NU: f64 = -0.2325;
+/// Spin lateral force: `ks = KS0 + KS_H h + KS_NU nu` (fitted).
+pub const KS0: f64 = 1.0165;
 /// See [`KS0`].
-pub const KS_H: f64 = -0.4941;
-/// Spin lateral force: `q = Q0 + Q_H h` (fitted).
-pub const Q0: f64 = 2.4844;
+pub const KS_H: f64 = -0.47;
+/// See [`KS0`].
+pub const KS_NU: f64 = 0.036;
+/// Spin lateral force: `q = Q0 + Q_H h + Q_NU nu` (fitted).
+pub const Q0: f64 = 2.4398;
 /// See [`Q0`].
-pub const Q_H: f64 = -0.633;
-/// Spin lateral force decay exponent `e = E0 + E_H h` (fitted).
-pub const E0: f64 = 0.9659;
+pub const Q_H: f64 = -0.7846;
+/// See [`Q0`].
+pub const Q_NU: f64 = -0.0043;
+/// Spin lateral force decay exponent `e = E0 + E_H h + E_NU nu` (fitted).
+pub const E0: f64 = 0.9737;
 /// See [`E0`].
-pub const E_H: f64 = 0.0189;
-/// Force capacity left by the spin moment, exponent `N_F` (fitted on combined cases).
-pub const N_F: f64 = 2.0302;
+pub const E_H: f64 = 0.032;
+/// See [`E0`].
+pub const E_NU: f64 = -0.0352;
+/// Longitudinal force capacity left by the spin moment, exponent `N_X` (fitted, combined).
+pub const N_X: f64 = 1.5069;
+/// Lateral force capacity left by the spin moment, exponent `N_Y` (fitted, combined).
+pub const N_Y: f64 = 2.728;
 /// Fading of the spin's lateral force with the translational utilisation, `R_F` (fitted).
-pub const R_F: f64 = 0.1532;
-/// Moment capacity left by the translational force, exponent `N_M` (fitted).
-pub const N_M: f64 = 6.9126;
+pub const R_F: f64 = 0.0574;
+/// Moment capacity left by the translational force, exponent `N_M` (fitted, combined).
+pub const N_M: f64 = 10.3016;
 /// Fading of the lateral creepage's moment, `R_M` (fitted on pure lateral creepage).
-pub const R_M: f64 = 0.7;
+pub const R_M: f64 = 1.0479;
+/// Full-slip lateral moment of the coupling, `T0 + T_H h` (times `nu`; fitted, pure lateral).
+pub const T0: f64 = 0.0346;
+/// See [`T0`].
+pub const T_H: f64 = 0.0852;
 
 /// The law at one axis ratio and Poisson ratio (coefficients precomputed; build once per
 /// contact shape and material pair).
@@ -106,6 +125,8 @@ pub struct Steady3d {
     q: f64,
     /// `(1 + e)/q`.
     f_exp: f64,
+    /// `nu (T0 + T_H h)`.
+    tail: f64,
 }
 
 /// Normalised loads `(Fx/(mu P), Fy/(mu P), Mz/(mu P c))`.
@@ -158,8 +179,8 @@ impl Steady3d {
         let (_, e, _) = complete_elliptic(1.0 - g * g)?;
         // a_M / c = sqrt(a_M / b_m) = 1/sqrt(g).
         let m_max = 0.375 * e / g.sqrt();
-        let p = P0 + P_H * h;
-        let q = Q0 + Q_H * h;
+        let p = P0 + P_H * h + P_NU * nu;
+        let q = Q0 + Q_H * h + Q_NU * nu;
         Ok(Steady3d {
             c,
             m_max,
@@ -168,9 +189,10 @@ impl Steady3d {
             ky: (KY0 + KY_NU * nu + KY_H * h).clamp(2.0, 3.0),
             p,
             inv_p: 1.0 / p,
-            z_per_phi: c.c23 / (KS0 + KS_H * h),
+            z_per_phi: c.c23 / (KS0 + KS_H * h + KS_NU * nu),
             q,
-            f_exp: (1.0 + E0 + E_H * h) / q,
+            f_exp: (1.0 + E0 + E_H * h + E_NU * nu) / q,
+            tail: nu * (T0 + T_H * h),
         })
     }
 
@@ -221,9 +243,9 @@ impl Steady3d {
         };
         // Shared capacity.
         if s_m != 0.0 {
-            let cap = (1.0 - s_m.abs().powf(N_F)).max(0.0).powf(1.0 / N_F);
-            fx *= cap;
-            fy *= cap;
+            let am = s_m.abs();
+            fx *= (1.0 - am.powf(N_X)).max(0.0).powf(1.0 / N_X);
+            fy *= (1.0 - am.powf(N_Y)).max(0.0).powf(1.0 / N_Y);
         }
         fy += f_s * (1.0 - st).powf(R_F);
         let f = (fx * fx + fy * fy).sqrt();
@@ -231,8 +253,13 @@ impl Steady3d {
             fx /= f;
             fy /= f;
         }
-        let cap_m = (1.0 - st.powf(N_M)).max(0.0).powf(1.0 / N_M);
-        let mz = self.m_max * s_m * cap_m - c.c23 * eta_n * (1.0 - st).powf(R_M);
+        let mut mz = -c.c23 * eta_n * (1.0 - st).powf(R_M);
+        if s_m != 0.0 {
+            mz += self.m_max * s_m * (1.0 - st.powf(N_M)).max(0.0).powf(1.0 / N_M);
+        }
+        if tm > 0.0 {
+            mz -= self.tail * st * st * st * eta_n / (xi_n * xi_n + eta_n * eta_n);
+        }
         Loads { fx, fy, mz }
     }
 

@@ -204,3 +204,110 @@ pub fn read_csv(text: &str) -> Result<Vec<Point>, RefError> {
 pub fn table() -> Result<Vec<Point>, RefError> {
     read_csv(include_str!("../data/steady3d_bem.csv"))
 }
+
+/// Largest errors of creep-law's fast 3-D steady law (`creep_law::steady3d::Steady3d`) against
+/// the table for one `(a/b, nu, kind)`: force `|F_law - F_bem|` over `mu P` and moment
+/// `|M_law - M_bem|` over `mu P c`, and where they occur.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LawError3d {
+    /// Axis ratio.
+    pub ab: f64,
+    /// Poisson ratio.
+    pub nu: f64,
+    /// Family.
+    pub kind: Kind,
+    /// Largest force error over `mu P` (vector difference).
+    pub force: f64,
+    /// Creepages of the largest force error.
+    pub force_at: [f64; 3],
+    /// Largest moment error over `mu P c`.
+    pub moment: f64,
+    /// Creepages of the largest moment error.
+    pub moment_at: [f64; 3],
+}
+
+/// Grades the fast law against every point of `points`, grouped by `(a/b, nu, kind)` in table
+/// order.
+pub fn law_errors(points: &[Point]) -> Result<Vec<LawError3d>, RefError> {
+    let mut out: Vec<LawError3d> = Vec::new();
+    for p in points {
+        let law = creep_law::steady3d::Steady3d::new(p.ab, p.nu).map_err(|_| {
+            RefError::InvalidParameter {
+                name: "a/b or nu",
+                value: p.ab,
+                expected: "in Kalker's table range",
+            }
+        })?;
+        let l = law.loads(p.creepage[0], p.creepage[1], p.creepage[2]);
+        let ef = (l.fx - p.load[0]).hypot(l.fy - p.load[1]);
+        let em = (l.mz - p.load[2]).abs();
+        let slot = out
+            .iter_mut()
+            .find(|e| e.ab == p.ab && e.nu == p.nu && e.kind == p.kind);
+        match slot {
+            Some(e) => {
+                if ef > e.force {
+                    e.force = ef;
+                    e.force_at = p.creepage;
+                }
+                if em > e.moment {
+                    e.moment = em;
+                    e.moment_at = p.creepage;
+                }
+            }
+            None => out.push(LawError3d {
+                ab: p.ab,
+                nu: p.nu,
+                kind: p.kind,
+                force: ef,
+                force_at: p.creepage,
+                moment: em,
+                moment_at: p.creepage,
+            }),
+        }
+    }
+    Ok(out)
+}
+
+/// The error table as markdown: one row per `(a/b, nu)`, force and moment errors per family in
+/// per cent of `mu P` (`mu P c` for the moment).
+pub fn error_markdown(errors: &[LawError3d]) -> String {
+    let mut s = String::from(
+        "| a/b | nu | long. F | lat. F | lat. M | spin F | spin M | comb. F | comb. M |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut keys: Vec<(f64, f64)> = Vec::new();
+    for e in errors {
+        if !keys.contains(&(e.ab, e.nu)) {
+            keys.push((e.ab, e.nu));
+        }
+    }
+    let pct = |v: f64| format!("{:.2} %", 100.0 * v);
+    for (ab, nu) in keys {
+        let get = |k: Kind| {
+            errors
+                .iter()
+                .find(|e| e.ab == ab && e.nu == nu && e.kind == k)
+                .copied()
+        };
+        let (x, y, z, c) = (
+            get(Kind::Longitudinal),
+            get(Kind::Lateral),
+            get(Kind::Spin),
+            get(Kind::Combined),
+        );
+        let f = |e: Option<LawError3d>, m: bool| {
+            e.map_or("-".into(), |e| pct(if m { e.moment } else { e.force }))
+        };
+        s.push_str(&format!(
+            "| {ab} | {nu} | {} | {} | {} | {} | {} | {} | {} |\n",
+            f(x, false),
+            f(y, false),
+            f(y, true),
+            f(z, false),
+            f(z, true),
+            f(c, false),
+            f(c, true)
+        ));
+    }
+    s
+}
