@@ -52,10 +52,12 @@
 //!
 //! Cost: up to eleven `powf`, two square roots and a few divisions per evaluation (one `powf`
 //! without spin). Measured with criterion (group `steady3d`, `cargo bench -p creep-law --bench
-//! steady3d`, the same 64 inputs for each, one run, 2-core machine under load): `F_ss` 27-32 ns,
-//! this law 126 ns without spin and 490 ns with spin, the inverse 85 ns per evaluation. It
-//! misses the 50 ns target; a version with the powers by a hand-written `log2`/`exp2`
-//! pair was not faster than the library `powf` and was dropped.
+//! steady3d`, the same 64 inputs for each, side by side in one run; medians; 2-core machine
+//! shared with other jobs, so only the ratios are meaningful): without spin 3.9-4.5 times
+//! `F_ss` (Kalker's closed form with its cube root), with spin 14-15 times, the zero-spin
+//! inverse 2.6-3.3 times. With `F_ss` at 27-32 ns in the quieter runs that is about 125 ns and
+//! 490 ns: the 50 ns target is missed. (A hand-written `log2`/`exp2` power was tried
+//! and was not faster than the library `powf`.)
 
 use crate::elliptic::complete_elliptic;
 use crate::error::LawError;
