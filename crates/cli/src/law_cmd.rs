@@ -135,12 +135,10 @@ pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
             }
             let law = Steady3d::new(*ab, *nu)?;
             let l = law.loads_kalker(*xi, *eta, *phi);
+            // `+ 0.0` turns a negative zero into 0 for printing.
+            let (fx, fy, mz) = (l.fx + 0.0, l.fy + 0.0, l.mz + 0.0);
             writeln!(out, "xi_n,eta_n,phi_n,fx_n,fy_n,mz_n")?;
-            writeln!(
-                out,
-                "{xi},{eta},{phi},{:.10},{:.10},{:.10}",
-                l.fx, l.fy, l.mz
-            )?;
+            writeln!(out, "{xi},{eta},{phi},{:.10},{:.10},{:.10}", fx, fy, mz)?;
             Ok(())
         }
         LawCommand::Mindlin {
