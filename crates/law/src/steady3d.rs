@@ -114,6 +114,9 @@ pub const T0: f64 = 0.0346;
 /// See [`T0`].
 pub const T_H: f64 = 0.0852;
 
+/// Normalised creepages are clamped to `[-CREEPAGE_CLAMP, CREEPAGE_CLAMP]` (deep in full slip).
+pub const CREEPAGE_CLAMP: f64 = 1e6;
+
 /// The law at one axis ratio and Poisson ratio (coefficients precomputed; build once per
 /// contact shape and material pair).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -226,6 +229,11 @@ impl Steady3d {
         if !(xi_n.is_finite() && eta_n.is_finite() && phi_n.is_finite()) {
             return Loads::default();
         }
+        // Far in full slip the loads no longer change (to ~1e-6); clamping keeps the squares
+        // and powers below finite overflow for any finite input.
+        let xi_n = xi_n.clamp(-CREEPAGE_CLAMP, CREEPAGE_CLAMP);
+        let eta_n = eta_n.clamp(-CREEPAGE_CLAMP, CREEPAGE_CLAMP);
+        let phi_n = phi_n.clamp(-CREEPAGE_CLAMP, CREEPAGE_CLAMP);
         let c = &self.c;
         // Translation.
         let tx = c.c11 * xi_n;
@@ -344,6 +352,21 @@ mod tests {
         let k = law.loads_kalker(0.1, 0.0, 0.0);
         assert!(k.fx < 0.0);
         assert_eq!(law.loads(f64::NAN, 0.0, 0.0), Loads::default());
+        // Huge finite creepages: the full-slip limits, never NaN.
+        let l = law.loads(1e300, 0.0, 0.0);
+        assert!((l.fx - 1.0).abs() < 1e-9 && l.fy == 0.0, "{l:?}");
+        let l = law.loads(0.0, -1e300, 0.0);
+        assert!((l.fy + 1.0).abs() < 1e-9 && l.mz.is_finite(), "{l:?}");
+        let l = law.loads(0.0, 0.0, 1e300);
+        assert!(
+            (l.mz / law.max_moment() - 1.0).abs() < 1e-4 && l.fy.abs() < 1e-4,
+            "{l:?}"
+        );
+        let l = law.loads(1e300, 1e300, -1e300);
+        assert!(
+            l.fx.is_finite() && l.fy.is_finite() && l.mz.is_finite(),
+            "{l:?}"
+        );
         // Circle: M_max = 3 pi/16.
         let c = Steady3d::new(1.0, 0.25).unwrap();
         assert!((c.max_moment() - 3.0 * std::f64::consts::PI / 16.0).abs() < 1e-12);
