@@ -15,6 +15,12 @@
 //!
 //! (`G` the combined shear modulus [Pa], `xi`, `eta` dimensionless, `phi` [1/m]).
 //!
+//! Provenance check: the `C11`, `C22`, `C23` columns agree entry for entry with the copy of the
+//! table in CONTACT's source (`linrol`); CONTACT does not carry `C33`, so that column was
+//! checked against the project's boundary elements instead (crate creep-reference,
+//! `bem::elliptic_creep_coefficients`: within 1.5 % at `a/b = 1, 0.5, 0.2`, all three `nu`); its
+//! other rows are not independently checked.
+//!
 //! # Interpolation rule
 //!
 //! * In the axis ratio: linear in `g` (`= a/b` for `a <= b`, `= b/a` for `a > b`) between the two
