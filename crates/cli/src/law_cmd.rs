@@ -5,7 +5,7 @@ use std::io::Write;
 use clap::{Subcommand, ValueEnum};
 use creep_law::{
     CreepInput, CreepLaw, CreepModel, CreepState, Material, MindlinState, PairMaterial, SteadyLaw,
-    Surface, Vec2, hertz, kalker,
+    Surface, Vec2, hertz, kalker, steady3d::Steady3d,
 };
 
 /// Steady creep laws selectable by `--model`.
@@ -43,6 +43,29 @@ pub enum LawCommand {
         /// Force ratios |Q|/(mu P) in [0, 1], comma separated.
         #[arg(long = "q-ratio", value_delimiter = ',', required = true, num_args = 1..)]
         q_ratio: Vec<f64>,
+    },
+    /// Steady rolling of an elliptic contact with longitudinal, lateral and spin creepage
+    /// (creep_law::steady3d, fitted to the boundary elements): normalised creepages
+    /// xi_n = xi G c^2/(mu P), eta_n likewise, phi_n = phi G c^3/(mu P), c = sqrt(a b), `a` the
+    /// semi-axis along the rolling direction. Prints `xi_n,eta_n,phi_n,fx_n,fy_n,mz_n`, forces
+    /// over mu P and the moment over mu P c, in Kalker's / CONTACT's signs (a positive creepage
+    /// gives a negative force).
+    Steady3d {
+        /// Combined Poisson ratio nu, in [0, 0.5] (Kalker's table).
+        #[arg(long)]
+        nu: f64,
+        /// Axis ratio a/b (a along the rolling direction), in [0.1, 10].
+        #[arg(long, default_value_t = 1.0)]
+        ab: f64,
+        /// Normalised longitudinal creepage xi_n.
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        xi: f64,
+        /// Normalised lateral creepage eta_n.
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        eta: f64,
+        /// Normalised spin creepage phi_n.
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        phi: f64,
     },
     /// Cattaneo-Mindlin load, unload and reload at constant P for a sphere on a plane of the same
     /// material. Prints `step,delta_m,q_n,q_over_mu_p`.
@@ -97,6 +120,26 @@ pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
                 let x = law.creepage_n(s);
                 writeln!(out, "{s},{x:.10e}")?;
             }
+            Ok(())
+        }
+        LawCommand::Steady3d {
+            nu,
+            ab,
+            xi,
+            eta,
+            phi,
+        } => {
+            for (name, v) in [("--xi", xi), ("--eta", eta), ("--phi", phi)] {
+                if !v.is_finite() {
+                    return Err(format!("{name} must be finite, got {v}").into());
+                }
+            }
+            let law = Steady3d::new(*ab, *nu)?;
+            let l = law.loads_kalker(*xi, *eta, *phi);
+            // `+ 0.0` turns a negative zero into 0 for printing.
+            let (fx, fy, mz) = (l.fx + 0.0, l.fy + 0.0, l.mz + 0.0);
+            writeln!(out, "xi_n,eta_n,phi_n,fx_n,fy_n,mz_n")?;
+            writeln!(out, "{xi},{eta},{phi},{:.10},{:.10},{:.10}", fx, fy, mz)?;
             Ok(())
         }
         LawCommand::Mindlin {
@@ -326,6 +369,56 @@ mod tests {
             })
             .is_err()
         );
+    }
+
+    #[test]
+    fn steady3d_prints_kalker_signed_loads() {
+        let out = run_str(&LawCommand::Steady3d {
+            nu: 0.25,
+            ab: 0.5,
+            xi: 0.1,
+            eta: -0.05,
+            phi: 0.2,
+        })
+        .unwrap();
+        let mut lines = out.lines();
+        assert_eq!(lines.next(), Some("xi_n,eta_n,phi_n,fx_n,fy_n,mz_n"));
+        let v: Vec<f64> = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect();
+        let l = Steady3d::new(0.5, 0.25).unwrap().loads(0.1, -0.05, 0.2);
+        assert_eq!(&v[..3], &[0.1, -0.05, 0.2]);
+        // Kalker's signs: the project's loads negated.
+        assert!((v[3] + l.fx).abs() < 1e-9 && (v[4] + l.fy).abs() < 1e-9);
+        assert!((v[5] + l.mz).abs() < 1e-9 && v[3] < 0.0);
+        for bad in [
+            LawCommand::Steady3d {
+                nu: 0.7,
+                ab: 1.0,
+                xi: 0.1,
+                eta: 0.0,
+                phi: 0.0,
+            },
+            LawCommand::Steady3d {
+                nu: 0.3,
+                ab: 0.01,
+                xi: 0.1,
+                eta: 0.0,
+                phi: 0.0,
+            },
+            LawCommand::Steady3d {
+                nu: 0.3,
+                ab: 1.0,
+                xi: f64::NAN,
+                eta: 0.0,
+                phi: 0.0,
+            },
+        ] {
+            assert!(run_str(&bad).is_err());
+        }
     }
 
     #[test]

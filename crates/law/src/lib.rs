@@ -6,15 +6,18 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod creep;
+pub mod elliptic;
 pub mod error;
 pub mod hertz;
 pub mod kalker;
+pub mod kalker3d;
 pub mod kinematics;
 pub mod material;
 pub mod mindlin;
 pub mod pair;
 pub mod rolling_torque;
 pub mod root;
+pub mod steady3d;
 pub mod steady_law;
 pub mod steady_table;
 pub mod transient_law;

@@ -49,6 +49,16 @@ impl Grid {
     /// Builds the grid with `n` elements across the diameter `2a` of a contact of radius `a` \[m\].
     /// `n` must be in `[MIN_GRID, MAX_GRID]`.
     pub fn new(a: f64, n: usize) -> Result<Self, RefError> {
+        Self::elliptic(a, a, n)
+    }
+
+    /// Builds the grid of an elliptic contact with semi-axes `a` along `x` (rolling direction)
+    /// and `b` along `y` \[m\], with `n` square elements across the shorter axis `2 min(a, b)`
+    /// (so `h0 = 2 min(a, b)/n`). The lattice is centred (`x_i = (i + 1/2 - nx/2) h0` with
+    /// `nx = ceil(2a/h0)`, likewise in `y`), the cells whose centres lie inside the ellipse are
+    /// kept and the lattice is stretched as for the circle so that the elements' total area is
+    /// exactly `pi a b`. For `a = b` this is the grid of [`Grid::new`].
+    pub fn elliptic(a: f64, b: f64, n: usize) -> Result<Self, RefError> {
         if !(MIN_GRID..=MAX_GRID).contains(&n) {
             return Err(RefError::InvalidGrid {
                 name: "grid",
@@ -57,8 +67,34 @@ impl Grid {
             });
         }
         crate::error::check_positive("a", a)?;
-        let h = 2.0 * a / n as f64;
-        let centre = |i: i64| -a + (i as f64 + 0.5) * h;
+        crate::error::check_positive("b", b)?;
+        let h = 2.0 * a.min(b) / n as f64;
+        let cells = |half: f64| {
+            if half == a.min(b) {
+                n as i64
+            } else {
+                (2.0 * half / h - 1e-9).ceil() as i64
+            }
+        };
+        let (nx, ny) = (cells(a), cells(b));
+        // Half-width of the lattice: the semi-axis itself along the shorter axis (as the circle's
+        // grid always had), `m h0 / 2` along the longer one.
+        let half_width = |half: f64, m: i64| {
+            if half == a.min(b) {
+                half
+            } else {
+                0.5 * m as f64 * h
+            }
+        };
+        let (wx, wy) = (half_width(a, nx), half_width(b, ny));
+        let centre = |i: i64, w: f64| -w + (i as f64 + 0.5) * h;
+        let inside = |x: f64, y: f64| {
+            if a == b {
+                x * x + y * y < a * a
+            } else {
+                (x / a) * (x / a) + (y / b) * (y / b) < 1.0
+            }
+        };
         let mut g = Grid {
             n,
             h,
@@ -69,13 +105,13 @@ impl Grid {
             y: Vec::new(),
             stretch: 1.0,
         };
-        for j in 0..n as i64 {
-            let y = centre(j);
+        for j in 0..ny {
+            let y = centre(j, wy);
             let start = g.ix.len();
             let mut lo = None;
-            for i in 0..n as i64 {
-                let x = centre(i);
-                if x * x + y * y < a * a {
+            for i in 0..nx {
+                let x = centre(i, wx);
+                if inside(x, y) {
                     lo.get_or_insert(i);
                     g.ix.push(i);
                     g.iy.push(j);
@@ -92,11 +128,20 @@ impl Grid {
                 });
             }
         }
-        let s = (std::f64::consts::PI * a * a / (g.len() as f64 * h * h)).sqrt();
+        let s = (std::f64::consts::PI * a * b / (g.len() as f64 * h * h)).sqrt();
         g.stretch = s;
         g.h = s * h;
         g.x.iter_mut().chain(g.y.iter_mut()).for_each(|v| *v *= s);
         Ok(g)
+    }
+
+    /// Largest column and row index of the lattice in use (`(max ix, max iy)`), for kernel
+    /// tables that must cover every offset between two elements.
+    pub(crate) fn extent(&self) -> (i64, i64) {
+        (
+            self.ix.iter().copied().max().unwrap_or(0),
+            self.iy.iter().copied().max().unwrap_or(0),
+        )
     }
 
     /// The stretch factor `s` of the lattice (element side over `2a/N`).

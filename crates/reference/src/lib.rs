@@ -39,6 +39,7 @@ pub mod kalker_linear;
 pub mod material;
 pub mod mindlin;
 pub mod parallel;
+pub mod steady3d;
 pub mod tiers;
 
 pub use error::RefError;

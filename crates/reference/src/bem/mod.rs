@@ -39,12 +39,17 @@
 //! elements (about 6 million at `N = 40`).
 
 pub(crate) mod convex_gs;
+pub mod elliptic;
 pub(crate) mod local;
 pub(crate) mod root;
 pub mod steady;
 pub(crate) mod steady_gs;
 pub mod transient;
 
+pub use elliptic::{
+    EllipticCoefficients, EllipticContact, EllipticOutput, EllipticSteadySolver,
+    elliptic_creep_coefficients,
+};
 pub use steady::{
     CreepCoefficients, SteadyInput, SteadyOutput, SteadySolver, creep_coefficients, steady,
 };

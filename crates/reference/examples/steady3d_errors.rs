@@ -1,0 +1,34 @@
+//! The error table of creep-law's fast 3-D steady law (`creep_law::steady3d`) against the
+//! boundary-element table `data/steady3d_bem.csv` (module `creep_reference::steady3d`): markdown
+//! on stdout, and the per-case CSV to the file given as the first argument, if any.
+//!
+//! `cargo run --release -p creep-reference --example steady3d_errors [-- errors.csv]`
+use creep_reference::steady3d::{error_markdown, law_errors, table};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let errors = law_errors(&table()?)?;
+    print!("{}", error_markdown(&errors));
+    if let Some(path) = std::env::args().nth(1) {
+        let mut csv = String::from(
+            "ab,nu,kind,force_err,force_at_xi,force_at_eta,force_at_phi,moment_err,moment_at_xi,moment_at_eta,moment_at_phi\n",
+        );
+        for e in &errors {
+            csv.push_str(&format!(
+                "{},{},{},{:.5},{},{},{},{:.5},{},{},{}\n",
+                e.ab,
+                e.nu,
+                e.kind.name(),
+                e.force,
+                e.force_at[0],
+                e.force_at[1],
+                e.force_at[2],
+                e.moment,
+                e.moment_at[0],
+                e.moment_at[1],
+                e.moment_at[2]
+            ));
+        }
+        std::fs::write(path, csv)?;
+    }
+    Ok(())
+}
