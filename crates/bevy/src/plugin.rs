@@ -12,7 +12,7 @@ use bevy_rapier3d::prelude::{
     RapierContextColliders, RapierContextEntityLink, RapierContextInitialization,
     RapierContextSimulation, RapierRigidBodySet, SimulationMode, SolverGroups,
 };
-use creep_rapier::surface_of;
+use creep_rapier::rigid_surface_of;
 use creep_rapier::{CompliantSettings, CreepSettings, Fidelity, PluginError, RollingResistance};
 use rapier3d::prelude::{ActiveHooks, IntegrationParameters};
 
@@ -367,7 +367,7 @@ fn sync_materials(
             continue;
         };
         let mut m = mat.to_rapier();
-        if surface_of(collider).is_none() {
+        if rigid_surface_of(collider).is_none() {
             state.warn(
                 WarnKey::Entity("shape", entity),
                 CreepWarning::UnsupportedShape {

@@ -45,6 +45,8 @@ pub enum BenchCommand {
         #[arg(long, value_name = "CMD")]
         between: Option<String>,
     },
+    /// The plugin's cost on a poured pile while it moves, against plain Rapier (crate::bench_pile).
+    Pile(crate::bench_pile::PileArgs),
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -63,6 +65,7 @@ fn mean(v: &[f64]) -> f64 {
 /// Runs a benchmark.
 pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
     match cmd {
+        BenchCommand::Pile(args) => crate::bench_pile::run(args, out),
         BenchCommand::Dem {
             n,
             steps,

@@ -37,7 +37,9 @@ pub use compliant::{
 };
 pub use error::PluginError;
 pub use pipeline::{CreepPipeline, RapierStep};
-pub use registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance, surface_of};
+pub use registry::{
+    CreepMaterial, Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of, surface_of,
+};
 pub use rigid::{CreepHooks, CreepSettings, StepCounts, check_parameters, configure_parameters};
 pub use store::{ContactKey, ContactRecord, ContactStore, KeyHasher};
 pub use world::{CreepWorld, clone_physics};

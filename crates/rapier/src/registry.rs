@@ -143,3 +143,25 @@ pub fn surface_of(collider: &Collider) -> Option<Surface> {
     }
     None
 }
+
+/// The contact surface a collider presents to the rigid regime: a ball is a sphere; a cuboid,
+/// half-space, triangle mesh, heightfield or convex polyhedron is flat at the contact (infinite
+/// radius at the face, the face's normal: Rapier's contact normal), so that a ball on any game
+/// terrain creeps. A contact with a mesh's edge or vertex is treated as a face contact (the
+/// Hertz radius is the ball's). Other shapes (capsules, cylinders, cones, compounds, ...) are
+/// `None`: the plugin leaves them to Coulomb.
+pub fn rigid_surface_of(collider: &Collider) -> Option<Surface> {
+    let shape = collider.shape();
+    if let Some(ball) = shape.as_ball() {
+        return Some(Surface::Sphere(f64::from(ball.radius)));
+    }
+    if shape.as_cuboid().is_some()
+        || shape.as_halfspace().is_some()
+        || shape.as_trimesh().is_some()
+        || shape.as_heightfield().is_some()
+        || shape.as_convex_polyhedron().is_some()
+    {
+        return Some(Surface::Plane);
+    }
+    None
+}

@@ -28,13 +28,22 @@
 //! `g`; in steady state (`tau = tau_prev`) it returns the measured force. The largest `g` of each
 //! step is reported in [`StepCounts::max_loop_gain`].
 //!
-//! # Anchor-drift correction
-//! Rapier stores each solver contact's anchor in its body's frame, so within a step the anchor of
-//! a rolling sphere turns with it, away from the lowest point: the solver reads a growing gap and
-//! lets the sphere sink (measured: -2.4 mm for a 0.1 m steel ball at 2.4 m/s, 1/60 s, 4
-//! substeps). The hook subtracts the mean spurious gap over the substeps from the contact's
-//! `dist` ([`CreepSettings::anchor_drift_correction`], on by default; it applies to every
-//! registered pair, Coulomb fidelity included): the sinking falls to -0.33 mm there.
+//! # Rolling at game steps: the spin cap and the rotation gap
+//! Rapier 0.36 caps every body's spin at 45 degrees per step (for CCD), so a 0.1 m ball rolling
+//! faster than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides and loses most
+//! of its energy within seconds; with one solver substep the pipeline lifts the cap on bodies of
+//! registered balls ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change
+//! its swept volume; with more substeps the cap stays, see the setting).
+//! Rapier also tracks each solver contact's point as a point fixed in its body, so within a step
+//! the point of a rolling sphere turns with it, away from the lowest point: the solver reads a
+//! growing gap `R (1 - cos(omega t))` and lets the sphere sink, then pushes it back (energy is
+//! lost). The hook corrects the contact's `dist` and the rate at which the tracked point moves
+//! along the normal ([`CreepSettings::anchor_drift_correction`], on by default, every
+//! registered pair, Coulomb fidelity included; the `gap` module has the formulas): exact with
+//! one solver substep (`num_solver_iterations = 1`: a free 0.1 m ball then keeps its energy to
+//! 1e-5 and its height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the
+//! substeps otherwise (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without,
+//! -0.33 mm with it; it can lift a fast ball by millimetres and add energy, see `gap`).
 //!
 //! # What remains of the engine's own error
 //! Plain Rapier shows a spurious slip of a rolling contact (from positions, `(dx - R dtheta) /
@@ -68,7 +77,7 @@ use rapier3d::prelude::*;
 use crate::convert::{inverse_mass, motion, v3, vf};
 use crate::error::PluginError;
 use crate::gap::rotation_gap_correction;
-use crate::registry::{Fidelity, MaterialRegistry, RollingResistance, surface_of};
+use crate::registry::{Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of};
 use crate::rolling::{apply_rolling_impulse, rolling_torque};
 use crate::store::{ContactKey, ContactRecord, ContactStore};
 
@@ -115,8 +124,9 @@ pub struct CreepSettings {
     /// transient state).
     pub creep_model: creep_law::CreepModel,
     /// Lift Rapier's angular speed cap (45 degrees per step) on bodies with a registered ball
-    /// collider (see [`CreepHooks`]'s module docs; default true). Without it a 0.1 m ball rolling
-    /// faster than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides.
+    /// collider when the step has one solver substep (`num_solver_iterations = 1`, where the
+    /// rotation-gap correction is exact; default true). Without it a 0.1 m ball rolling faster
+    /// than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides.
     pub lift_rotation_cap: bool,
 }
 
@@ -158,8 +168,13 @@ impl CreepSettings {
 pub struct StepCounts {
     /// Contacts with a collider the registry does not know: left to Coulomb.
     pub coulomb_unregistered: usize,
-    /// Contacts whose shapes creep-law does not model (not ball, cuboid or half-space): Coulomb.
+    /// Contacts with a shape the rigid regime does not model (not a ball, cuboid, half-space,
+    /// triangle mesh, heightfield or convex polyhedron: capsules, cylinders, compounds, ...):
+    /// Coulomb.
     pub coulomb_unsupported: usize,
+    /// Contacts between two flat shapes (no ball on either side; Hertz's contact needs a
+    /// curved side): Coulomb.
+    pub coulomb_no_sphere: usize,
     /// Contacts whose pair asked for Coulomb.
     pub coulomb_requested: usize,
     /// `Auto` contacts whose creep bound was below the tolerance: Coulomb.
@@ -340,7 +355,10 @@ impl CreepHooks {
     /// rolling faster than `(pi/4) R / dt` slide (0.1 m at 1/60 s: 4.7 m/s) and lose most of its
     /// energy. Only bodies whose flag must change are touched.
     pub(crate) fn lift_rotation_cap(&self, bodies: &mut RigidBodySet, colliders: &ColliderSet) {
-        if !self.settings.lift_rotation_cap {
+        // Only with one substep, where the rotation-gap correction is exact: with Rapier's
+        // substeps a ball spinning past the cap (100 rad/s at 1/60 s in the hard-case matrix)
+        // gains 4.0e-6 of E0 per step against its Coulomb twin (the mean correction's error).
+        if !self.settings.lift_rotation_cap || self.substeps != 1 {
             return;
         }
         for (&handle, mat) in self.registry.iter() {
@@ -434,8 +452,8 @@ impl PhysicsHooks for CreepHooks {
         }
         // --- end compliant ---
         let surfaces = (
-            colliders.get(c1).and_then(surface_of),
-            colliders.get(c2).and_then(surface_of),
+            colliders.get(c1).and_then(rigid_surface_of),
+            colliders.get(c2).and_then(rigid_surface_of),
         );
         if self.settings.anchor_drift_correction {
             // Every registered pair, whatever its shapes and fidelity: Rapier's rotation gap
@@ -457,6 +475,11 @@ impl PhysicsHooks for CreepHooks {
             counts.coulomb_unsupported += n_contacts;
             return;
         };
+        if !matches!(s1, Surface::Sphere(_)) && !matches!(s2, Surface::Sphere(_)) {
+            // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
+            counts.coulomb_no_sphere += n_contacts;
+            return;
+        }
         let mu = f64::from(*rigid.friction);
         let Ok(pair) =
             PairMaterial::new(&m1.material, &m2.material, s1, s2).and_then(|p| p.with_friction(mu))

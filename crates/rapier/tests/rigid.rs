@@ -33,8 +33,7 @@ fn incline(dt: f32, theta: f64, fidelity: Fidelity) -> (CreepWorld, RigidBodyHan
 fn anchor_drift_correction_stops_the_sinking() {
     // The rotation-gap correction is exact with one solver substep (Rapier then reads the gap
     // at the step's start and end only, which a constant and a rate follow exactly); with
-    // Rapier's default four it follows the gap from below only (it never pushes the ball up,
-    // so it never adds energy) and the sinking is reduced, not removed.
+    // Rapier's default four it is the gap's mean over the substeps.
     let run = |correct: bool, substeps: usize| {
         let settings = CreepSettings {
             anchor_drift_correction: correct,
@@ -64,8 +63,7 @@ fn anchor_drift_correction_stops_the_sinking() {
             );
         } else {
             assert!(without < -2e-3, "{without}");
-            assert!(with.abs() < 0.5 * without.abs(), "{with} vs {without}");
-            assert!(with <= 0.0, "the correction must not lift the ball: {with}");
+            assert!(with.abs() < 0.25 * without.abs(), "{with} vs {without}");
         }
     }
 }
@@ -318,4 +316,64 @@ fn the_material_density_sets_the_mass() {
     );
     let m = f64::from(w.physics.bodies[b].mass());
     assert!((m - 4.18879).abs() < 1e-4, "{m}");
+}
+
+#[test]
+fn a_ball_creeps_on_a_trimesh_a_heightfield_and_a_convex_polyhedron() {
+    let flat_grounds: Vec<ColliderBuilder> = vec![
+        ColliderBuilder::trimesh(
+            vec![
+                Vector::new(-50.0, 0.0, -5.0),
+                Vector::new(50.0, 0.0, -5.0),
+                Vector::new(50.0, 0.0, 5.0),
+                Vector::new(-50.0, 0.0, 5.0),
+            ],
+            vec![[0, 2, 1], [0, 3, 2]],
+        )
+        .unwrap(),
+        ColliderBuilder::heightfield(
+            rapier3d::geometry::Array2::repeat(3, 3, 0.0),
+            Vector::new(100.0, 1.0, 10.0),
+        ),
+        ColliderBuilder::convex_hull(&[
+            Vector::new(-50.0, -1.0, -5.0),
+            Vector::new(50.0, -1.0, -5.0),
+            Vector::new(50.0, -1.0, 5.0),
+            Vector::new(-50.0, -1.0, 5.0),
+            Vector::new(-50.0, 0.0, -5.0),
+            Vector::new(50.0, 0.0, -5.0),
+            Vector::new(50.0, 0.0, 5.0),
+            Vector::new(-50.0, 0.0, 5.0),
+        ])
+        .unwrap(),
+    ];
+    for ground in flat_grounds {
+        let mut w = CreepWorld::new(1.0 / 240.0, CreepSettings::default()).unwrap();
+        let theta = 20f64.to_radians();
+        w.physics.gravity = Vector::new((G * theta.sin()) as f32, (-G * theta.cos()) as f32, 0.0);
+        let steel = CreepMaterial::new(Material::steel()).with_fidelity(Fidelity::Creep);
+        w.insert(RigidBodyBuilder::fixed(), ground.friction(0.5), Some(steel));
+        w.insert(
+            RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.1, 0.0)),
+            ColliderBuilder::ball(0.1).friction(0.5),
+            Some(steel),
+        );
+        // A box on the same ground: two flat sides stay Coulomb, counted as such.
+        w.insert(
+            RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.1, 2.0)),
+            ColliderBuilder::cuboid(0.1, 0.1, 0.1).friction(0.5),
+            Some(steel),
+        );
+        let mut seen = StepCounts::default();
+        for _ in 0..240 {
+            let c = w.step().unwrap();
+            seen.creep += c.creep;
+            seen.coulomb_no_sphere += c.coulomb_no_sphere;
+            seen.coulomb_unsupported += c.coulomb_unsupported;
+            seen.creep_power += c.creep_power;
+        }
+        assert!(seen.creep > 200 && seen.creep_power > 0.0, "{seen:?}");
+        assert!(seen.coulomb_no_sphere > 0, "{seen:?}");
+        assert_eq!(seen.coulomb_unsupported, 0, "{seen:?}");
+    }
 }

@@ -24,7 +24,7 @@ pub enum Ground {
     Plane,
     /// A flat triangle mesh of 1 m x 1 m cells (two triangles each), internal edges fixed.
     Trimesh,
-    /// A flat heightfield of 1 m cells.
+    /// A flat heightfield of 1 m cells, internal edges fixed.
     Heightfield,
 }
 
