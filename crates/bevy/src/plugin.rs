@@ -502,6 +502,10 @@ fn pre_step(
     if !(params.dt > 0.0) {
         return; // bevy_rapier3d takes no step this run
     }
+    if state.pipeline.hooks.is_step_prepared() {
+        // The last prepared step was never finished (its post-step found no context): undo it.
+        state.pipeline.cancel_host_step(&mut bodies.bodies);
+    }
     if let Err(error) = state.pipeline.prepare_host_step(
         &params,
         &mut bodies.bodies,

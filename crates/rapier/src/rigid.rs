@@ -111,7 +111,7 @@ pub struct CreepSettings {
     /// docs; default true).
     pub anchor_drift_correction: bool,
     /// Speed [m/s] below which a body's `Auto` and `Coulomb` colliders switch the hook off before
-    /// a step ([`CreepHooks::update_activation`]): its contacts then stay plain Coulomb and keep
+    /// a step ([`crate::CreepPipeline`] does it): its contacts then stay plain Coulomb and keep
     /// Rapier's contact recycling (a collider with `MODIFY_SOLVER_CONTACTS` loses it). The speed
     /// is `|v| + |w| r` with `r` the collider's bounding radius; a contact moving at it creeps at
     /// most `F_ss(1)` times it (1e-5..1e-2 for steel to rubber). `Creep` colliders and colliders
@@ -187,7 +187,7 @@ pub struct StepCounts {
     pub creep_power: f64,
     /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
     pub max_loop_gain: f64,
-    /// Registered colliders whose hook was on for this step ([`CreepHooks::update_activation`]).
+    /// Registered colliders whose hook was on for this step (set by [`crate::CreepPipeline`]).
     pub hooks_on: usize,
 }
 
@@ -196,9 +196,10 @@ struct Inner {
     counts: StepCounts,
 }
 
-/// The creep-friction physics hooks (rigid regime). Give it to `PhysicsPipeline::step` (or use
-/// [`crate::CreepWorld`]); call [`CreepHooks::begin_step`] before and [`CreepHooks::end_step`]
-/// after every step.
+/// The creep-friction physics hooks (rigid regime). Rapier calls them inside a step that a
+/// [`crate::CreepPipeline`] prepared (through [`crate::CreepPipeline::step`],
+/// [`crate::CreepWorld::step`] or the host pair); given to Rapier otherwise they leave every
+/// contact to Coulomb and the next step returns [`PluginError::HookOutsideStep`].
 pub struct CreepHooks {
     registry: MaterialRegistry,
     settings: CreepSettings,
@@ -263,7 +264,7 @@ impl CreepHooks {
         Ok(())
     }
 
-    /// Call before each step (after [`CreepHooks::begin_step`]), with the world's bodies and
+    /// Before each step (after `begin_step`), with the world's bodies and
     /// colliders: switches `ActiveHooks::MODIFY_SOLVER_CONTACTS` on for the registered colliders
     /// whose body moves faster than [`CreepSettings::activation_speed`] (always for `Creep`
     /// colliders) and off for the others, so that quiet contacts keep Rapier's contact recycling.
