@@ -61,7 +61,7 @@ impl CreepFriction {
                 .and_then(|c| Entity::try_from_bits(c.user_data as u64))
         };
         let mut out = Vec::new();
-        for (key, rec) in self.hooks.records() {
+        for (key, rec) in self.pipeline.hooks.records() {
             let (Some(e1), Some(e2), Some(co1)) = (
                 entity(key.collider1),
                 entity(key.collider2),
@@ -102,7 +102,7 @@ impl CreepFriction {
                 state,
             });
         }
-        for (&(c1, c2), c) in self.compliant.contacts() {
+        for (&(c1, c2), c) in self.pipeline.compliant.contacts() {
             let (Some(e1), Some(e2)) = (entity(c1), entity(c2)) else {
                 continue;
             };

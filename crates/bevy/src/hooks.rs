@@ -40,7 +40,7 @@ impl CreepPhysicsHooks<'_> {
         {
             return;
         }
-        state.hooks.modify_solver_contacts(context);
+        state.pipeline.hooks.modify_solver_contacts(context);
     }
 }
 

@@ -1,6 +1,6 @@
-//! `CreepFrictionPlugin` and its systems, which wrap bevy_rapier3d's step the way
-//! [`creep_rapier::CreepWorld::step`] wraps Rapier's: `begin_step` and `update_activation`
-//! before `PhysicsSet::StepSimulation`, `end_step` after it (before `PhysicsSet::Writeback`,
+//! `CreepFrictionPlugin` and its systems, which wrap bevy_rapier3d's step with creep-rapier's
+//! step owner ([`creep_rapier::CreepPipeline`]): `prepare_host_step` before
+//! `PhysicsSet::StepSimulation`, `finish_host_step` after it (before `PhysicsSet::Writeback`,
 //! so the contact-torque impulses reach the `Velocity` and `Transform` written back).
 
 use bevy::ecs::intern::Interned;
@@ -12,7 +12,7 @@ use bevy_rapier3d::prelude::{
     RapierContextColliders, RapierContextEntityLink, RapierContextInitialization,
     RapierContextSimulation, RapierRigidBodySet, SimulationMode, SolverGroups,
 };
-use creep_rapier::registry::surface_of;
+use creep_rapier::rigid_surface_of;
 use creep_rapier::{CompliantSettings, CreepSettings, Fidelity, PluginError, RollingResistance};
 use rapier3d::prelude::{ActiveHooks, IntegrationParameters};
 
@@ -46,8 +46,8 @@ use crate::state::{CreepFriction, CreepWarning, MAX_MISSING_MATERIAL_WARNINGS, W
 /// - registers each `CreepMaterial` collider in creep-rapier's `MaterialRegistry` under its
 ///   Rapier `ColliderHandle` (kept in step with the component: added, changed, removed,
 ///   despawned) and gives it `ColliderMassProperties::Density(rho)` unless it has its own;
-/// - before each step: `CreepHooks::begin_step` and `update_activation` (hooks on only where
-///   creep matters); after it: `end_step` (rolling torques, contact sweep) and the counts in
+/// - before each step: `CreepPipeline::prepare_host_step` (parameters, activation, compliant
+///   forces); after it: `finish_host_step` (rolling torques, contact sweep) and the counts in
 ///   [`CreepFriction`];
 /// - warns (Bevy `warn!`, and [`CreepFriction::warnings`]) and falls back to Coulomb, never
 ///   panics, on: the plugin added twice, the creep hooks not installed, a collider touching a
@@ -331,7 +331,7 @@ fn sync_materials(
     for (entity, handle, alive) in gone {
         state.handles.remove(&entity);
         state.entities.remove(&handle);
-        state.hooks.registry_mut().remove(handle);
+        state.pipeline.hooks.registry_mut().remove(handle);
         if alive {
             state.unhook.push(handle);
             state.restore_groups.push((handle, entity));
@@ -367,7 +367,7 @@ fn sync_materials(
             continue;
         };
         let mut m = mat.to_rapier();
-        if surface_of(collider).is_none() {
+        if rigid_surface_of(collider).is_none() {
             state.warn(
                 WarnKey::Entity("shape", entity),
                 CreepWarning::UnsupportedShape {
@@ -382,7 +382,7 @@ fn sync_materials(
             && old != handle
         {
             state.entities.remove(&old);
-            state.hooks.registry_mut().remove(old);
+            state.pipeline.hooks.registry_mut().remove(old);
         }
         if m.fidelity != Fidelity::Compliant
             && state
@@ -394,7 +394,7 @@ fn sync_materials(
             state.restore_groups.push((handle, entity));
         }
         state.entities.insert(handle, entity);
-        state.hooks.registry_mut().insert(handle, m);
+        state.pipeline.hooks.registry_mut().insert(handle, m);
     }
 }
 
@@ -434,8 +434,8 @@ fn step_dt(mode: Option<&TimestepMode>, time: &Time, params: &IntegrationParamet
     }
 }
 
-/// Before the step: checks (and sets) the integration parameters, `CreepHooks::begin_step`,
-/// `update_activation`, `CompliantRegime::begin_step`. Mirrors `CreepWorld::step`.
+/// Before the step: checks (and sets) the integration parameters, then
+/// `CreepPipeline::prepare_host_step`.
 fn pre_step(
     mut state: ResMut<CreepFriction>,
     mode: Option<Res<TimestepMode>>,
@@ -502,26 +502,21 @@ fn pre_step(
     if !(params.dt > 0.0) {
         return; // bevy_rapier3d takes no step this run
     }
-    if let Err(error) = state.hooks.begin_step(&params) {
-        state.warn(WarnKey::Global("step"), CreepWarning::Step { error });
-        return;
+    if state.pipeline.hooks.is_step_prepared() {
+        // The last prepared step was never finished (its post-step found no context): undo it.
+        state.pipeline.cancel_host_step(&mut bodies.bodies);
     }
-    state
-        .hooks
-        .update_activation(&bodies.bodies, &mut colliders.colliders);
-    if let Err(error) = state.compliant.begin_step(
-        state.hooks.registry(),
+    if let Err(error) = state.pipeline.prepare_host_step(
         &params,
         &mut bodies.bodies,
-        &colliders.colliders,
+        &mut colliders.colliders,
         &sim.narrow_phase,
     ) {
         // Not armed: the hook leaves every contact to Rapier (Coulomb), compliant pairs
-        // included: they get their solver groups back for this step (`update_activation`
-        // takes them out of the solve again before the next).
-        state.compliant.end_step(&mut bodies.bodies);
+        // included: they get their solver groups back for this step (the pipeline takes them
+        // out of the solve again before the next).
         let compliant: Vec<_> = state
-            .hooks
+            .pipeline
             .registry()
             .iter()
             .filter(|(_, m)| m.fidelity == Fidelity::Compliant)
@@ -530,15 +525,15 @@ fn pre_step(
         for (handle, entity) in compliant {
             restore_solver_groups(&mut colliders.colliders, handle, entity, &solver_groups);
         }
-        state.warn(WarnKey::Global("compliant"), CreepWarning::Step { error });
+        state.warn(WarnKey::Global("step"), CreepWarning::Step { error });
         return;
     }
     state.armed = true;
 }
 
-/// After the step: `CompliantRegime::end_step` (restores the user forces),
-/// `CreepHooks::end_step` (contact-torque impulses, sweep), the counts, the warnings about
-/// colliders without materials and about several steps per run.
+/// After the step: `CreepPipeline::finish_host_step` (compliant user forces restored,
+/// contact-torque impulses, sweep), the counts, the warnings about colliders without materials
+/// and about several steps per run.
 fn post_step(
     mut state: ResMut<CreepFriction>,
     mut contexts: Query<(
@@ -559,11 +554,11 @@ fn post_step(
     let Ok((_, sim, colliders, mut bodies, _)) = contexts.get_mut(ctx) else {
         return;
     };
-    // The compliant forces were for this run's step(s): restore the user forces.
-    state.compliant.end_step(&mut bodies.bodies);
     let steps = sim.step_stats().num_steps;
     if steps == 0 {
-        return; // no step ran (Interpolated mode ahead of real time)
+        // No step ran (Interpolated mode ahead of real time): undo the preparation.
+        state.pipeline.cancel_host_step(&mut bodies.bodies);
+        return;
     }
     if steps > 1 {
         state.warn(
@@ -571,8 +566,13 @@ fn post_step(
             CreepWarning::StepsPerRun { steps },
         );
     }
-    state.hooks.end_step(&mut bodies.bodies);
-    state.counts = state.hooks.counts();
+    match state.pipeline.finish_host_step(&mut bodies.bodies) {
+        Ok(counts) => state.counts = counts,
+        Err(error) => {
+            state.warn(WarnKey::Global("step"), CreepWarning::Step { error });
+            return;
+        }
+    }
     state.steps += 1;
 
     // Look for the colliders without material (all contact pairs: at the first occurrence,

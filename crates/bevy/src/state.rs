@@ -6,10 +6,10 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 
 use bevy::prelude::*;
-use creep_rapier::hooks::ContactRecord;
+use creep_rapier::ContactRecord;
 use creep_rapier::{
-    CompliantCounts, CompliantRegime, CompliantSettings, ContactKey, CreepHooks, CreepSettings,
-    MaterialRegistry, PluginError, StepCounts,
+    CompliantCounts, CompliantRegime, CompliantSettings, ContactKey, CreepHooks, CreepPipeline,
+    CreepSettings, MaterialRegistry, PluginError, StepCounts,
 };
 use rapier3d::prelude::{ColliderHandle, ColliderSet};
 
@@ -160,9 +160,9 @@ pub const MAX_MISSING_MATERIAL_WARNINGS: usize = 16;
 /// ([`CreepFriction::counts`]: contacts by path, power dissipated by creep).
 #[derive(Resource)]
 pub struct CreepFriction {
-    pub(crate) hooks: CreepHooks,
-    /// The compliant (DEM) regime of the pairs whose colliders are both `Fidelity::Compliant`.
-    pub(crate) compliant: CompliantRegime,
+    /// creep-rapier's step owner: the rigid hooks and the compliant (DEM) regime of the pairs
+    /// whose colliders are both `Fidelity::Compliant`.
+    pub(crate) pipeline: CreepPipeline,
     /// Registered collider -> its entity (guards against handles of another context).
     pub(crate) entities: HashMap<ColliderHandle, Entity>,
     /// Entity -> its registered collider.
@@ -200,8 +200,10 @@ impl CreepFriction {
         warn_missing_material: bool,
     ) -> Result<Self, PluginError> {
         Ok(Self {
-            hooks: CreepHooks::new(MaterialRegistry::new(), settings)?,
-            compliant: CompliantRegime::new(compliant)?,
+            pipeline: CreepPipeline::from_parts(
+                CreepHooks::new(MaterialRegistry::new(), settings)?,
+                compliant,
+            )?,
             entities: HashMap::new(),
             handles: HashMap::new(),
             pending: HashSet::new(),
@@ -220,21 +222,21 @@ impl CreepFriction {
 
     /// The plugin-wide settings (creep-rapier's [`CreepSettings`]).
     pub fn settings(&self) -> &CreepSettings {
-        self.hooks.settings()
+        self.pipeline.hooks.settings()
     }
 
     /// Replaces the settings. The materials stay; the per-contact memory (last force and slip
     /// target of each contact) starts afresh. A refused setting is a typed error and changes
     /// nothing.
     pub fn set_settings(&mut self, settings: CreepSettings) -> Result<(), PluginError> {
-        let registry = self.hooks.registry().clone();
-        self.hooks = CreepHooks::new(registry, settings)?;
+        let registry = self.pipeline.hooks.registry().clone();
+        self.pipeline.hooks = CreepHooks::new(registry, settings)?;
         Ok(())
     }
 
     /// The compliant regime (settings, per-contact state, energy totals).
     pub fn compliant(&self) -> &CompliantRegime {
-        &self.compliant
+        &self.pipeline.compliant
     }
 
     /// Replaces the compliant regime's settings (a refused setting is a typed error and changes
@@ -243,13 +245,13 @@ impl CreepFriction {
         &mut self,
         settings: CompliantSettings,
     ) -> Result<(), PluginError> {
-        self.compliant.set_settings(settings)
+        self.pipeline.compliant.set_settings(settings)
     }
 
     /// What the compliant regime did in the last Rapier step (contacts, sliding, creeping,
     /// Rayleigh time step).
     pub fn compliant_counts(&self) -> CompliantCounts {
-        self.compliant.counts()
+        self.pipeline.compliant.counts()
     }
 
     /// What the plugin did in the last Rapier step: contacts by path (Coulomb for each reason,
@@ -286,13 +288,13 @@ impl CreepFriction {
 
     /// The creep-rapier hooks (registry, settings, per-contact records).
     pub fn hooks(&self) -> &CreepHooks {
-        &self.hooks
+        &self.pipeline.hooks
     }
 
     /// Copies of the live per-contact records (force used, slip target, normal force, bodies;
     /// world frame, on collider 1; creep-rapier's [`ContactRecord`]).
     pub fn contacts(&self) -> Vec<(ContactKey, ContactRecord)> {
-        self.hooks.records()
+        self.pipeline.hooks.records()
     }
 
     /// Whether both colliders of a pair are this plugin's (not handles of another context that

@@ -55,6 +55,8 @@ pub enum BenchCommand {
         #[arg(long, value_delimiter = ',', value_name = "K,K,..")]
         scale: Vec<usize>,
     },
+    /// The plugin's cost on a poured pile while it moves, against plain Rapier (crate::bench_pile).
+    Pile(crate::bench_pile::PileArgs),
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -73,6 +75,7 @@ fn mean(v: &[f64]) -> f64 {
 /// Runs a benchmark.
 pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
     match cmd {
+        BenchCommand::Pile(args) => crate::bench_pile::run(args, out),
         BenchCommand::Dem {
             n,
             steps,

@@ -1,5 +1,6 @@
 //! The `creep` command-line tool: creep-friction contact laws and references, headless.
 mod bench_cmd;
+mod bench_pile;
 mod figure_cmd;
 mod law_cmd;
 mod output;

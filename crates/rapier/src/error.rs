@@ -59,6 +59,34 @@ pub enum PluginError {
          IntegrationParameters::num_solver_iterations = 1 and use a smaller dt instead"
     )]
     CompliantSubsteps(usize),
+    /// The creep hooks were called by a Rapier step that [`crate::CreepPipeline`] did not
+    /// prepare (e.g. `PhysicsPipeline::step` given `&pipeline.hooks` directly): those contacts
+    /// were left to Rapier's Coulomb friction, with no creep, activation or rolling torque.
+    #[error(
+        "the creep hooks saw {contacts} contact(s) of a step the CreepPipeline did not prepare \
+         (step through CreepPipeline::step, or prepare_host_step / finish_host_step around a \
+         host's step); they were left to Coulomb"
+    )]
+    HookOutsideStep {
+        /// Contacts seen outside a prepared step.
+        contacts: usize,
+    },
+    /// `finish_host_step` without a matching `prepare_host_step`.
+    #[error("finish_host_step called without prepare_host_step")]
+    StepNotPrepared,
+    /// `prepare_host_step` twice without `finish_host_step` in between.
+    #[error("prepare_host_step called twice without finish_host_step")]
+    StepAlreadyPrepared,
+    /// A friction coefficient that is NaN, infinite or negative.
+    #[error(
+        "friction coefficient {value} of collider {collider} is invalid: must be finite and >= 0"
+    )]
+    Friction {
+        /// The collider (its `ColliderHandle`, `{index}v{generation}`).
+        collider: String,
+        /// Value given.
+        value: f64,
+    },
     /// A material or contact-law parameter was refused by creep-law.
     #[error(transparent)]
     Law(#[from] LawError),

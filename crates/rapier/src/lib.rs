@@ -3,8 +3,9 @@
 //! Creep-friction for the Rapier physics engine (rapier3d 0.36): a `PhysicsHooks` plugin that
 //! replaces Coulomb's tangential response of the pairs that opt in by creep-friction (Kuhn 2011),
 //! in the *rigid* regime (Rapier keeps its non-penetration and friction constraints; the plugin
-//! prescribes the creep slip velocity). See [`hooks`] for the physics, the stability argument
-//! and the settings the plugin requires.
+//! prescribes the creep slip velocity), and soft-sphere DEM in the *compliant* regime. See
+//! [`CreepHooks`] for the physics of the rigid regime, the stability argument and the settings
+//! it requires, and [`CreepPipeline`] for the step (one call does both regimes in order).
 //!
 //! Three lines with the stepping helper:
 //! ```
@@ -20,18 +21,40 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod compliant;
-pub mod error;
-pub mod hooks;
-pub mod registry;
-pub mod world;
+mod convert;
+mod error;
+mod gap;
+mod hooks;
+mod pipeline;
+mod registry;
+mod rigid;
+mod rolling;
+mod store;
+mod world;
 
 pub use compliant::{
     CompliantCounts, CompliantEnergy, CompliantRegime, CompliantSettings, RayleighCheck,
 };
 pub use error::PluginError;
-pub use hooks::{
-    ContactKey, ContactStore, CreepHooks, CreepSettings, StepCounts, check_parameters,
-    configure_parameters,
+pub use pipeline::{CreepPipeline, RapierStep};
+pub use registry::{
+    CreepMaterial, Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of, surface_of,
 };
-pub use registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
+pub use rigid::{CreepHooks, CreepSettings, StepCounts, check_parameters, configure_parameters};
+pub use store::{ContactKey, ContactRecord, ContactStore, KeyHasher};
 pub use world::{CreepWorld, clone_physics};
+
+/// What a user of the plugin needs, in one `use creep_rapier::prelude::*;` (with
+/// `rapier3d::prelude::*` for Rapier's own types).
+pub mod prelude {
+    pub use crate::{
+        CreepMaterial, CreepPipeline, CreepSettings, CreepWorld, Fidelity, PluginError, RapierStep,
+        RollingResistance, StepCounts,
+    };
+    pub use creep_law::Material;
+}
+
+/// The README's Rust snippets, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

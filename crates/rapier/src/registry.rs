@@ -37,8 +37,14 @@ pub enum RollingResistance {
 /// What the plugin knows of one collider.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CreepMaterial {
-    /// Elastic properties (G, nu) and density; the friction coefficient used is the collider's
-    /// own (Rapier's combine rule applies).
+    /// Elastic properties (G, nu) and density. The density sets the collider's mass when the
+    /// collider is inserted through [`crate::CreepWorld::insert`] (or creep-bevy) with Rapier's
+    /// default density (1 kg/m^3; a collider given its own density or mass keeps it).
+    /// **Friction:** the one coefficient the plugin uses is the collider's
+    /// (`ColliderBuilder::friction`, Rapier's combine rule between the two colliders); the
+    /// material's `friction` is not read by the rigid regime (set the collider's from it, e.g.
+    /// `.friction(material.friction() as f32)`). A NaN, infinite or negative collider friction
+    /// is refused by the step ([`crate::PluginError::Friction`]).
     pub material: Material,
     /// Requested fidelity; a pair uses the lower of its two colliders' (Coulomb < Auto < Creep).
     pub fidelity: Fidelity,
@@ -70,7 +76,7 @@ impl CreepMaterial {
 /// Materials keyed by collider handle.
 #[derive(Debug, Clone, Default)]
 pub struct MaterialRegistry {
-    map: crate::hooks::FastMap<ColliderHandle, CreepMaterial>,
+    map: crate::store::FastMap<ColliderHandle, CreepMaterial>,
 }
 
 impl MaterialRegistry {
@@ -98,9 +104,29 @@ impl MaterialRegistry {
     pub fn iter(&self) -> impl Iterator<Item = (&ColliderHandle, &CreepMaterial)> {
         self.map.iter()
     }
+    /// Keeps only the colliders for which `keep` is true (no allocation).
+    pub fn retain(&mut self, mut keep: impl FnMut(ColliderHandle, &CreepMaterial) -> bool) {
+        self.map.retain(|h, m| keep(*h, m));
+    }
     /// Whether no collider is registered.
     pub fn is_empty(&self) -> bool {
         self.map.is_empty()
+    }
+}
+
+/// Refuses a friction coefficient that is NaN, infinite or negative.
+pub(crate) fn check_friction(
+    collider: ColliderHandle,
+    value: f32,
+) -> Result<(), crate::PluginError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        let (i, g) = collider.into_raw_parts();
+        Err(crate::PluginError::Friction {
+            collider: format!("{i}v{g}"),
+            value: f64::from(value),
+        })
     }
 }
 
@@ -113,6 +139,28 @@ pub fn surface_of(collider: &Collider) -> Option<Surface> {
         return Some(Surface::Sphere(f64::from(ball.radius)));
     }
     if shape.as_cuboid().is_some() || shape.as_halfspace().is_some() {
+        return Some(Surface::Plane);
+    }
+    None
+}
+
+/// The contact surface a collider presents to the rigid regime: a ball is a sphere; a cuboid,
+/// half-space, triangle mesh, heightfield or convex polyhedron is flat at the contact (infinite
+/// radius at the face, the face's normal: Rapier's contact normal), so that a ball on any game
+/// terrain creeps. A contact with a mesh's edge or vertex is treated as a face contact (the
+/// Hertz radius is the ball's). Other shapes (capsules, cylinders, cones, compounds, ...) are
+/// `None`: the plugin leaves them to Coulomb.
+pub fn rigid_surface_of(collider: &Collider) -> Option<Surface> {
+    let shape = collider.shape();
+    if let Some(ball) = shape.as_ball() {
+        return Some(Surface::Sphere(f64::from(ball.radius)));
+    }
+    if shape.as_cuboid().is_some()
+        || shape.as_halfspace().is_some()
+        || shape.as_trimesh().is_some()
+        || shape.as_heightfield().is_some()
+        || shape.as_convex_polyhedron().is_some()
+    {
         return Some(Surface::Plane);
     }
     None

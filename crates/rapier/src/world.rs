@@ -1,24 +1,35 @@
-//! A headless stepping helper: a Rapier `PhysicsWorld` with the creep hooks, stepped together.
-//! Rapier stays fully visible (`world.physics` is the plain `PhysicsWorld`), so a user can also
-//! bring their own loop and call [`CreepHooks::begin_step`] / [`CreepHooks::end_step`] around
-//! `PhysicsPipeline::step`.
+//! A headless stepping helper: a Rapier `PhysicsWorld` and its [`CreepPipeline`], stepped
+//! together. Rapier stays fully visible (`world.physics` is the plain `PhysicsWorld`); a user
+//! with their own loop uses a [`CreepPipeline`] directly. The pipeline's fields (`hooks`,
+//! `compliant`) read through a `CreepWorld` (`world.hooks.counts()`).
 
 use rapier3d::prelude::*;
 
-use crate::compliant::{CompliantRegime, CompliantSettings};
+use crate::compliant::CompliantSettings;
 use crate::error::PluginError;
-use crate::hooks::{CreepHooks, CreepSettings, StepCounts, configure_parameters};
-use crate::registry::{CreepMaterial, MaterialRegistry};
+use crate::pipeline::CreepPipeline;
+use crate::registry::CreepMaterial;
+use crate::rigid::{CreepHooks, CreepSettings, StepCounts, configure_parameters};
 
 /// A Rapier world stepped with creep-friction.
 pub struct CreepWorld {
     /// The Rapier world (bodies, colliders, parameters, pipeline).
     pub physics: PhysicsWorld,
-    /// The creep hooks (materials, settings, per-contact state, counts).
-    pub hooks: CreepHooks,
-    /// The compliant (DEM) regime: forces of the pairs whose colliders are both
-    /// `Fidelity::Compliant` (inactive without such colliders).
-    pub compliant: CompliantRegime,
+    /// The step owner (rigid hooks and compliant regime).
+    pub pipeline: CreepPipeline,
+}
+
+impl std::ops::Deref for CreepWorld {
+    type Target = CreepPipeline;
+    fn deref(&self) -> &CreepPipeline {
+        &self.pipeline
+    }
+}
+
+impl std::ops::DerefMut for CreepWorld {
+    fn deref_mut(&mut self) -> &mut CreepPipeline {
+        &mut self.pipeline
+    }
 }
 
 impl CreepWorld {
@@ -28,27 +39,26 @@ impl CreepWorld {
         let mut physics = PhysicsWorld::default();
         physics.integration_parameters.dt = dt;
         configure_parameters(&mut physics.integration_parameters);
-        crate::hooks::check_parameters(&physics.integration_parameters)?;
+        crate::rigid::check_parameters(&physics.integration_parameters)?;
         Ok(Self {
             physics,
-            hooks: CreepHooks::new(MaterialRegistry::new(), settings)?,
-            compliant: CompliantRegime::new(CompliantSettings::default())?,
+            pipeline: CreepPipeline::new(settings)?,
         })
     }
 
     /// A world from a Rapier world and hooks (e.g. a [`clone_physics`] copy stepped with other
     /// hooks), with a fresh compliant regime (default settings, no contact history).
     pub fn from_parts(physics: PhysicsWorld, hooks: CreepHooks) -> Result<Self, PluginError> {
-        crate::hooks::check_parameters(&physics.integration_parameters)?;
+        crate::rigid::check_parameters(&physics.integration_parameters)?;
         Ok(Self {
             physics,
-            hooks,
-            compliant: CompliantRegime::new(CompliantSettings::default())?,
+            pipeline: CreepPipeline::from_parts(hooks, CompliantSettings::default())?,
         })
     }
 
     /// Inserts a body with one collider; with `material`, the collider opts in to creep-friction
-    /// (`ActiveHooks::MODIFY_SOLVER_CONTACTS`) and is registered.
+    /// (`ActiveHooks::MODIFY_SOLVER_CONTACTS`) and is registered, and a collider left at
+    /// Rapier's default density (1 kg/m^3) takes the material's density (its mass follows).
     pub fn insert(
         &mut self,
         body: impl Into<RigidBody>,
@@ -56,9 +66,12 @@ impl CreepWorld {
         material: Option<CreepMaterial>,
     ) -> (RigidBodyHandle, ColliderHandle) {
         let mut collider: Collider = collider.into();
-        if material.is_some() {
+        if let Some(m) = &material {
             collider
                 .set_active_hooks(collider.active_hooks() | ActiveHooks::MODIFY_SOLVER_CONTACTS);
+            if collider.density() == DEFAULT_DENSITY {
+                collider.set_density(m.material.density() as f32);
+            }
         }
         let (b, c) = self.physics.insert(body, collider);
         if let Some(m) = material {
@@ -90,26 +103,14 @@ impl CreepWorld {
         );
     }
 
-    /// One step of `integration_parameters.dt`.
+    /// One step of `integration_parameters.dt` ([`CreepPipeline::step_world`]).
     pub fn step(&mut self) -> Result<StepCounts, PluginError> {
-        self.hooks
-            .begin_step(&self.physics.integration_parameters)?;
-        self.hooks
-            .update_activation(&self.physics.bodies, &mut self.physics.colliders);
-        let w = &mut self.physics;
-        self.compliant.begin_step(
-            self.hooks.registry(),
-            &w.integration_parameters,
-            &mut w.bodies,
-            &w.colliders,
-            &w.narrow_phase,
-        )?;
-        self.physics.step_with_events(&self.hooks, &());
-        self.compliant.end_step(&mut self.physics.bodies);
-        self.hooks.end_step(&mut self.physics.bodies);
-        Ok(self.hooks.counts())
+        self.pipeline.step_world(&mut self.physics, &())
     }
 }
+
+/// Rapier's default collider density [kg/m^3] (`ColliderBuilder::default_density`).
+const DEFAULT_DENSITY: f32 = 1.0;
 
 /// A copy of a Rapier world: the same bodies, colliders, joints, contacts and parameters, with
 /// fresh pipelines (they hold only workspace), so that two copies step identically. Used to run

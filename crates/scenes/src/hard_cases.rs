@@ -60,6 +60,8 @@
 //! Integration*, §I.1.4). Without the correction the energy of a rolling ball oscillates by
 //! `h F v`, far above 1e-6 of E.
 
+pub mod fast_rolling;
+
 use std::fmt;
 
 use creep_law::{Material, PairMaterial, Surface, hertz, kalker};

@@ -123,6 +123,11 @@ fn add_sphere(w: &mut CreepWorld, mat: CreepMaterial, p: Vector) {
 
 /// The `n^3` dropped pile (module docs), settled for 400 steps.
 pub fn dropped(n: usize) -> Result<Pile, SceneError> {
+    Pile::settle(dropped_lattice(n)?, n * n * n, 400)
+}
+
+/// The `n^3` lattice of [`dropped`] before it falls (every sphere at rest in the air).
+pub fn dropped_lattice(n: usize) -> Result<CreepWorld, SceneError> {
     if n == 0 {
         return Err(SceneError::Parameter("n must be at least 1".into()));
     }
@@ -145,7 +150,7 @@ pub fn dropped(n: usize) -> Result<Pile, SceneError> {
             }
         }
     }
-    Pile::settle(w, n * n * n, 400)
+    Ok(w)
 }
 
 /// Spheres of the stacked packing with `n` spheres per side of its full layers and `layers`
@@ -336,6 +341,69 @@ pub fn interleaved(
         ratio: median(&mut ratio),
         contacts: active_contact_pairs(plain),
         hooks_on,
+    })
+}
+
+/// Per-step cost ratios of a moving pile, plugin over plain Rapier.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MovingRatios {
+    /// Spheres.
+    pub spheres: usize,
+    /// Steps timed (pour and settling).
+    pub steps: usize,
+    /// Median of the per-step ratios `Fidelity::Auto` / plain [-].
+    pub auto: f64,
+    /// Median of the per-step ratios `Fidelity::Creep` (every contact) / plain [-].
+    pub creep: f64,
+    /// Median step time of plain Rapier [s].
+    pub plain_step: f64,
+    /// Active contact pairs at the end (plain copy).
+    pub contacts: usize,
+}
+
+/// The poured pile: the `n^3` lattice of [`dropped`] falls into the box and settles while three
+/// copies from the same state step in turn (plain Rapier with the plugin's integration
+/// parameters, the plugin at `Fidelity::Auto`, the plugin with creep on every contact), the
+/// order rotating every step so that the machine's load drifts hit all alike. Returns the
+/// medians of the per-step ratios over `steps` steps (the pour and the settling).
+pub fn moving_ratios(n: usize, steps: usize) -> Result<MovingRatios, SceneError> {
+    if steps == 0 {
+        return Err(SceneError::Parameter("steps must be at least 1".into()));
+    }
+    let w = dropped_lattice(n)?;
+    let mut p = plain(&w);
+    let mut a = with_fidelity(&w, Fidelity::Auto, CreepSettings::default())?;
+    let mut c = with_fidelity(&w, Fidelity::Creep, CreepSettings::default())?;
+    touch_all(&mut a.physics);
+    touch_all(&mut c.physics);
+    let (mut ra, mut rc, mut tp) = (vec![], vec![], vec![]);
+    for i in 0..steps {
+        let mut t = [0.0f64; 3];
+        for k in 0..3 {
+            let which = (i + k) % 3;
+            let t0 = Instant::now();
+            match which {
+                0 => p.step(),
+                1 => {
+                    a.step()?;
+                }
+                _ => {
+                    c.step()?;
+                }
+            }
+            t[which] = t0.elapsed().as_secs_f64();
+        }
+        tp.push(t[0]);
+        ra.push(t[1] / t[0]);
+        rc.push(t[2] / t[0]);
+    }
+    Ok(MovingRatios {
+        spheres: n * n * n,
+        steps,
+        auto: median(&mut ra),
+        creep: median(&mut rc),
+        plain_step: median(&mut tp),
+        contacts: active_contact_pairs(&p),
     })
 }
 

@@ -72,3 +72,41 @@ fn the_engine_limits_are_the_ignored_cases() {
         .collect();
     assert_eq!(limits, [HardCase::Rubber60, HardCase::HeavyBallLightSlab]);
 }
+
+/// Runs fast-rolling cases at the matrix's substeps, prints the plugin's and plain Rapier's
+/// figures and asserts the bounds on the plugin's.
+fn assert_fast_rolling(cases: &[creep_scenes::hard_cases::fast_rolling::Case]) {
+    use creep_scenes::hard_cases::fast_rolling::SUBSTEPS;
+    let mut failed = Vec::new();
+    for case in cases {
+        let o = case.run(SUBSTEPS).unwrap();
+        let (p, q) = (o.plugin, o.plain);
+        println!(
+            "{}: plugin gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m | plain gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m",
+            case.label(),
+            p.max_gain,
+            p.loss,
+            p.max_rise,
+            p.max_sink,
+            q.max_gain,
+            q.loss,
+            q.max_rise,
+            q.max_sink
+        );
+        if !o.passed() {
+            failed.push(case.label());
+        }
+    }
+    assert!(failed.is_empty(), "outside the bounds: {failed:?}");
+}
+
+#[test]
+fn fast_rolling_ci_subset() {
+    assert_fast_rolling(&creep_scenes::hard_cases::fast_rolling::ci_subset());
+}
+
+#[test]
+#[ignore = "the full fast-rolling matrix (108 cases; also in `creep report`)"]
+fn fast_rolling_full_matrix() {
+    assert_fast_rolling(&creep_scenes::hard_cases::fast_rolling::matrix());
+}

@@ -1,0 +1,103 @@
+//! `creep bench pile --moving --n N [--steps S]`: the cost of the plugin on a poured pile while
+//! it moves. `N` spheres (rounded to a cube `n^3`) fall into a box and settle; plain Rapier
+//! (the plugin's integration parameters), the plugin at `Fidelity::Auto` and the plugin with
+//! creep on every contact step from the same state, in turn each step; the last line prints the
+//! medians of the per-step ratios (`creep_scenes::pile::moving_ratios`).
+
+use std::io::Write;
+
+type Res = Result<(), Box<dyn std::error::Error>>;
+
+/// Arguments of `creep bench pile`.
+#[derive(Debug, clap::Args)]
+pub struct PileArgs {
+    /// Time the pile while it moves (pour and settling); the only mode.
+    #[arg(long)]
+    pub moving: bool,
+    /// Spheres (rounded to the nearest cube n^3; 1,000 = 10^3, 4,096 = 16^3).
+    #[arg(long, default_value_t = 1000)]
+    pub n: usize,
+    /// Steps timed, from the release of the lattice (1/60 s each; 300 = 5 s: the pour and the
+    /// settling).
+    #[arg(long, default_value_t = 300)]
+    pub steps: usize,
+}
+
+/// Runs `creep bench pile`.
+pub fn run(args: &PileArgs, out: &mut dyn Write) -> Res {
+    if !args.moving {
+        return Err("creep bench pile needs --moving (the settled pile is `cargo bench -p creep-scenes --bench pile`)".into());
+    }
+    if args.n == 0 {
+        return Err("--n must be at least 1".into());
+    }
+    let side = (args.n as f64).cbrt().round().max(1.0) as usize;
+    let r = creep_scenes::pile::moving_ratios(side, args.steps)?;
+    writeln!(
+        out,
+        "moving pile: {} spheres, {} steps of 1/60 s from release, {} active contact pairs at the end; plain Rapier median step {:.3} ms",
+        r.spheres,
+        r.steps,
+        r.contacts,
+        r.plain_step * 1e3
+    )?;
+    writeln!(
+        out,
+        "median per-step ratios: auto/plain {:.3} creep/plain {:.3}",
+        r.auto, r.creep
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn prints_the_ratios_last() {
+        let mut out = Vec::new();
+        run(
+            &PileArgs {
+                moving: true,
+                n: 8,
+                steps: 6,
+            },
+            &mut out,
+        )
+        .unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let last = text.lines().last().unwrap();
+        assert!(
+            last.starts_with("median per-step ratios: auto/plain "),
+            "{last}"
+        );
+        let nums: Vec<f64> = last
+            .split_whitespace()
+            .filter_map(|w| w.parse().ok())
+            .collect();
+        assert_eq!(nums.len(), 2, "{last}");
+        assert!(nums.iter().all(|r| *r > 0.0 && r.is_finite()));
+        assert!(
+            run(
+                &PileArgs {
+                    moving: false,
+                    n: 8,
+                    steps: 1
+                },
+                &mut Vec::new()
+            )
+            .is_err()
+        );
+        assert!(
+            run(
+                &PileArgs {
+                    moving: true,
+                    n: 8,
+                    steps: 0
+                },
+                &mut Vec::new()
+            )
+            .is_err()
+        );
+    }
+}

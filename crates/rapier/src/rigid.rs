@@ -1,0 +1,651 @@
+//! The rigid regime: a `PhysicsHooks` whose `modify_solver_contacts` turns Rapier's Coulomb
+//! tangential response into creep-friction.
+//!
+//! For every solver contact of an opted-in pair (`ActiveHooks::MODIFY_SOLVER_CONTACTS` on a
+//! collider, both colliders registered), the hook sets `tangent_velocity` — the target of the
+//! friction solve for the relative velocity of body 2's surface against body 1's at the contact —
+//! to the creep slip velocity of Kuhn's rule in its stiff-contact limit (`c_CM -> 0`: the elastic
+//! term vanishes and the creep term remains; Kuhn 2011, eq. 1):
+//!
+//! `v_disp = F_ss(|Q|/(mu P)) |v_roll| Q/|Q|`
+//!
+//! with `F_ss` Kalker's steady creepage (creep-law), `v_roll` Kuhn & Bagi's rolling velocity
+//! (creep-law kinematics), `P` and `Q` the contact's normal and friction force of the previous
+//! step (total impulses of the step divided by `dt`), and the contact radius from Hertz. Below
+//! the Coulomb limit the implicit friction solve enforces that slip; at the limit it slides.
+//!
+//! # Stability of the feedback Q -> slip -> Q
+//! The slip target depends on the force the solver then transmits. Explicitly (target from the
+//! last force), one step maps a force error `e` to `-g e` with the loop gain
+//! `g = m_t |v_roll| dF_ss/dQ / dt` (`m_t` the contact's effective mass along `Q`,
+//! `dF_ss/dQ = (1 - s)^(-2/3) / (G a^2 C11)`), unstable for `g > 1` (soft materials, light
+//! bodies, long steps, fast spin, `s -> 1`). The hook instead solves the local relation
+//! implicitly: had the last step's target been `tau` instead of `tau_prev`, the solver would
+//! have transmitted `Q* - (m_t/dt) tau` with `Q* = Q_measured + (m_t/dt) tau_prev`; with
+//! `tau = F_ss(|Q|/(mu P)) |v_roll| Q/|Q|` this is the scalar equation
+//! `|Q| + (m_t |v_roll| / dt) F_ss(|Q|) = |Q*|` along `Q*`, whose root is unique (`F_ss`
+//! increases) and is found by safeguarded Newton iterations, capped at `mu P`. It holds for any
+//! `g`; in steady state (`tau = tau_prev`) it returns the measured force. The largest `g` of each
+//! step is reported in [`StepCounts::max_loop_gain`].
+//!
+//! # Rolling at game steps: the spin cap and the rotation gap
+//! Rapier 0.36 caps every body's spin at 45 degrees per step (for CCD), so a 0.1 m ball rolling
+//! faster than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides and loses most
+//! of its energy within seconds; with one solver substep the pipeline lifts the cap on bodies of
+//! registered balls ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change
+//! its swept volume; with more substeps the cap stays, see the setting).
+//! Rapier also tracks each solver contact's point as a point fixed in its body, so within a step
+//! the point of a rolling sphere turns with it, away from the lowest point: the solver reads a
+//! growing gap `R (1 - cos(omega t))` and lets the sphere sink, then pushes it back (energy is
+//! lost). The hook corrects the contact's `dist` and the rate at which the tracked point moves
+//! along the normal ([`CreepSettings::anchor_drift_correction`], on by default, every
+//! registered pair, Coulomb fidelity included; the `gap` module has the formulas): exact with
+//! one solver substep (`num_solver_iterations = 1`: a free 0.1 m ball then keeps its energy to
+//! 1e-5 and its height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the
+//! substeps otherwise (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without,
+//! -0.33 mm with it; it can lift a fast ball by millimetres and add energy, see `gap`).
+//!
+//! # What remains of the engine's own error
+//! Plain Rapier shows a spurious slip of a rolling contact (from positions, `(dx - R dtheta) /
+//! dx`): on a 20 degree incline (0.1 m steel ball, 4 substeps) about -5e-3 at 1/60 s and -4e-4
+//! at 1/240 s; in the friction drive (0.05 m spheres, 10 rad/s) -2.3e-3, -5.7e-4, -1.4e-4,
+//! -3.5e-5 at 1/120, 1/240, 1/480, 1/960 s (second order in dt). It does not come from the
+//! friction model, the solver iterations (8 substeps are worse), friction in the bias pass or
+//! the sinking. It is larger than the creepage of stiff materials (~3e-4) at game steps, so the
+//! scenes measure creep against a Coulomb run of the same scene and step; the creep slip the
+//! plugin adds is within 0.1 % of Kalker's there (`creep run incline`, `creep run
+//! friction-drive`). Use dt <= 1/240 s where the absolute slip matters.
+//!
+//! Known limitation: with locked rotation axes against a kinematic or fixed body, Rapier's coupled
+//! 2x2 friction solve can become singular in one tangent direction and turn any tangential
+//! target (even rounding noise) into a saturated friction force there; give such bodies their
+//! rotations (the friction-drive scene locks translations only).
+//!
+//! Requirements (checked by [`check_parameters`]): `FrictionModel::Coulomb` (per-point friction
+//! impulses are only written then) and `contact_clustering = false`.
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use creep_law::kinematics::contact_rates;
+use creep_law::root::illinois;
+use creep_law::steady_law::SteadyLaw;
+use creep_law::{PairMaterial, Surface, Vec3, hertz, kalker};
+use rapier3d::geometry::NEW_CONTACT_BIT;
+use rapier3d::prelude::*;
+
+use crate::convert::{inverse_mass, motion, v3, vf};
+use crate::error::PluginError;
+use crate::gap::rotation_gap_correction;
+use crate::registry::{Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of};
+use crate::rolling::{apply_rolling_impulse, rolling_torque};
+use crate::store::{ContactKey, ContactRecord, ContactStore};
+
+/// Checks that Rapier's integration parameters suit the plugin.
+pub fn check_parameters(params: &IntegrationParameters) -> Result<(), PluginError> {
+    if !(params.dt.is_finite() && params.dt > 0.0) {
+        return Err(PluginError::TimeStep(params.dt));
+    }
+    if params.friction_model != FrictionModel::Coulomb {
+        return Err(PluginError::FrictionModel);
+    }
+    if params.contact_clustering {
+        return Err(PluginError::ContactClustering);
+    }
+    Ok(())
+}
+
+/// Sets `params` to what the plugin needs (`FrictionModel::Coulomb`, no clustering).
+pub fn configure_parameters(params: &mut IntegrationParameters) {
+    params.friction_model = FrictionModel::Coulomb;
+    params.contact_clustering = false;
+}
+
+/// Plugin-wide settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CreepSettings {
+    /// Creep slip-speed bound [m/s] below which an `Auto` contact is left to Coulomb
+    /// (default 1e-7 m/s).
+    pub auto_tolerance: f64,
+    /// Compensate the contact-anchor drift of rolling spheres within a step (see the module
+    /// docs; default true).
+    pub anchor_drift_correction: bool,
+    /// Speed [m/s] below which a body's `Auto` and `Coulomb` colliders switch the hook off before
+    /// a step ([`crate::CreepPipeline`] does it): its contacts then stay plain Coulomb and keep
+    /// Rapier's contact recycling (a collider with `MODIFY_SOLVER_CONTACTS` loses it). The speed
+    /// is `|v| + |w| r` with `r` the collider's bounding radius; a contact moving at it creeps at
+    /// most `F_ss(1)` times it (1e-5..1e-2 for steel to rubber). `Creep` colliders and colliders
+    /// with a contact-torque rolling model are always on.
+    /// Default 1e-2 m/s; 0 keeps every hook on.
+    pub activation_speed: f64,
+    /// The steady creep law of the slip target: `Kuhn` (Kalker's closed form `F_ss`, the
+    /// talk's model, default) or `Fitted` (creep-law's boundary-element-fitted law, ten times
+    /// more accurate; `FittedTransient` uses the fitted law too, the rigid regime having no
+    /// transient state).
+    pub creep_model: creep_law::CreepModel,
+    /// Lift Rapier's angular speed cap (45 degrees per step) on bodies with a registered ball
+    /// collider when the step has one solver substep (`num_solver_iterations = 1`, where the
+    /// rotation-gap correction is exact; default true). Without it a 0.1 m ball rolling faster
+    /// than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides.
+    pub lift_rotation_cap: bool,
+}
+
+impl Default for CreepSettings {
+    fn default() -> Self {
+        Self {
+            auto_tolerance: 1e-7,
+            anchor_drift_correction: true,
+            activation_speed: 1e-2,
+            creep_model: creep_law::CreepModel::Kuhn,
+            lift_rotation_cap: true,
+        }
+    }
+}
+
+impl CreepSettings {
+    /// Validates the settings.
+    pub fn validate(&self) -> Result<(), PluginError> {
+        if !(self.auto_tolerance >= 0.0 && self.auto_tolerance.is_finite()) {
+            return Err(PluginError::Setting {
+                name: "auto_tolerance",
+                value: self.auto_tolerance,
+                why: "must be finite and >= 0 [m/s]",
+            });
+        }
+        if !(self.activation_speed >= 0.0 && self.activation_speed.is_finite()) {
+            return Err(PluginError::Setting {
+                name: "activation_speed",
+                value: self.activation_speed,
+                why: "must be finite and >= 0 [m/s]",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// What the plugin did in the last step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepCounts {
+    /// Contacts with a collider the registry does not know: left to Coulomb.
+    pub coulomb_unregistered: usize,
+    /// Contacts with a shape the rigid regime does not model (not a ball, cuboid, half-space,
+    /// triangle mesh, heightfield or convex polyhedron: capsules, cylinders, compounds, ...):
+    /// Coulomb.
+    pub coulomb_unsupported: usize,
+    /// Contacts between two flat shapes (no ball on either side; Hertz's contact needs a
+    /// curved side): Coulomb.
+    pub coulomb_no_sphere: usize,
+    /// Contacts whose pair asked for Coulomb.
+    pub coulomb_requested: usize,
+    /// `Auto` contacts whose creep bound was below the tolerance: Coulomb.
+    pub coulomb_auto: usize,
+    /// Contacts that took the creep-friction path.
+    pub creep: usize,
+    /// Contacts with a contact-torque rolling model.
+    pub rolling_torque: usize,
+    /// Power dissipated by creep, `sum Q . v_disp` [W] (>= 0).
+    pub creep_power: f64,
+    /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
+    pub max_loop_gain: f64,
+    /// Registered colliders whose hook was on for this step (set by [`crate::CreepPipeline`]).
+    pub hooks_on: usize,
+}
+
+struct Inner {
+    store: ContactStore,
+    counts: StepCounts,
+}
+
+/// The creep-friction physics hooks (rigid regime). Rapier calls them inside a step that a
+/// [`crate::CreepPipeline`] prepared (through [`crate::CreepPipeline::step`],
+/// [`crate::CreepWorld::step`] or the host pair); given to Rapier otherwise they leave every
+/// contact to Coulomb and the next step returns [`PluginError::HookOutsideStep`].
+pub struct CreepHooks {
+    registry: MaterialRegistry,
+    settings: CreepSettings,
+    dt: f64,
+    substeps: usize,
+    /// Whether the step owner has prepared the current step (dt, substeps, counts, store).
+    prepared: bool,
+    /// Contacts the hook saw while no step was prepared (left to Rapier), reported as
+    /// [`PluginError::HookOutsideStep`] by the next step.
+    outside: AtomicUsize,
+    inner: Mutex<Inner>,
+}
+
+impl CreepHooks {
+    /// Hooks with the given materials and settings.
+    pub fn new(registry: MaterialRegistry, settings: CreepSettings) -> Result<Self, PluginError> {
+        settings.validate()?;
+        Ok(Self {
+            registry,
+            settings,
+            dt: 1.0 / 60.0,
+            substeps: 4,
+            prepared: false,
+            outside: AtomicUsize::new(0),
+            inner: Mutex::new(Inner {
+                store: ContactStore::default(),
+                counts: StepCounts::default(),
+            }),
+        })
+    }
+
+    /// The material registry.
+    pub fn registry(&self) -> &MaterialRegistry {
+        &self.registry
+    }
+    /// The material registry, to add or remove colliders.
+    pub fn registry_mut(&mut self) -> &mut MaterialRegistry {
+        &mut self.registry
+    }
+    /// The settings.
+    pub fn settings(&self) -> &CreepSettings {
+        &self.settings
+    }
+
+    /// Prepares a step with its parameters (checks them). Called by [`crate::CreepPipeline`]
+    /// only: a step the hooks see without it is [`PluginError::HookOutsideStep`].
+    pub(crate) fn begin_step(&mut self, params: &IntegrationParameters) -> Result<(), PluginError> {
+        let outside = std::mem::take(self.outside.get_mut());
+        if outside > 0 {
+            return Err(PluginError::HookOutsideStep { contacts: outside });
+        }
+        if self.prepared {
+            return Err(PluginError::StepAlreadyPrepared);
+        }
+        check_parameters(params)?;
+        self.prepared = true;
+        self.dt = f64::from(params.dt);
+        self.substeps = params.num_solver_iterations.max(1);
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        inner.store.begin_step();
+        inner.counts = StepCounts::default();
+        Ok(())
+    }
+
+    /// Before each step (after `begin_step`), with the world's bodies and
+    /// colliders: switches `ActiveHooks::MODIFY_SOLVER_CONTACTS` on for the registered colliders
+    /// whose body moves faster than [`CreepSettings::activation_speed`] (always for `Creep`
+    /// colliders) and off for the others, so that quiet contacts keep Rapier's contact recycling.
+    /// Returns how many are on. Unregistered colliders are left as they are.
+    pub(crate) fn update_activation(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+    ) -> usize {
+        let v_act = self.settings.activation_speed;
+        let mut on_count = 0;
+        for (&handle, mat) in self.registry.iter() {
+            // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
+            // re-process it (a large cost if done for every collider every step).
+            let Some(co) = colliders.get(handle) else {
+                continue;
+            };
+            if mat.fidelity == Fidelity::Compliant {
+                // Out of Rapier's contact solve altogether (no solver contacts, no hook), so its
+                // pairs keep Rapier's contact recycling: the compliant regime needs only the
+                // narrow phase's pair list, and computes the geometry itself.
+                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS;
+                if (flags != co.active_hooks() || co.solver_groups() != InteractionGroups::none())
+                    && let Some(co) = colliders.get_mut(handle)
+                {
+                    co.set_active_hooks(flags);
+                    co.set_solver_groups(InteractionGroups::none());
+                }
+                continue;
+            }
+            let on = mat.fidelity == Fidelity::Creep
+                || matches!(mat.rolling, RollingResistance::Torque(_))
+                || v_act == 0.0
+                || co.parent().and_then(|h| bodies.get(h)).is_some_and(|rb| {
+                    let r = co.shape().compute_local_bounding_sphere().radius;
+                    rb.linvel().length() + rb.angvel().length() * r > v_act as f32
+                });
+            let flags = co.active_hooks();
+            let wanted = if on {
+                flags | ActiveHooks::MODIFY_SOLVER_CONTACTS
+            } else {
+                flags - ActiveHooks::MODIFY_SOLVER_CONTACTS
+            };
+            if wanted != flags
+                && let Some(co) = colliders.get_mut(handle)
+            {
+                co.set_active_hooks(wanted);
+            }
+            on_count += usize::from(on);
+        }
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        inner.counts.hooks_on = on_count;
+        on_count
+    }
+
+    /// Call after each step: applies the contact-torque rolling resistance computed in the step
+    /// (as angular impulses `M dt`, capped so that they never reverse the relative rolling) and
+    /// drops the records of contacts that ended.
+    pub(crate) fn end_step(&mut self, bodies: &mut RigidBodySet) -> Result<(), PluginError> {
+        if !std::mem::take(&mut self.prepared) {
+            return Err(PluginError::StepNotPrepared);
+        }
+        let dt = self.dt;
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        for (_, rec) in inner.store.records.iter() {
+            if rec.torque == Vec3::ZERO || rec.generation != inner.store.generation {
+                continue;
+            }
+            apply_rolling_impulse(bodies, rec, dt);
+        }
+        inner.store.sweep();
+        Ok(())
+    }
+
+    /// Whether a step is prepared and not yet finished.
+    pub fn is_step_prepared(&self) -> bool {
+        self.prepared
+    }
+
+    /// Abandons a prepared step (its host did not step): the counts of the step stay, no
+    /// rolling torque is applied, no record is swept.
+    pub(crate) fn abandon_step(&mut self) {
+        self.prepared = false;
+    }
+
+    /// Lifts Rapier's angular speed cap (45 degrees per step, `RigidBody::set_allow_fast_rotation`)
+    /// on the dynamic bodies of registered ball colliders: the cap exists for the swept volume of
+    /// rotating shapes in CCD, which a ball's rotation does not change, and it makes a ball
+    /// rolling faster than `(pi/4) R / dt` slide (0.1 m at 1/60 s: 4.7 m/s) and lose most of its
+    /// energy. Only bodies whose flag must change are touched.
+    pub(crate) fn lift_rotation_cap(&self, bodies: &mut RigidBodySet, colliders: &ColliderSet) {
+        // Only with one substep, where the rotation-gap correction is exact: with Rapier's
+        // substeps a ball spinning past the cap (100 rad/s at 1/60 s in the hard-case matrix)
+        // gains 4.0e-6 of E0 per step against its Coulomb twin (the mean correction's error).
+        if !self.settings.lift_rotation_cap || self.substeps != 1 {
+            return;
+        }
+        for (&handle, mat) in self.registry.iter() {
+            if mat.fidelity == Fidelity::Compliant {
+                continue;
+            }
+            let Some(co) = colliders.get(handle) else {
+                continue;
+            };
+            if co.shape().as_ball().is_none() {
+                continue;
+            }
+            let Some(parent) = co.parent() else { continue };
+            if bodies
+                .get(parent)
+                .is_some_and(|rb| rb.is_dynamic() && !rb.is_fast_rotation_allowed())
+                && let Some(rb) = bodies.get_mut(parent)
+            {
+                rb.set_allow_fast_rotation(true);
+            }
+        }
+    }
+
+    /// What the plugin did in the last step.
+    pub fn counts(&self) -> StepCounts {
+        self.inner
+            .lock()
+            .map(|i| i.counts)
+            .unwrap_or_else(|e| e.into_inner().counts)
+    }
+
+    /// Number of live per-contact records.
+    pub fn live_contacts(&self) -> usize {
+        self.inner
+            .lock()
+            .map(|i| i.store.len())
+            .unwrap_or_else(|e| e.into_inner().store.len())
+    }
+
+    /// Copies of all live contact records.
+    pub fn records(&self) -> Vec<(ContactKey, ContactRecord)> {
+        let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        inner.store.iter().map(|(k, r)| (*k, *r)).collect()
+    }
+
+    /// A copy of the record of one contact, if live.
+    pub fn record(&self, key: &ContactKey) -> Option<ContactRecord> {
+        let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        inner.store.records.get(key).copied()
+    }
+}
+
+/// The lower of two fidelities (Coulomb < Auto < Creep), except that a `Compliant` collider
+/// makes the pair compliant (it takes part in no Rapier contact solve).
+fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
+    use Fidelity::*;
+    match (a, b) {
+        (Coulomb, _) | (_, Coulomb) => Coulomb,
+        (Auto, _) | (_, Auto) => Auto,
+        (Compliant, _) | (_, Compliant) => Compliant,
+        _ => Creep,
+    }
+}
+
+impl PhysicsHooks for CreepHooks {
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        let mut inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        let Inner { store, counts } = &mut *inner;
+        let (c1, c2) = (context.collider1, context.collider2);
+        let (h1, h2) = (context.rigid_body1, context.rigid_body2);
+        let bodies = context.bodies;
+        let colliders = context.colliders;
+        let Some(rigid) = context.rigid_mut() else {
+            return;
+        };
+        let n_contacts = rigid.solver_contacts.len();
+        if !self.prepared {
+            // Stepped without the step owner: leave the contact to Rapier, and say so at the
+            // next step (PluginError::HookOutsideStep).
+            self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
+            return;
+        }
+        let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
+            counts.coulomb_unregistered += n_contacts;
+            return;
+        };
+        // --- Compliant regime (crate::compliant applies this pair's forces itself). ---
+        if m1.fidelity == Fidelity::Compliant || m2.fidelity == Fidelity::Compliant {
+            rigid.solver_contacts.clear();
+            return;
+        }
+        // --- end compliant ---
+        let surfaces = (
+            colliders.get(c1).and_then(rigid_surface_of),
+            colliders.get(c2).and_then(rigid_surface_of),
+        );
+        if self.settings.anchor_drift_correction {
+            // Every registered pair, whatever its shapes and fidelity: Rapier's rotation gap
+            // (see `rotation_gap`) is the engine's, not creep's.
+            let n = v3(*rigid.normal);
+            let dt = self.dt;
+            let flat = Surface::Plane;
+            for sc in rigid.solver_contacts.iter_mut() {
+                let (a1, a2) = (v3(sc.anchor1), v3(sc.anchor2));
+                let p_motion = motion(bodies, h1, a1 - n, surfaces.0.unwrap_or(flat));
+                let q_motion = motion(bodies, h2, a2 + n, surfaces.1.unwrap_or(flat));
+                let (c, b) =
+                    rotation_gap_correction(&p_motion, a1, &q_motion, a2, n, dt, self.substeps);
+                sc.dist -= c as f32;
+                sc.tangent_velocity += vf(n * b);
+            }
+        }
+        let (Some(s1), Some(s2)) = surfaces else {
+            counts.coulomb_unsupported += n_contacts;
+            return;
+        };
+        if !matches!(s1, Surface::Sphere(_)) && !matches!(s2, Surface::Sphere(_)) {
+            // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
+            counts.coulomb_no_sphere += n_contacts;
+            return;
+        }
+        let mu = f64::from(*rigid.friction);
+        let Ok(pair) =
+            PairMaterial::new(&m1.material, &m2.material, s1, s2).and_then(|p| p.with_friction(mu))
+        else {
+            counts.coulomb_unsupported += n_contacts;
+            return;
+        };
+        let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
+        let rolling = match (m1.rolling, m2.rolling) {
+            (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
+            _ => None,
+        };
+        let n = v3(*rigid.normal);
+        let dt = self.dt;
+        for sc in rigid.solver_contacts.iter_mut() {
+            let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+            let Some(point) = rigid.manifold.points.get(cid) else {
+                continue;
+            };
+            let key = ContactKey {
+                collider1: c1,
+                collider2: c2,
+                feature1: point.fid1.0,
+                feature2: point.fid2.0,
+            };
+            let (a1, a2) = (v3(sc.anchor1), v3(sc.anchor2));
+            let c = (a1 + a2) * 0.5;
+            let p_motion = motion(bodies, h1, a1 - n, s1);
+            let q_motion = motion(bodies, h2, a2 + n, s2);
+            let rates = contact_rates(&p_motion, &q_motion, c, n);
+            let rec = store.touch(key);
+            rec.bodies = (h1, h2);
+            let p_force = f64::from(point.data.impulse) / dt;
+            rec.p = p_force;
+            let n_prev_step = rec.normal;
+            rec.normal = n;
+            let roll = rates.v_roll.length();
+
+            // Contact-torque rolling resistance (computed here, applied in end_step).
+            rec.torque = Vec3::ZERO;
+            if let Some(model) = rolling {
+                counts.rolling_torque += 1;
+                rec.torque = rolling_torque(
+                    &model,
+                    rec,
+                    bodies,
+                    (h1, h2),
+                    &pair,
+                    p_force,
+                    rates.w_roll,
+                    n,
+                    dt,
+                );
+            }
+
+            if fidelity == Fidelity::Coulomb {
+                counts.coulomb_requested += 1;
+                rec.target = Vec3::ZERO;
+                continue;
+            }
+            if !(p_force > 0.0) || !(roll > 0.0) || !(mu > 0.0) {
+                // New contact (no impulse yet), no rolling, or frictionless: nothing creeps.
+                rec.q_used = Vec3::ZERO;
+                counts.coulomb_auto += 1;
+                rec.target = Vec3::ZERO;
+                continue;
+            }
+            let a = hertz::contact_radius(&pair, p_force);
+            let mu_p = mu * p_force;
+            let bound = kalker::steady_creepage(1.0, mu_p, pair.g, a, pair.c11) * roll;
+            if fidelity == Fidelity::Auto && bound < self.settings.auto_tolerance {
+                counts.coulomb_auto += 1;
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
+                continue;
+            }
+            // Measured friction force of the last step, on body 1: the step's total tangent
+            // impulse in the solver's tangent basis, built from the normal of that step.
+            // (`warmstart_tangent_world` holds the last substep only and reads zero on most
+            // rolling steps: a direction taken from it never follows a reversal.)
+            let ti = point.data.tangent_impulse;
+            let n_prev = if n_prev_step == Vec3::ZERO {
+                n
+            } else {
+                n_prev_step
+            };
+            let (t1, t2) = solver_tangents(n_prev);
+            let q_meas = (t1 * f64::from(ti.x) + t2 * f64::from(ti.y)).reject(n) * (1.0 / dt);
+            // Local implicit solve of the creep relation (module docs): the force the solver
+            // would transmit for a target tau is Q* - (m_t/dt) tau, with
+            // Q* = Q_meas + (m_t/dt) tau_prev; tau = F_ss(|Q|/mu P) |v_roll| Q/|Q|.
+            // If the force the solver transmitted opposed last step's target (the demanded force
+            // reversed), that target did negative work: drop it from the estimate instead of
+            // carrying it into this step.
+            let tau_prev = if q_meas.dot(rec.target) < 0.0 {
+                Vec3::ZERO
+            } else {
+                rec.target.reject(n)
+            };
+            let probe = (q_meas + tau_prev).try_normalize().unwrap_or(Vec3::X);
+            let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(probe), vf(probe));
+            let q_star = if inv_m > 0.0 {
+                q_meas + tau_prev * (1.0 / (inv_m * dt))
+            } else {
+                q_meas
+            };
+            let Some(q_hat) = q_star.try_normalize() else {
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
+                counts.coulomb_auto += 1;
+                continue;
+            };
+            let k = if inv_m > 0.0 {
+                roll / (inv_m * dt)
+            } else {
+                0.0
+            };
+            let law = SteadyLaw::with_c11(self.settings.creep_model, pair.nu, pair.c11);
+            let creepage = |q: f64| law.creepage_for_force(q, mu_p, pair.g, a);
+            let q_abs = solve_creep_force(q_star.length(), k, mu_p, &creepage);
+            let dq = 1e-6 * mu_p;
+            let gain = k * (creepage((q_abs + dq).min(mu_p)) - creepage((q_abs - dq).max(0.0)))
+                / (2.0 * dq);
+            counts.max_loop_gain = counts.max_loop_gain.max(gain);
+            let q_used = q_hat * q_abs;
+            rec.q_used = q_used;
+            let slip = creepage(q_abs) * roll;
+            let target = q_hat * slip;
+            rec.target = target;
+            counts.creep += 1;
+            counts.creep_power += q_used.dot(target).max(0.0);
+            sc.tangent_velocity += vf(target);
+        }
+    }
+}
+
+/// The friction basis of Rapier's Coulomb contact constraint for a manifold of normal `n`
+/// (rapier3d 0.36 `compute_tangent_contact_directions`: `t1 = orthonormal_vector(-n)`, the
+/// branchless basis of Duff et al. 2017, `t2 = -n x t1`); `ContactData::tangent_impulse` is in it.
+fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
+    let d = -n;
+    let sign = 1f64.copysign(d.z);
+    let a = -1.0 / (sign + d.z);
+    let b = d.x * d.y * a;
+    let t1 = Vec3::new(b, sign + d.y * d.y * a, -d.y);
+    (t1, d.cross(t1))
+}
+
+/// Solves `q + k F(q) = q_star` for `0 <= q <= mu P` by the Illinois variant of regula falsi
+/// (bracketed, superlinear), with `F(q)` the steady creepage of the chosen law at force `q`
+/// and `k = m_t |v_roll| / dt` [N]: the force a rolling contact of effective mass `m_t`
+/// transmits when its slip target follows the force it transmits. `F` increases, so the root is
+/// unique; beyond `mu P` the contact slides at `mu P`.
+fn solve_creep_force(q_star: f64, k: f64, mu_p: f64, creepage: &dyn Fn(f64) -> f64) -> f64 {
+    let hi0 = q_star.min(mu_p);
+    if !(k > 0.0) || !(hi0 > 0.0) {
+        return hi0.max(0.0);
+    }
+    let h = |q: f64| q + k * creepage(q) - q_star;
+    let (fa, fb) = (h(0.0), h(hi0));
+    if fb <= 0.0 {
+        return hi0;
+    }
+    illinois(h, (0.0, fa), (hi0, fb), 100, |_, fc, k| {
+        (k.b - k.a).abs() <= 1e-13 * hi0 || fc == 0.0
+    })
+    .root_or_midpoint()
+}

@@ -1,0 +1,119 @@
+//! Per-contact state of the rigid regime, kept across steps: records keyed by a stable contact
+//! identity, and the fast hasher of the plugin's maps.
+
+use std::collections::HashMap;
+
+use creep_law::Vec3;
+use creep_law::rolling_torque::RollingState;
+use rapier3d::prelude::{ColliderHandle, RigidBodyHandle};
+
+/// Stable identity of one contact point across steps: the collider pair and the two shape
+/// features (Rapier may re-order a manifold's points; the features do not change).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ContactKey {
+    /// Collider 1 of the pair.
+    pub collider1: ColliderHandle,
+    /// Collider 2 of the pair.
+    pub collider2: ColliderHandle,
+    /// Feature of collider 1.
+    pub feature1: u32,
+    /// Feature of collider 2.
+    pub feature2: u32,
+}
+
+/// Per-contact state that persists across steps.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactRecord {
+    /// The relaxed friction force used for the slip target, world frame, on body 1 [N].
+    pub q_used: Vec3,
+    /// Contact-torque rolling state (EPSD spring).
+    pub rolling: RollingState,
+    /// Torque on body 2 computed this step by the rolling model [N m] (`-torque` on body 1).
+    pub torque: Vec3,
+    /// Bodies of the contact, for applying the torque.
+    pub bodies: (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
+    /// Normal force of the previous step, total normal impulse / dt [N].
+    pub p: f64,
+    /// Creep slip target set in the last step [m/s] (world frame).
+    pub target: Vec3,
+    /// Contact normal of the last step (the basis of its friction impulse).
+    pub normal: Vec3,
+    /// Step in which the record was last seen.
+    pub(crate) generation: u64,
+}
+
+/// A fast, non-cryptographic hasher for [`ContactKey`]s (the multiply-rotate scheme of
+/// rustc's FxHash): the keys are small integers, so SipHash's flood resistance buys nothing
+/// and costs a sizable part of the hook's time.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct KeyHasher(u64);
+
+impl std::hash::Hasher for KeyHasher {
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut buf = [0u8; 8];
+            buf[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(buf));
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.write_u64(u64::from(i));
+    }
+    #[inline]
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// A hash map with [`KeyHasher`] (handles and contact keys are small integers: SipHash's
+/// protection against adversarial keys is not needed, its cost is).
+pub(crate) type FastMap<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<KeyHasher>>;
+
+type KeyMap<V> = FastMap<ContactKey, V>;
+
+/// Contact records keyed by [`ContactKey`], swept of the contacts not seen in a step.
+#[derive(Debug, Clone, Default)]
+pub struct ContactStore {
+    pub(crate) records: KeyMap<ContactRecord>,
+    pub(crate) generation: u64,
+}
+
+impl ContactStore {
+    /// The record of a contact, created if new, marked as seen in this step.
+    pub fn touch(&mut self, key: ContactKey) -> &mut ContactRecord {
+        let generation = self.generation;
+        let r = self.records.entry(key).or_default();
+        r.generation = generation;
+        r
+    }
+    /// Starts a new step.
+    pub fn begin_step(&mut self) {
+        self.generation += 1;
+    }
+    /// Drops the records not seen in the current step (pair separated, collider or body
+    /// removed, island asleep). Returns how many were dropped.
+    pub fn sweep(&mut self) -> usize {
+        let before = self.records.len();
+        let g = self.generation;
+        self.records.retain(|_, r| r.generation == g);
+        before - self.records.len()
+    }
+    /// Number of live records.
+    pub fn len(&self) -> usize {
+        self.records.len()
+    }
+    /// Whether there are no records.
+    pub fn is_empty(&self) -> bool {
+        self.records.is_empty()
+    }
+    /// Iterates over the live records.
+    pub fn iter(&self) -> impl Iterator<Item = (&ContactKey, &ContactRecord)> {
+        self.records.iter()
+    }
+}
