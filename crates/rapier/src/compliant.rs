@@ -31,9 +31,9 @@
 //! set it on the colliders.
 //!
 //! # Stepping
-//! [`CompliantRegime::begin_step`] (before `PhysicsPipeline::step`) computes the geometry of
+//! The step owner ([`crate::CreepPipeline`]) runs the regime's `begin_step` (before `PhysicsPipeline::step`), which computes the geometry of
 //! every candidate pair from the *current* poses, the forces with the current velocities, and
-//! adds them to the bodies' user forces, saving these first; [`CompliantRegime::end_step`]
+//! adds them to the bodies' user forces, saving these first; its `end_step`
 //! (after the step) restores the saved user forces exactly. Forces at `x_n` with Rapier's
 //! velocity-then-position update are symplectic Euler when
 //! `IntegrationParameters::num_solver_iterations == 1`; with `k` substeps Rapier applies the
@@ -284,7 +284,7 @@ impl CompliantRegime {
         self.settings = settings;
         Ok(())
     }
-    /// Energy totals (elastic terms as of the last [`CompliantRegime::begin_step`]).
+    /// Energy totals (elastic terms as of the last step).
     pub fn energy(&self) -> CompliantEnergy {
         self.energy
     }
@@ -336,11 +336,12 @@ impl CompliantRegime {
         Ok(a)
     }
 
-    /// Call before `PhysicsPipeline::step`: checks the time step against the Rayleigh time,
-    /// computes every compliant contact's force from the current poses and velocities and adds
-    /// it to the bodies' user forces and torques (saving them for [`CompliantRegime::end_step`]).
-    /// Without `Compliant` colliders in the registry it does nothing.
-    pub fn begin_step(
+    /// Called by the step owner ([`crate::CreepPipeline`]) before `PhysicsPipeline::step`:
+    /// checks the time step against the Rayleigh time, computes every compliant contact's force
+    /// from the current poses and velocities and adds it to the bodies' user forces and torques
+    /// (saving them for `end_step`). Without `Compliant` colliders in the registry it does
+    /// nothing.
+    pub(crate) fn begin_step(
         &mut self,
         registry: &MaterialRegistry,
         params: &IntegrationParameters,
@@ -606,9 +607,9 @@ impl CompliantRegime {
         Ok(self.counts)
     }
 
-    /// Call after `PhysicsPipeline::step`: puts back the user forces and torques the bodies had
-    /// before [`CompliantRegime::begin_step`] (exactly: reset, then the saved values).
-    pub fn end_step(&mut self, bodies: &mut RigidBodySet) {
+    /// Called by the step owner after `PhysicsPipeline::step`: puts back the user forces and
+    /// torques the bodies had before `begin_step` (exactly: reset, then the saved values).
+    pub(crate) fn end_step(&mut self, bodies: &mut RigidBodySet) {
         for (h, f, m) in self.saved.drain(..) {
             if let Some(rb) = bodies.get_mut(h) {
                 rb.reset_forces(false);
