@@ -28,15 +28,15 @@ pub struct CreepContact {
     pub collider1: Entity,
     /// Collider entity of body q (Rapier's collider2).
     pub collider2: Entity,
-    /// Contact point [m]: rigid regime, the narrow phase's point on collider 1's surface as of
+    /// Contact point \[m\]: rigid regime, the narrow phase's point on collider 1's surface as of
     /// the start of the last step (it trails a moving body by up to `v dt`); compliant regime,
     /// the middle of the overlap.
     pub point: Vec3,
     /// Unit normal from p to q [-].
     pub normal: Vec3,
-    /// Normal force P [N] (the last step's; >= 0).
+    /// Normal force P \[N\] (the last step's; >= 0).
     pub normal_force: f32,
-    /// Tangential force on p from q [N] (q gets the opposite).
+    /// Tangential force on p from q \[N\] (q gets the opposite).
     pub force: Vec3,
     /// Creep slip velocity of q's surface against p's, `v_disp` [m/s] (the rigid regime's
     /// target; zero for compliant contacts, whose slip is not a velocity target).

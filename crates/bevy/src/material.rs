@@ -8,7 +8,7 @@ use creep_rapier::{Fidelity, RollingResistance};
 
 /// Opts a collider entity (one with a bevy_rapier3d `Collider`) in to creep-friction.
 ///
-/// - `material`: shear modulus G [Pa], Poisson's ratio nu [-] and density rho [kg/m^3]
+/// - `material`: shear modulus G \[Pa\], Poisson's ratio nu [-] and density rho [kg/m^3]
 ///   (creep-law's validated [`Material`]). The friction coefficient mu is **not** taken from the
 ///   material: the collider's bevy_rapier3d `Friction` component supplies it (Rapier's combine
 ///   rule applies; Rapier's default is 0.5), so Coulomb and creep-friction see the same mu.
@@ -29,7 +29,7 @@ use creep_rapier::{Fidelity, RollingResistance};
 /// draws a warning (once per collider) and stays Coulomb.
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
 pub struct CreepMaterial {
-    /// Elastic properties (G [Pa], nu [-]) and density [kg/m^3].
+    /// Elastic properties (G \[Pa\], nu [-]) and density [kg/m^3].
     pub material: Material,
     /// Requested fidelity.
     pub fidelity: Fidelity,

@@ -255,7 +255,7 @@ impl CreepFriction {
     }
 
     /// What the plugin did in the last Rapier step: contacts by path (Coulomb for each reason,
-    /// creep, rolling torque), the power dissipated by creep `sum Q . v_disp` [W], the largest
+    /// creep, rolling torque), the power dissipated by creep `sum Q . v_disp` \[W\], the largest
     /// loop gain, and how many registered colliders had their hook on.
     pub fn counts(&self) -> StepCounts {
         self.counts

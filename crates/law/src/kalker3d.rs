@@ -13,7 +13,7 @@
 //!
 //! `Fx = -G c^2 C11 xi`, `Fy = -G c^2 C22 eta - G c^3 C23 phi`, `Mz = G c^3 C23 eta - G c^4 C33 phi`
 //!
-//! (`G` the combined shear modulus [Pa], `xi`, `eta` dimensionless, `phi` [1/m]).
+//! (`G` the combined shear modulus \[Pa\], `xi`, `eta` dimensionless, `phi` [1/m]).
 //!
 //! Provenance check: the `C11`, `C22`, `C23` columns agree entry for entry with the copy of the
 //! table in CONTACT's source (`linrol`); CONTACT does not carry `C33`, so that column was

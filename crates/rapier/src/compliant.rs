@@ -153,34 +153,34 @@ impl CompliantSettings {
     }
 }
 
-/// Energy bookkeeping of the compliant contacts [J]. The elastic terms are the current stored
+/// Energy bookkeeping of the compliant contacts \[J\]. The elastic terms are the current stored
 /// energies; the others accumulate from the creation of the regime (or [`CompliantRegime::reset_energy`]).
 /// Balance: work of the contact forces = change of `elastic()` + `dissipated()`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CompliantEnergy {
-    /// Elastic energy in the Hertz normal springs, `(8/15) E* sqrt(R*) delta^(5/2)` summed [J].
+    /// Elastic energy in the Hertz normal springs, `(8/15) E* sqrt(R*) delta^(5/2)` summed \[J\].
     pub normal_elastic: f64,
     /// Elastic energy in the Cattaneo-Mindlin tangential springs (creep-law
-    /// `MindlinState::elastic_energy`) summed [J].
+    /// `MindlinState::elastic_energy`) summed \[J\].
     pub tangential_elastic: f64,
-    /// Dissipated by the normal damping, `sum (P - P_e) delta_dot dt` [J].
+    /// Dissipated by the normal damping, `sum (P - P_e) delta_dot dt` \[J\].
     pub damping: f64,
-    /// Dissipated by micro-slip and gross slip (creep-law `CreepStep::slip_dissipation`) [J].
+    /// Dissipated by micro-slip and gross slip (creep-law `CreepStep::slip_dissipation`) \[J\].
     pub slip: f64,
-    /// Dissipated by creep (`CreepStep::creep_dissipation`) [J].
+    /// Dissipated by creep (`CreepStep::creep_dissipation`) \[J\].
     pub creep: f64,
-    /// Dissipated by contact-torque rolling resistance (`RollingStep::dissipation`) [J].
+    /// Dissipated by contact-torque rolling resistance (`RollingStep::dissipation`) \[J\].
     pub rolling: f64,
-    /// Added by simplifying over-full Mindlin memories (`CreepStep::truncation_energy`) [J].
+    /// Added by simplifying over-full Mindlin memories (`CreepStep::truncation_energy`) \[J\].
     pub truncation: f64,
 }
 
 impl CompliantEnergy {
-    /// Stored elastic energy [J].
+    /// Stored elastic energy \[J\].
     pub fn elastic(&self) -> f64 {
         self.normal_elastic + self.tangential_elastic
     }
-    /// Net dissipated energy [J] (dissipation minus truncation energy).
+    /// Net dissipated energy \[J\] (dissipation minus truncation energy).
     pub fn dissipated(&self) -> f64 {
         self.damping + self.slip + self.creep + self.rolling - self.truncation
     }
@@ -197,11 +197,11 @@ pub struct CompliantCounts {
     pub creeping: usize,
     /// Compliant pairs skipped: shapes other than ball, cuboid, half-space, or two walls.
     pub unsupported: usize,
-    /// Smallest Rayleigh time step of the compliant balls [s] (infinite if none).
+    /// Smallest Rayleigh time step of the compliant balls \[s\] (infinite if none).
     pub rayleigh_time_step: f64,
     /// Whether `dt > rayleigh_fraction T_R` (only with [`RayleighCheck::Warn`]).
     pub rayleigh_exceeded: bool,
-    /// Largest `|v| dt` of a body with a compliant collider this step [m]. A contact cannot
+    /// Largest `|v| dt` of a body with a compliant collider this step \[m\]. A contact cannot
     /// start unseen while twice this stays below `IntegrationParameters::prediction_distance()`
     /// (the broad phase pairs colliders closer than it).
     pub max_step_displacement: f64,
@@ -218,13 +218,13 @@ pub struct CompliantContact {
     pub t2: Vec3,
     /// Unit normal from p to q [-].
     pub normal: Vec3,
-    /// Contact point [m].
+    /// Contact point \[m\].
     pub point: Vec3,
-    /// Overlap [m].
+    /// Overlap \[m\].
     pub overlap: f64,
-    /// Normal force on q (along `n`) [N], damping included.
+    /// Normal force on q (along `n`) \[N\], damping included.
     pub normal_force: f64,
-    /// Tangential force on p from q, world frame [N].
+    /// Tangential force on p from q, world frame \[N\].
     pub tangential_force: Vec3,
     /// Contact-torque rolling state.
     pub rolling: RollingState,
@@ -306,7 +306,7 @@ impl CompliantRegime {
         self.contacts.iter()
     }
 
-    /// The smallest Rayleigh time step [s] over the registered `Compliant` balls
+    /// The smallest Rayleigh time step \[s\] over the registered `Compliant` balls
     /// (`f64::INFINITY` if there are none).
     pub fn rayleigh_time_step(registry: &MaterialRegistry, colliders: &ColliderSet) -> f64 {
         let mut t_min = f64::INFINITY;
@@ -625,7 +625,7 @@ fn surface(co: &Collider) -> Option<Surface> {
     crate::registry::surface_of(co)
 }
 
-/// Centre of a collider in f64 [m].
+/// Centre of a collider in f64 \[m\].
 fn centre(co: &Collider) -> Vec3 {
     Frame::of(co.position()).t
 }

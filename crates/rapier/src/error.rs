@@ -37,9 +37,9 @@ pub enum PluginError {
          spheres (explicit DEM; lower dt or set CompliantSettings::rayleigh_check)"
     )]
     RayleighTimeStep {
-        /// Time step [s].
+        /// Time step \[s\].
         dt: f64,
-        /// Smallest Rayleigh time step of the compliant balls [s].
+        /// Smallest Rayleigh time step of the compliant balls \[s\].
         rayleigh: f64,
         /// Largest accepted dt / T_R [-].
         fraction: f64,

@@ -183,7 +183,7 @@ pub struct StepCounts {
     pub creep: usize,
     /// Contacts with a contact-torque rolling model.
     pub rolling_torque: usize,
-    /// Power dissipated by creep, `sum Q . v_disp` [W] (>= 0).
+    /// Power dissipated by creep, `sum Q . v_disp` \[W\] (>= 0).
     pub creep_power: f64,
     /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
     pub max_loop_gain: f64,
@@ -631,7 +631,7 @@ fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
 
 /// Solves `q + k F(q) = q_star` for `0 <= q <= mu P` by the Illinois variant of regula falsi
 /// (bracketed, superlinear), with `F(q)` the steady creepage of the chosen law at force `q`
-/// and `k = m_t |v_roll| / dt` [N]: the force a rolling contact of effective mass `m_t`
+/// and `k = m_t |v_roll| / dt` \[N\]: the force a rolling contact of effective mass `m_t`
 /// transmits when its slip target follows the force it transmits. `F` increases, so the root is
 /// unique; beyond `mu P` the contact slides at `mu P`.
 fn solve_creep_force(q_star: f64, k: f64, mu_p: f64, creepage: &dyn Fn(f64) -> f64) -> f64 {

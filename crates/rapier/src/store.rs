@@ -24,7 +24,7 @@ pub struct ContactKey {
 /// Per-contact state that persists across steps.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ContactRecord {
-    /// The relaxed friction force used for the slip target, world frame, on body 1 [N].
+    /// The relaxed friction force used for the slip target, world frame, on body 1 \[N\].
     pub q_used: Vec3,
     /// Contact-torque rolling state (EPSD spring).
     pub rolling: RollingState,
@@ -32,7 +32,7 @@ pub struct ContactRecord {
     pub torque: Vec3,
     /// Bodies of the contact, for applying the torque.
     pub bodies: (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
-    /// Normal force of the previous step, total normal impulse / dt [N].
+    /// Normal force of the previous step, total normal impulse / dt \[N\].
     pub p: f64,
     /// Creep slip target set in the last step [m/s] (world frame).
     pub target: Vec3,

@@ -33,7 +33,7 @@ impl std::ops::DerefMut for CreepWorld {
 }
 
 impl CreepWorld {
-    /// An empty world with gravity `(0, -9.81, 0)` m/s^2, time step `dt` [s], and the
+    /// An empty world with gravity `(0, -9.81, 0)` m/s^2, time step `dt` \[s\], and the
     /// integration parameters the plugin needs.
     pub fn new(dt: f32, settings: CreepSettings) -> Result<Self, PluginError> {
         let mut physics = PhysicsWorld::default();

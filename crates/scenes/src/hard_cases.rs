@@ -184,25 +184,25 @@ struct Scene {
     w: CreepWorld,
     /// Dynamic bodies whose energy is counted.
     dynamic: Vec<RigidBodyHandle>,
-    /// The V-incline: the ball and the field's magnitude `m g sin(theta)` [N].
+    /// The V-incline: the ball and the field's magnitude `m g sin(theta)` \[N\].
     vee: Option<(RigidBodyHandle, f64)>,
-    /// `F_ss` of the ball's contact as a function of `|Q|` [N] (V-incline scenes).
+    /// `F_ss` of the ball's contact as a function of `|Q|` \[N\] (V-incline scenes).
     f_ss: Option<Box<dyn Fn(f64) -> f64>>,
     /// The body the ball rolls on, if dynamic (slip is measured relative to it).
     support: Option<RigidBodyHandle>,
-    /// Radius of the measured ball [m].
+    /// Radius of the measured ball \[m\].
     radius: f64,
     /// The creep is measured only while the ball's amplitude in the V (its position plus its
-    /// kinetic energy over the field's magnitude) is at least this [m] (see the spin case).
+    /// kinetic energy over the field's magnitude) is at least this \[m\] (see the spin case).
     min_amplitude: f64,
 }
 
 /// What a run measured.
 #[derive(Debug, Default, Clone)]
 pub struct Trace {
-    /// Mechanical energy after each step [J].
+    /// Mechanical energy after each step \[J\].
     pub energy: Vec<f64>,
-    /// Energy before the first step [J].
+    /// Energy before the first step \[J\].
     pub e0: f64,
     /// Largest `|q_used| / (mu p)` over the plugin's records.
     pub q_ratio: f64,
@@ -212,16 +212,16 @@ pub struct Trace {
     pub max_gain: f64,
     /// Number of contact-steps that took the creep path.
     pub creep_contacts: usize,
-    /// Creep energy the plugin booked, `sum creep_power dt` [J].
+    /// Creep energy the plugin booked, `sum creep_power dt` \[J\].
     pub creep_energy: f64,
-    /// Signed slip sum `W` over the measuring window [m] (V-incline scenes).
+    /// Signed slip sum `W` over the measuring window \[m\] (V-incline scenes).
     pub slip: f64,
-    /// Rolled distance `sum |dx|` over the measuring window [m].
+    /// Rolled distance `sum |dx|` over the measuring window \[m\].
     pub path: f64,
     /// Creep slip the plugin added, step by step against the twin stepped at Coulomb fidelity
-    /// from the same state, signed like `slip` [m].
+    /// from the same state, signed like `slip` \[m\].
     pub paired_slip: f64,
-    /// Kalker's prediction of `slip`, `sum F_ss((2/7) |F|) |dx|` [m].
+    /// Kalker's prediction of `slip`, `sum F_ss((2/7) |F|) |dx|` \[m\].
     pub predicted: f64,
     /// Largest `|v|` of any body [m/s].
     pub max_speed: f64,
@@ -476,7 +476,7 @@ fn run(mut s: Scene, steps: usize, measure_from: usize) -> Result<(Trace, Scene)
     Ok((t, s))
 }
 
-/// The ball's amplitude in the V [m]: `|x| + E_kin / (m g sin(theta))`, the distance from
+/// The ball's amplitude in the V \[m\]: `|x| + E_kin / (m g sin(theta))`, the distance from
 /// the bottom at which it would stop without losses (0 without a V).
 fn amplitude(s: &Scene) -> f64 {
     let Some((b, mag)) = s.vee else {
@@ -653,21 +653,21 @@ struct Vee {
     dt: f32,
     /// Ball (and floor) material; the ball's density is the material's.
     mat: Material,
-    /// Ball radius [m].
+    /// Ball radius \[m\].
     r: f32,
     /// Collider friction (all colliders).
     mu: f32,
-    /// Incline angle [rad].
+    /// Incline angle \[rad\].
     theta: f64,
-    /// Start position of the ball along x [m] (at rest unless `w0`).
+    /// Start position of the ball along x \[m\] (at rest unless `w0`).
     x_start: f32,
     /// Initial angular velocity [rad/s].
     w0: Vector,
-    /// A free thin slab of this mass [kg] between the ball and the floor.
+    /// A free thin slab of this mass \[kg\] between the ball and the floor.
     slab: Option<f32>,
     /// Rapier's solver substeps (`num_solver_iterations`), if not the default.
     substeps: Option<usize>,
-    /// See [`Scene::min_amplitude`] [m].
+    /// See [`Scene::min_amplitude`] \[m\].
     min_amplitude: f64,
     /// The ball's density [kg/m^3], if not its material's.
     ball_density: Option<f32>,
@@ -846,7 +846,7 @@ fn rubber_vee(dt: f32) -> Vee {
     }
 }
 
-/// The ball mass of the steel V [kg].
+/// The ball mass of the steel V \[kg\].
 fn steel_ball_mass() -> f32 {
     crate::measure::sphere_mass(7850.0, 0.1) as f32
 }
@@ -935,7 +935,7 @@ impl HardCase {
         }
     }
 
-    /// The time step [s].
+    /// The time step \[s\].
     pub fn dt(self) -> f64 {
         match self {
             HardCase::LongStep => 1.0 / 30.0,
@@ -1141,7 +1141,7 @@ fn column(label: &str, steps: usize) -> Result<Outcome, SceneError> {
 }
 
 /// The largest motion of the scene's dynamic bodies over `steps` further steps: centre motion
-/// and surface motion `R * angle` [m].
+/// and surface motion `R * angle` \[m\].
 fn drift(sk: &mut Scene, steps: usize) -> Result<f64, SceneError> {
     let snap = |sk: &Scene| -> Vec<(Vector, Rotation)> {
         sk.dynamic

@@ -27,10 +27,10 @@ use rapier3d::prelude::*;
 
 use crate::measure::SceneError;
 
-/// Sphere radius of the piles [m].
+/// Sphere radius of the piles \[m\].
 pub const RADIUS: f32 = 0.05;
 
-/// Time step of the piles [s].
+/// Time step of the piles \[s\].
 pub const DT: f32 = 1.0 / 60.0;
 
 /// The scale study's piles (`creep report`'s scale section and the `pile` bench): stacked
@@ -46,7 +46,7 @@ pub const SCALE_LAYERS: usize = 9;
 /// the 1,005-sphere pile moves at 1.8e-3 m/s, below the plugin's activation speed (1e-2 m/s).
 pub const SCALE_SETTLE_STEPS: usize = 40;
 
-/// Thickness (half) of the walls [m].
+/// Thickness (half) of the walls \[m\].
 const WALL: f32 = 0.1;
 
 /// A settled pile and how it settled.
@@ -57,7 +57,7 @@ pub struct Pile {
     pub spheres: usize,
     /// Steps it was settled for.
     pub settle_steps: usize,
-    /// Wall-clock time of the settling [s].
+    /// Wall-clock time of the settling \[s\].
     pub settle_seconds: f64,
     /// Largest sphere speed after settling [m/s].
     pub max_speed: f64,
@@ -91,7 +91,7 @@ impl Pile {
 }
 
 /// A box of fixed cuboid walls: a floor whose top is `y = 0` and four walls of height `height`
-/// [m] whose inner faces are at `|x| = half_x`, `|z| = half_z` [m].
+/// \[m\] whose inner faces are at `|x| = half_x`, `|z| = half_z` \[m\].
 fn add_box(w: &mut CreepWorld, mat: CreepMaterial, half_x: f32, half_z: f32, height: f32) {
     w.insert(
         RigidBodyBuilder::fixed().translation(Vector::new(0.0, -WALL, 0.0)),
@@ -283,9 +283,9 @@ pub fn plain_and_auto(pile: &Pile) -> Result<(PhysicsWorld, CreepWorld), SceneEr
 pub struct Interleaved {
     /// Pairs of steps timed.
     pub pairs: usize,
-    /// Median step time of plain Rapier [s].
+    /// Median step time of plain Rapier \[s\].
     pub plain: f64,
-    /// Median step time with the plugin [s].
+    /// Median step time with the plugin \[s\].
     pub plugin: f64,
     /// Median of the per-pair ratios plugin / plain [-].
     pub ratio: f64,
@@ -355,7 +355,7 @@ pub struct MovingRatios {
     pub auto: f64,
     /// Median of the per-step ratios `Fidelity::Creep` (every contact) / plain [-].
     pub creep: f64,
-    /// Median step time of plain Rapier [s].
+    /// Median step time of plain Rapier \[s\].
     pub plain_step: f64,
     /// Active contact pairs at the end (plain copy).
     pub contacts: usize,

@@ -10,7 +10,7 @@ use rapier3d::prelude::*;
 
 use crate::measure::{SceneError, positive};
 
-/// Ball radius [m].
+/// Ball radius \[m\].
 pub const RADIUS: f64 = 0.1;
 /// Gravity [m/s^2] (along -y).
 pub const GRAVITY: f64 = 9.81;
@@ -97,7 +97,7 @@ pub struct RollingBall {
     pub material: Material,
     /// Launch speed [m/s], rolling without slip along +x (0: at rest).
     pub speed: f64,
-    /// Time step [s].
+    /// Time step \[s\].
     pub dt: f64,
     /// Ground shape.
     pub ground: Ground,
@@ -113,36 +113,36 @@ pub struct RollingBall {
 /// The state of the ball after a step (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Centre position along the rolling direction [m].
+    /// Centre position along the rolling direction \[m\].
     pub x: f64,
-    /// Height of the centre above the ground's top face [m].
+    /// Height of the centre above the ground's top face \[m\].
     pub height: f64,
     /// Speed of the centre [m/s].
     pub speed: f64,
     /// Angular speed times radius [m/s] (equals `speed` when rolling without slip).
     pub omega_r: f64,
-    /// Kinetic energy, translation and rotation [J].
+    /// Kinetic energy, translation and rotation \[J\].
     pub kinetic_energy: f64,
-    /// Potential energy relative to the start, `m g (y - y0)` [J].
+    /// Potential energy relative to the start, `m g (y - y0)` \[J\].
     pub potential_energy: f64,
 }
 
 /// What a run measured against its bounds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Summary {
-    /// Initial mechanical energy [J].
+    /// Initial mechanical energy \[J\].
     pub e0: f64,
     /// Largest `(E - E0) / E0` over the run (energy gained) [-].
     pub max_gain: f64,
     /// `(E0 - E_end) / E0` (energy lost over the run) [-].
     pub loss: f64,
-    /// Largest rise of the centre above its resting height [m].
+    /// Largest rise of the centre above its resting height \[m\].
     pub max_rise: f64,
-    /// Largest sinking of the centre below its resting height [m].
+    /// Largest sinking of the centre below its resting height \[m\].
     pub max_sink: f64,
-    /// Resting height of the centre [m] (from a run of the ball at rest).
+    /// Resting height of the centre \[m\] (from a run of the ball at rest).
     pub rest_height: f64,
 }
 
@@ -279,7 +279,7 @@ fn sample(p: &PhysicsWorld, ball: RigidBodyHandle, t: f64, y0: f64) -> Sample {
 }
 
 /// The resting height of the ball's centre on this ground at this step: a ball set at rest on
-/// the ground, after [`REST_STEPS`] steps [m].
+/// the ground, after [`REST_STEPS`] steps \[m\].
 pub fn rest_height(
     material: Material,
     dt: f64,

@@ -56,7 +56,7 @@ use crate::SceneError;
 pub struct TriaxialParams {
     /// Spheres per lattice side (`n^3` spheres), in `[2, 40]`.
     pub n_per_side: usize,
-    /// Mean radius [m], > 0.
+    /// Mean radius \[m\], > 0.
     pub radius: f64,
     /// Half-width of the uniform radius distribution relative to the mean, in `[0, 0.5]`.
     pub radius_spread: f64,
@@ -66,7 +66,7 @@ pub struct TriaxialParams {
     pub mu: f64,
     /// Restitution coefficient of every contact (sets the normal damping), in `[0.05, 1]`.
     pub restitution: f64,
-    /// Confining pressure `p0` [Pa], > 0.
+    /// Confining pressure `p0` \[Pa\], > 0.
     pub confining_pressure: f64,
     /// Inertial number of the shear (sets the axial strain rate), in `(0, 0.1]`.
     pub inertial_number: f64,
@@ -199,7 +199,7 @@ impl TriaxialParams {
         Ok(p)
     }
 
-    /// Mean diameter [m].
+    /// Mean diameter \[m\].
     pub fn mean_diameter(&self) -> f64 {
         2.0 * self.radius
     }
@@ -210,7 +210,7 @@ impl TriaxialParams {
             / (self.mean_diameter() * (self.material.density() / self.confining_pressure).sqrt())
     }
 
-    /// Time step [s]: `rayleigh_fraction` of the smallest ball's Rayleigh time.
+    /// Time step \[s\]: `rayleigh_fraction` of the smallest ball's Rayleigh time.
     pub fn time_step(&self) -> f64 {
         let r_min = self.radius * (1.0 - self.radius_spread);
         self.rayleigh_fraction * creep_law::hertz::rayleigh_time_step(&self.material, r_min)
@@ -253,17 +253,17 @@ pub struct TriaxialRow {
     pub volumetric_strain: f64,
     /// Stress ratio `q / p` from the walls [-].
     pub q_over_p: f64,
-    /// Mean stress from the walls [Pa].
+    /// Mean stress from the walls \[Pa\].
     pub p: f64,
-    /// Deviatoric stress from the walls [Pa].
+    /// Deviatoric stress from the walls \[Pa\].
     pub q: f64,
-    /// Axial wall stress `sigma_1` [Pa].
+    /// Axial wall stress `sigma_1` \[Pa\].
     pub sigma_axial: f64,
-    /// Mean lateral wall stress `sigma_3` [Pa].
+    /// Mean lateral wall stress `sigma_3` \[Pa\].
     pub sigma_lateral: f64,
-    /// Mean stress from the contacts (Love-Weber) [Pa].
+    /// Mean stress from the contacts (Love-Weber) \[Pa\].
     pub p_contacts: f64,
-    /// Deviatoric stress from the contacts [Pa].
+    /// Deviatoric stress from the contacts \[Pa\].
     pub q_contacts: f64,
     /// Touching ball-ball contacts.
     pub contacts: usize,
@@ -278,20 +278,20 @@ pub struct TriaxialRow {
     pub share_creeping: f64,
     /// Solid fraction [-].
     pub solid_fraction: f64,
-    /// Kinetic energy of the balls [J].
+    /// Kinetic energy of the balls \[J\].
     pub kinetic_energy: f64,
 }
 
 /// A stress measurement.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Stress {
-    /// Box dimensions between the walls' inner faces [m].
+    /// Box dimensions between the walls' inner faces \[m\].
     dims: [f64; 3],
-    /// Wall stresses per axis [Pa].
+    /// Wall stresses per axis \[Pa\].
     walls: [f64; 3],
-    /// Per-wall stress [Pa], index `2 axis + (side > 0)`.
+    /// Per-wall stress \[Pa\], index `2 axis + (side > 0)`.
     each: [f64; 6],
-    /// Love-Weber stress [Pa].
+    /// Love-Weber stress \[Pa\].
     love: [[f64; 3]; 3],
     /// Normal contact stiffness summed over each wall's contacts [N/m] (Hertz:
     /// `dP/d delta = 1.5 P / delta`).
@@ -407,13 +407,13 @@ impl Specimen {
         self.balls.is_empty()
     }
 
-    /// Position of a wall's inner face along its axis [m].
+    /// Position of a wall's inner face along its axis \[m\].
     fn face(&self, w: &Wall) -> f64 {
         let x = self.world.physics.bodies[w.body].translation()[w.axis];
         f64::from(x) - w.side * WALL_THICKNESS * self.params.radius
     }
 
-    /// Box dimensions between the inner faces [m].
+    /// Box dimensions between the inner faces \[m\].
     fn dims(&self) -> [f64; 3] {
         std::array::from_fn(|axis| {
             self.face(&self.walls[2 * axis + 1]) - self.face(&self.walls[2 * axis])
@@ -519,7 +519,7 @@ impl Specimen {
         }
     }
 
-    /// Kinetic energy of the balls [J].
+    /// Kinetic energy of the balls \[J\].
     fn kinetic_energy(&self) -> f64 {
         self.balls
             .iter()
@@ -614,9 +614,9 @@ pub struct CompactionSummary {
     pub steps: usize,
     /// Solid fraction reached [-].
     pub solid_fraction: f64,
-    /// Mean wall stress [Pa].
+    /// Mean wall stress \[Pa\].
     pub p_walls: f64,
-    /// Mean stress from the contacts [Pa].
+    /// Mean stress from the contacts \[Pa\].
     pub p_contacts: f64,
     /// Largest deviation of a wall's stress from `p0`, relative [-].
     pub max_wall_error: f64,
@@ -716,9 +716,9 @@ pub struct ShearRun {
     /// Largest relative difference of the contact stress (p and q) from the walls' over the
     /// rows after 1 % axial strain (quasi-static check) [-].
     pub max_stress_mismatch: f64,
-    /// Energy dissipated by creep over the shear [J].
+    /// Energy dissipated by creep over the shear \[J\].
     pub creep_dissipation: f64,
-    /// Energy dissipated by slip over the shear [J].
+    /// Energy dissipated by slip over the shear \[J\].
     pub slip_dissipation: f64,
 }
 
@@ -869,11 +869,11 @@ pub struct ShearSummary {
     pub peak_q_over_p: f64,
     /// Axial strain at the peak [-].
     pub peak_axial_strain: f64,
-    /// Peak friction angle `asin((s1 - s3)/(s1 + s3))` [deg].
+    /// Peak friction angle `asin((s1 - s3)/(s1 + s3))` \[deg\].
     pub peak_friction_angle_deg: f64,
     /// Largest dilatancy rate `-d eps_v / d eps_a` (over 1 % strain windows) [-].
     pub max_dilatancy_rate: f64,
-    /// Dilatancy angle at that rate, `asin(D / (2 + D))` [deg].
+    /// Dilatancy angle at that rate, `asin(D / (2 + D))` \[deg\].
     pub dilatancy_angle_deg: f64,
     /// Volumetric strain at the end [-].
     pub final_volumetric_strain: f64,

@@ -8,7 +8,7 @@ use rapier3d::prelude::Pose;
 /// A rigid frame in f64: `x -> q x q^-1 + t`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Frame {
-    /// Translation [m].
+    /// Translation \[m\].
     pub t: Vec3,
     /// Unit quaternion `[x, y, z, w]` [-].
     pub q: [f64; 4],
@@ -45,9 +45,9 @@ fn rotate(q: [f64; 4], v: Vec3) -> Vec3 {
 pub(crate) struct Touch {
     /// Unit normal from body p to body q [-].
     pub normal: Vec3,
-    /// Contact point: the middle of the overlap along the normal [m].
+    /// Contact point: the middle of the overlap along the normal \[m\].
     pub point: Vec3,
-    /// Overlap (approach) `delta` [m]; negative when apart.
+    /// Overlap (approach) `delta` \[m\]; negative when apart.
     pub overlap: f64,
 }
 
@@ -76,7 +76,7 @@ pub(crate) fn sphere_sphere(xp: Vec3, rp: f64, xq: Vec3, rq: f64) -> Option<Touc
     })
 }
 
-/// Cuboid p (frame, half-extents [m]) and sphere q: normal from the cuboid's closest surface
+/// Cuboid p (frame, half-extents \[m\]) and sphere q: normal from the cuboid's closest surface
 /// point towards the centre (out of the nearest face when the centre is inside the cuboid).
 pub(crate) fn cuboid_sphere(frame: &Frame, half: Vec3, xq: Vec3, rq: f64) -> Option<Touch> {
     let c = frame.unrotate(xq - frame.t);

@@ -34,13 +34,13 @@ use crate::rolling_ball::{FidelityChoice, Ground, RollingBall, Stepper, Summary}
 pub const SUBSTEPS: usize = 1;
 /// Rapier's default substeps, reported beside.
 pub const DEFAULT_SUBSTEPS: usize = 4;
-/// Run length [s].
+/// Run length \[s\].
 pub const DURATION: f64 = 10.0;
 /// Largest energy gain, relative to the start.
 pub const MAX_GAIN: f64 = 1e-6;
 /// Largest energy loss over the run, relative to the start.
 pub const MAX_LOSS: f64 = 1e-3;
-/// Largest rise or sinking of the centre from its resting height [m].
+/// Largest rise or sinking of the centre from its resting height \[m\].
 pub const MAX_HEIGHT_ERROR: f64 = 1e-4;
 
 /// One case of the matrix.
@@ -50,7 +50,7 @@ pub struct Case {
     pub material: &'static str,
     /// Launch speed [m/s].
     pub speed: f64,
-    /// Time step [s].
+    /// Time step \[s\].
     pub dt: f64,
     /// Ground.
     pub ground: Ground,
