@@ -6,8 +6,8 @@
 
 use std::hint::black_box;
 
-use creep_law::steady3d::Steady3d;
 use creep_law::{SteadyLaw, kalker};
+use creep_law::steady3d::Steady3d;
 use criterion::{Criterion, criterion_group, criterion_main};
 
 const BATCH: usize = 64;
@@ -23,9 +23,7 @@ fn inputs() -> Vec<[f64; 3]> {
 
 fn bench_steady3d(c: &mut Criterion) {
     let nu = 0.25;
-    let kuhn = SteadyLaw::Kuhn {
-        c11: kalker::c11(nu),
-    };
+    let kuhn = SteadyLaw::Kuhn { c11: kalker::c11(nu) };
     let law = Steady3d::new(0.5, nu).unwrap();
     let x = inputs();
     let ratios: Vec<f64> = x.iter().map(|v| v[0].abs().min(0.99)).collect();
