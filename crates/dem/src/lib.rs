@@ -862,21 +862,26 @@ impl<T: TangentialLaw> Dem<T> {
     fn rebuild(&mut self) {
         let n = self.len();
         self.counts.rebuilds += 1;
-        // Old histories keyed by the smaller id (CSR), partner by the larger.
-        let mut carry = Carry::<T>::default();
+        // Old histories stay where they are; the carry-over indexes them by the smaller id
+        // (CSR), partner by the larger, so each history is copied once, into the new list (the
+        // exact tier's history is ~0.5 kB: copying it through the sort cost more than the rest
+        // of the rebuild).
+        let old_h = std::mem::replace(&mut self.nl_h, Vec::with_capacity(self.nl_j.len()));
+        let old_wh = std::mem::replace(&mut self.wl_h, Vec::with_capacity(self.wl_i.len()));
+        let mut carry = Carry::default();
         for i in 0..n {
             for k in self.nl_start.get(i).copied().unwrap_or(0) as usize
                 ..self.nl_start.get(i + 1).copied().unwrap_or(0) as usize
             {
-                if !self.nl_h[k].is_virgin() {
+                if !old_h[k].is_virgin() {
                     let (a, b) = (self.id[i], self.id[self.nl_j[k] as usize]);
-                    carry.push(a.min(b), a.max(b), self.nl_h[k]);
+                    carry.push(a.min(b), a.max(b), k as u32);
                 }
             }
         }
         for e in 0..self.wl_i.len() {
-            if !self.wl_h[e].is_virgin() {
-                carry.push_wall(self.id[self.wl_i[e] as usize], self.wl_k[e], self.wl_h[e]);
+            if !old_wh[e].is_virgin() {
+                carry.push_wall(self.id[self.wl_i[e] as usize], self.wl_k[e], e as u32);
             }
         }
         carry.finish(n);
@@ -902,7 +907,6 @@ impl<T: TangentialLaw> Dem<T> {
         let skin = self.cfg.skin;
         self.nl_start.clear();
         self.nl_j.clear();
-        self.nl_h.clear();
         self.nl_start.push(0);
         for i in 0..n {
             let xi = self.x[i];
@@ -915,7 +919,11 @@ impl<T: TangentialLaw> Dem<T> {
                 if d.dot(d) < cut * cut {
                     let (a, b) = (id[i], id[j]);
                     nl_j.push(j as u32);
-                    nl_h.push(carry.find(a.min(b), a.max(b)));
+                    nl_h.push(
+                        carry
+                            .find(a.min(b), a.max(b))
+                            .map_or_else(ContactHistory::default, |k| old_h[k]),
+                    );
                 }
             });
             self.nl_start.push(self.nl_j.len() as u32);
@@ -924,13 +932,16 @@ impl<T: TangentialLaw> Dem<T> {
         // Wall lists.
         self.wl_k.clear();
         self.wl_i.clear();
-        self.wl_h.clear();
         for (k, wall) in self.walls.iter().enumerate() {
             for i in 0..n {
                 if (self.x[i] - wall.point).dot(wall.normal) < self.r[i] + skin {
                     self.wl_k.push(k as u32);
                     self.wl_i.push(i as u32);
-                    self.wl_h.push(carry.find_wall(self.id[i], k as u32));
+                    self.wl_h.push(
+                        carry
+                            .find_wall(self.id[i], k as u32)
+                            .map_or_else(ContactHistory::default, |e| old_wh[e]),
+                    );
                 }
             }
         }
@@ -956,35 +967,26 @@ fn permute<X: Copy>(v: &mut Vec<X>, order: &[u32]) {
     v.extend(order.iter().map(|&o| old[o as usize]));
 }
 
-/// Histories of the last list, keyed by particle id (CSR), for the carry-over at a rebuild.
-struct Carry<T: TangentialLaw> {
-    entries: Vec<(u32, u32, ContactHistory<T>)>,
-    walls: Vec<(u32, u32, ContactHistory<T>)>,
+/// Where the histories of the last list are, keyed by particle id (CSR), for the carry-over
+/// at a rebuild: `(smaller id, partner id or wall, index in the old list)`.
+#[derive(Default)]
+struct Carry {
+    entries: Vec<(u32, u32, u32)>,
+    walls: Vec<(u32, u32, u32)>,
     start: Vec<u32>,
     wall_start: Vec<u32>,
 }
 
-impl<T: TangentialLaw> Default for Carry<T> {
-    fn default() -> Self {
-        Self {
-            entries: Vec::new(),
-            walls: Vec::new(),
-            start: Vec::new(),
-            wall_start: Vec::new(),
-        }
+impl Carry {
+    fn push(&mut self, lo: u32, hi: u32, k: u32) {
+        self.entries.push((lo, hi, k));
     }
-}
-
-impl<T: TangentialLaw> Carry<T> {
-    fn push(&mut self, lo: u32, hi: u32, h: ContactHistory<T>) {
-        self.entries.push((lo, hi, h));
-    }
-    fn push_wall(&mut self, id: u32, wall: u32, h: ContactHistory<T>) {
-        self.walls.push((id, wall, h));
+    fn push_wall(&mut self, id: u32, wall: u32, e: u32) {
+        self.walls.push((id, wall, e));
     }
     /// Sorts the entries by key (counting sort) and builds the offsets.
     fn finish(&mut self, n: usize) {
-        fn csr<H: Copy>(v: &mut Vec<(u32, u32, H)>, n: usize) -> Vec<u32> {
+        fn csr(v: &mut Vec<(u32, u32, u32)>, n: usize) -> Vec<u32> {
             let mut start = vec![0u32; n + 1];
             for e in v.iter() {
                 start[e.0 as usize + 1] += 1;
@@ -993,19 +995,20 @@ impl<T: TangentialLaw> Carry<T> {
                 start[i + 1] += start[i];
             }
             let mut fill = start.clone();
-            let mut out: Vec<Option<(u32, u32, H)>> = vec![None; v.len()];
+            let mut out = vec![(0, 0, 0); v.len()];
             for e in v.iter() {
                 let s = &mut fill[e.0 as usize];
-                out[*s as usize] = Some(*e);
+                out[*s as usize] = *e;
                 *s += 1;
             }
-            *v = out.into_iter().flatten().collect();
+            *v = out;
             start
         }
         self.start = csr(&mut self.entries, n);
         self.wall_start = csr(&mut self.walls, n);
     }
-    fn find(&self, lo: u32, hi: u32) -> ContactHistory<T> {
+    /// Index in the old pair list of the contact `(lo, hi)`, if it was touching.
+    fn find(&self, lo: u32, hi: u32) -> Option<usize> {
         let (a, b) = (
             self.start[lo as usize] as usize,
             self.start[lo as usize + 1] as usize,
@@ -1013,10 +1016,10 @@ impl<T: TangentialLaw> Carry<T> {
         self.entries[a..b]
             .iter()
             .find(|e| e.1 == hi)
-            .map(|e| e.2)
-            .unwrap_or_default()
+            .map(|e| e.2 as usize)
     }
-    fn find_wall(&self, id: u32, wall: u32) -> ContactHistory<T> {
+    /// Index in the old wall list of the contact of particle `id` with `wall`.
+    fn find_wall(&self, id: u32, wall: u32) -> Option<usize> {
         let (a, b) = (
             self.wall_start[id as usize] as usize,
             self.wall_start[id as usize + 1] as usize,
@@ -1024,8 +1027,7 @@ impl<T: TangentialLaw> Carry<T> {
         self.walls[a..b]
             .iter()
             .find(|e| e.1 == wall)
-            .map(|e| e.2)
-            .unwrap_or_default()
+            .map(|e| e.2 as usize)
     }
 }
 

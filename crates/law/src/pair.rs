@@ -44,7 +44,7 @@ pub mod damping;
 use crate::LawError;
 use crate::creep::{CreepInput, CreepLaw, CreepState};
 use crate::hertz;
-use crate::kinematics::{BodyMotion, contact_rates};
+use crate::kinematics::ContactRates;
 use crate::material::{Material, PairMaterial, Surface};
 use crate::mindlin::{MINDLIN_FLAT_LEN, MindlinState};
 use crate::rolling_torque::{RollingInput, RollingModel, RollingState, epsd_rolling_inertia};
@@ -164,15 +164,6 @@ pub struct PairBody {
 }
 
 impl PairBody {
-    #[inline]
-    fn motion(&self) -> BodyMotion {
-        BodyMotion {
-            position: self.position,
-            velocity: self.velocity,
-            angular_velocity: self.angular_velocity,
-            surface: self.surface,
-        }
-    }
     /// `1/m` [1/kg], 0 for an immovable body.
     #[inline]
     fn inv_mass(&self) -> f64 {
@@ -624,7 +615,10 @@ pub struct PairForces {
 /// The pair force of one contact for one step of length `dt` [s]: bodies `p` and `q`, the pair's
 /// constants `c`, the geometry `g` (normal from p to q) and the contact's history `h` (updated in
 /// place; reset when the contact is open). See the module docs for the law.
-#[inline]
+///
+/// Always inlined: a host's loop uses a few of the outputs, and inlining lets the compiler drop
+/// the work of the others (e.g. `slide_length`'s square root).
+#[inline(always)]
 pub fn pair_force<T: TangentialLaw>(
     c: &PairConstants,
     p: &PairBody,
@@ -649,10 +643,7 @@ pub fn pair_force<T: TangentialLaw>(
     let m_star = 1.0 / inv_sum;
     let n = g.normal;
     let cp = g.point;
-    let pmo = p.motion();
-    let qmo = q.motion();
-    let rates = contact_rates(&pmo, &qmo, cp, n);
-    let delta_dot = -(qmo.velocity_at(cp) - pmo.velocity_at(cp)).dot(n);
+    let (rates, delta_dot) = rates_and_approach(p, q, cp, n);
 
     // The tangent basis carried with the contact.
     if h.is_virgin() {
@@ -687,7 +678,9 @@ pub fn pair_force<T: TangentialLaw>(
     };
     let step = T::step(&mut h.tangential, c, &pm, p_el, a, du_disp, du_roll);
     let q_world = step.q.to_3d(t1, t2);
-    let sliding = pm.mu.is_finite() && step.q.length() >= (1.0 - 1e-9) * pm.mu * p_el;
+    // `|Q| >= (1 - 1e-9) mu P_e`, squared (both sides >= 0): one square root less per contact.
+    let limit = (1.0 - 1e-9) * pm.mu * p_el;
+    let sliding = pm.mu.is_finite() && step.q.length_squared() >= limit * limit;
 
     // Contact-torque rolling resistance (on q; -M on p).
     let mut torque_roll = Vec3::ZERO;
@@ -743,6 +736,48 @@ pub fn pair_force<T: TangentialLaw>(
             truncation: step.truncation,
         },
     }
+}
+
+/// Kuhn & Bagi's (2004) contact rates of `p` and `q` at `cp` with normal `n`, and the approach
+/// rate `delta_dot = -(u'_q - u'_p) . n` [m/s]: creep-law's [`crate::kinematics::contact_rates`]
+/// with the same arithmetic (so the same result to the last bit), inlined into the kernel and
+/// sharing the two surface velocities `u' = v + w x (c - x)` with `delta_dot` (the profile of
+/// notes/dem-readme.md had the out-of-line call at a third of the kernel's cost).
+#[inline(always)]
+fn rates_and_approach(p: &PairBody, q: &PairBody, cp: Vec3, n: Vec3) -> (ContactRates, f64) {
+    let up = p.velocity + p.angular_velocity.cross(cp - p.position);
+    let uq = q.velocity + q.angular_velocity.cross(cp - q.position);
+    let rel = uq - up;
+    let w_rel = q.angular_velocity - p.angular_velocity;
+    let c_dot = match (p.surface, q.surface) {
+        (Surface::Sphere(_), Surface::Sphere(_)) => {
+            // c' = v_p + rho_p n',  n' = (v_q - v_p)_t / d.
+            let rho_p = (cp - p.position).dot(n);
+            let rho_q = (q.position - cp).dot(n);
+            let d = rho_p + rho_q;
+            if d > 0.0 && d.is_finite() {
+                p.velocity + (q.velocity - p.velocity) * (rho_p / d)
+            } else {
+                (up + uq) * 0.5
+            }
+        }
+        (Surface::Plane, Surface::Sphere(_)) => {
+            let rho_q = (q.position - cp).dot(n);
+            q.velocity - p.angular_velocity.cross(n) * rho_q
+        }
+        (Surface::Sphere(_), Surface::Plane) => {
+            let rho_p = (cp - p.position).dot(n);
+            p.velocity + q.angular_velocity.cross(n) * rho_p
+        }
+        (Surface::Plane, Surface::Plane) => (up + uq) * 0.5,
+    };
+    let rates = ContactRates {
+        v_disp: rel.reject(n),
+        v_roll: ((up + uq) * 0.5 - c_dot).reject(n),
+        w_roll: w_rel.reject(n),
+        w_twist: w_rel.dot(n),
+    };
+    (rates, -rel.dot(n))
 }
 
 /// Opens a contact: resets its history and returns the tangential elastic energy it still

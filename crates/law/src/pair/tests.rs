@@ -332,3 +332,52 @@ fn bad_constants_are_errors() {
     assert!(!Cheap::supports(Some(CreepModel::FittedTransient)));
     assert!(Exact::supports(Some(CreepModel::FittedTransient)));
 }
+
+#[test]
+fn inlined_rates_equal_kinematics_contact_rates_bit_for_bit() {
+    use crate::kinematics::{BodyMotion, contact_rates};
+    let motion = |b: &PairBody| BodyMotion {
+        position: b.position,
+        velocity: b.velocity,
+        angular_velocity: b.angular_velocity,
+        surface: b.surface,
+    };
+    let p = sphere(
+        Vec3::new(0.001, -0.002, 0.0005),
+        Vec3::new(0.3, -0.1, 0.2),
+        Vec3::new(5.0, -3.0, 7.0),
+        0.004,
+    );
+    let q = sphere(
+        Vec3::new(0.0085, 0.001, -0.0003),
+        Vec3::new(-0.2, 0.4, 0.1),
+        Vec3::new(-2.0, 6.0, 1.0),
+        0.005,
+    );
+    let g = ContactGeometry::sphere_sphere(p.position, 0.004, q.position, 0.005).unwrap();
+    let (pl, b, gw) = on_plane(
+        0.003,
+        1e-6,
+        Vec3::new(0.1, 0.2, -0.05),
+        Vec3::new(3.0, -1.0, 2.0),
+    );
+    for (p, q, g) in [
+        (p, q, g),
+        (pl, b, gw),
+        (
+            b,
+            pl,
+            ContactGeometry {
+                normal: -gw.normal,
+                ..gw
+            },
+        ),
+    ] {
+        let (r, dd) = rates_and_approach(&p, &q, g.point, g.normal);
+        let (mp, mq) = (motion(&p), motion(&q));
+        let k = contact_rates(&mp, &mq, g.point, g.normal);
+        assert_eq!(r, k);
+        let dd0 = -(mq.velocity_at(g.point) - mp.velocity_at(g.point)).dot(g.normal);
+        assert_eq!(dd.to_bits(), dd0.to_bits());
+    }
+}
