@@ -29,7 +29,7 @@ const MAX_CELLS_PER_PARTICLE: f64 = 4.0;
 pub(crate) struct Grid {
     /// Periodic box per axis `(lo, length)`.
     periodic: [Option<(f64, f64)>; 3],
-    /// Smallest cell size [m] (largest cut-off).
+    /// Smallest cell size \[m\] (largest cut-off).
     cell_min: f64,
     lo: [f64; 3],
     size: [f64; 3],

@@ -151,13 +151,13 @@ impl MaterialTable {
 /// One particle's initial state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Particle {
-    /// Centre [m].
+    /// Centre \[m\].
     pub position: Vec3,
     /// Velocity [m/s].
     pub velocity: Vec3,
     /// Angular velocity [rad/s].
     pub angular_velocity: Vec3,
-    /// Radius [m], finite and > 0.
+    /// Radius \[m\], finite and > 0.
     pub radius: f64,
     /// Material id (index in the [`MaterialTable`]).
     pub material: usize,
@@ -166,7 +166,7 @@ pub struct Particle {
 /// A plane wall: the half-space behind `point` along `-normal`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Wall {
-    /// A point on the plane [m].
+    /// A point on the plane \[m\].
     pub point: Vec3,
     /// Unit normal pointing into the domain [-].
     pub normal: Vec3,
@@ -179,12 +179,12 @@ pub struct Wall {
 /// Settings of the engine.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DemConfig {
-    /// Time step [s], finite and > 0.
+    /// Time step \[s\], finite and > 0.
     pub dt: f64,
-    /// Neighbour-list skin [m], finite and > 0 (LAMMPS' default for granular runs is of the
+    /// Neighbour-list skin \[m\], finite and > 0 (LAMMPS' default for granular runs is of the
     /// order of a tenth of the diameter).
     pub skin: f64,
-    /// Periodic axes: `Some((lo, hi))` [m] makes axis `x`, `y` or `z` periodic with that box.
+    /// Periodic axes: `Some((lo, hi))` \[m\] makes axis `x`, `y` or `z` periodic with that box.
     pub periodic: [Option<(f64, f64)>; 3],
     /// Gravity [m/s^2].
     pub gravity: Vec3,
@@ -204,34 +204,34 @@ impl Default for DemConfig {
     }
 }
 
-/// Energy bookkeeping [J], as creep-rapier's `CompliantEnergy`: the elastic terms are the
+/// Energy bookkeeping \[J\], as creep-rapier's `CompliantEnergy`: the elastic terms are the
 /// current stored energies ([`Dem::energy`] computes them), the others accumulate from the
 /// creation of the engine. Balance: work of the contact forces = change of `elastic()` +
 /// `dissipated()`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DemEnergy {
-    /// Hertz normal springs [J].
+    /// Hertz normal springs \[J\].
     pub normal_elastic: f64,
-    /// Tangential springs [J].
+    /// Tangential springs \[J\].
     pub tangential_elastic: f64,
-    /// Normal damping [J].
+    /// Normal damping \[J\].
     pub damping: f64,
-    /// Micro-slip and gross slip [J].
+    /// Micro-slip and gross slip \[J\].
     pub slip: f64,
-    /// Creep [J].
+    /// Creep \[J\].
     pub creep: f64,
-    /// Contact-torque rolling resistance [J].
+    /// Contact-torque rolling resistance \[J\].
     pub rolling: f64,
-    /// Energy added by the tangential law's simplifications [J].
+    /// Energy added by the tangential law's simplifications \[J\].
     pub truncation: f64,
 }
 
 impl DemEnergy {
-    /// Stored elastic energy [J].
+    /// Stored elastic energy \[J\].
     pub fn elastic(&self) -> f64 {
         self.normal_elastic + self.tangential_elastic
     }
-    /// Net dissipated energy [J].
+    /// Net dissipated energy \[J\].
     pub fn dissipated(&self) -> f64 {
         self.damping + self.slip + self.creep + self.rolling - self.truncation
     }
@@ -265,7 +265,7 @@ pub struct ContactView {
     pub q: usize,
     /// Unit normal from p to q.
     pub normal: Vec3,
-    /// Overlap [m].
+    /// Overlap \[m\].
     pub overlap: f64,
 }
 
@@ -503,7 +503,7 @@ impl<T: TangentialLaw> Dem<T> {
         self.table = table;
         Ok(())
     }
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub fn time(&self) -> f64 {
         self.time
     }
@@ -536,7 +536,7 @@ impl<T: TangentialLaw> Dem<T> {
         wall.velocity = velocity;
         Ok(())
     }
-    /// Force of the particles on wall `k` in the last force evaluation [N].
+    /// Force of the particles on wall `k` in the last force evaluation \[N\].
     pub fn wall_force(&self, k: usize) -> Vec3 {
         self.wall_force[k]
     }
@@ -552,11 +552,11 @@ impl<T: TangentialLaw> Dem<T> {
             material: self.mat[i] as usize,
         }
     }
-    /// Mass of particle `id` [kg].
+    /// Mass of particle `id` \[kg\].
     pub fn mass(&self, id: usize) -> f64 {
         self.mass[self.index[id] as usize]
     }
-    /// Positions in the engine's current (cell) order [m]; see [`Dem::ids`].
+    /// Positions in the engine's current (cell) order \[m\]; see [`Dem::ids`].
     pub fn positions(&self) -> &[Vec3] {
         &self.x
     }
@@ -564,7 +564,7 @@ impl<T: TangentialLaw> Dem<T> {
     pub fn velocities(&self) -> &[Vec3] {
         &self.v
     }
-    /// Radii in the engine's order [m].
+    /// Radii in the engine's order \[m\].
     pub fn radii(&self) -> &[f64] {
         &self.r
     }
@@ -573,7 +573,7 @@ impl<T: TangentialLaw> Dem<T> {
         &self.id
     }
 
-    /// Kinetic energy, translational plus rotational [J].
+    /// Kinetic energy, translational plus rotational \[J\].
     pub fn kinetic_energy(&self) -> f64 {
         let mut e = 0.0;
         for i in 0..self.len() {

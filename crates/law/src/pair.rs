@@ -151,7 +151,7 @@ impl PairConstants {
 /// One body of a pair: its motion, surface and mass.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PairBody {
-    /// Centre (of mass; of a sphere, its centre; of a wall, any point) [m].
+    /// Centre (of mass; of a sphere, its centre; of a wall, any point) \[m\].
     pub position: Vec3,
     /// Velocity of the centre [m/s].
     pub velocity: Vec3,
@@ -159,7 +159,7 @@ pub struct PairBody {
     pub angular_velocity: Vec3,
     /// Surface at the contact.
     pub surface: Surface,
-    /// Mass [kg]; `f64::INFINITY` for a wall or any body the contact cannot move.
+    /// Mass \[kg\]; `f64::INFINITY` for a wall or any body the contact cannot move.
     pub mass: f64,
 }
 
@@ -180,14 +180,14 @@ impl PairBody {
 pub struct ContactGeometry {
     /// Unit normal from body p to body q [-].
     pub normal: Vec3,
-    /// Contact point: the middle of the overlap along the normal [m].
+    /// Contact point: the middle of the overlap along the normal \[m\].
     pub point: Vec3,
-    /// Overlap `delta` [m]; <= 0 when apart.
+    /// Overlap `delta` \[m\]; <= 0 when apart.
     pub overlap: f64,
 }
 
 impl ContactGeometry {
-    /// Sphere p (centre `xp`, radius `rp` [m]) and sphere q: `n = (x_q - x_p)/|x_q - x_p|`,
+    /// Sphere p (centre `xp`, radius `rp` \[m\]) and sphere q: `n = (x_q - x_p)/|x_q - x_p|`,
     /// `delta = r_p + r_q - |x_q - x_p|`, point at `x_p + n (r_p - delta/2)`. `None` for
     /// coincident centres.
     #[inline]
@@ -207,7 +207,7 @@ impl ContactGeometry {
     }
 
     /// Plane p (a point `x0` on it, outward unit normal `n`) and sphere q (centre `xq`, radius
-    /// `rq` [m]): `delta = r_q - (x_q - x0) . n`, point half the overlap below the plane's
+    /// `rq` \[m\]): `delta = r_q - (x_q - x0) . n`, point half the overlap below the plane's
     /// point under the centre.
     #[inline]
     pub fn plane_sphere(x0: Vec3, n: Vec3, xq: Vec3, rq: f64) -> Self {
@@ -225,15 +225,15 @@ impl ContactGeometry {
 /// What one tangential update did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TangentialStep {
-    /// Tangential force on p from q after the step, in the contact's `(t1, t2)` [N].
+    /// Tangential force on p from q after the step, in the contact's `(t1, t2)` \[N\].
     pub q: Vec2,
-    /// Creep displacement of the step [m].
+    /// Creep displacement of the step \[m\].
     pub creep_displacement: Vec2,
-    /// Energy dissipated by micro-slip and gross slip [J].
+    /// Energy dissipated by micro-slip and gross slip \[J\].
     pub slip: f64,
-    /// Energy dissipated by creep [J].
+    /// Energy dissipated by creep \[J\].
     pub creep: f64,
-    /// Energy added by the model's simplifications [J] (see each tier).
+    /// Energy added by the model's simplifications \[J\] (see each tier).
     pub truncation: f64,
 }
 
@@ -249,8 +249,8 @@ pub trait TangentialLaw:
     const HISTORY_LEN: usize;
     /// Whether the tier implements the creep model (the cheap tier has no lag state).
     fn supports(model: Option<CreepModel>) -> bool;
-    /// One step: elastic normal force `p` [N], contact radius `a` [m], displacements `du_disp`,
-    /// `du_roll` [m] in the tangent basis (`du_roll` zero without creep).
+    /// One step: elastic normal force `p` \[N\], contact radius `a` \[m\], displacements `du_disp`,
+    /// `du_roll` \[m\] in the tangent basis (`du_roll` zero without creep).
     fn step(
         h: &mut Self::History,
         c: &PairConstants,
@@ -260,9 +260,9 @@ pub trait TangentialLaw:
         du_disp: Vec2,
         du_roll: Vec2,
     ) -> TangentialStep;
-    /// The stored tangential force [N].
+    /// The stored tangential force \[N\].
     fn force(h: &Self::History) -> Vec2;
-    /// Elastic energy stored in the tangential spring(s) [J].
+    /// Elastic energy stored in the tangential spring(s) \[J\].
     fn elastic_energy(h: &Self::History, pm: &PairMaterial) -> f64;
     /// Writes the history into `out` (length [`TangentialLaw::HISTORY_LEN`]).
     fn write(h: &Self::History, out: &mut [f64]);
@@ -346,7 +346,7 @@ impl TangentialLaw for Exact {
 /// History of the [`Cheap`] tier.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CheapHistory {
-    /// Tangential force on p from q [N], in the contact's `(t1, t2)`.
+    /// Tangential force on p from q \[N\], in the contact's `(t1, t2)`.
     pub q: Vec2,
     /// Spring stiffness `8 G* a` of the last step [N/m] (0: virgin).
     pub k: f64,
@@ -482,7 +482,7 @@ pub struct ContactHistory<T: TangentialLaw> {
     pub normal: Vec3,
     /// Contact-torque rolling spring (EPSD).
     pub rolling: RollingState,
-    /// Overlap of the last step [m].
+    /// Overlap of the last step \[m\].
     pub overlap: f64,
 }
 
@@ -542,7 +542,7 @@ impl<T: TangentialLaw> ContactHistory<T> {
         })
     }
 
-    /// Stored elastic energies `(normal, tangential)` [J] of the contact as of its last step,
+    /// Stored elastic energies `(normal, tangential)` \[J\] of the contact as of its last step,
     /// between surfaces `sp` and `sq` with constants `c`: Hertz's `(8/15) E* sqrt(R*)
     /// delta^(5/2)` and the tangential law's.
     pub fn elastic_energy(&self, c: &PairConstants, sp: Surface, sq: Surface) -> (f64, f64) {
@@ -562,7 +562,7 @@ fn len_error(len: usize) -> LawError {
     }
 }
 
-/// Energies of one step of one contact [J].
+/// Energies of one step of one contact \[J\].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PairDissipation {
     /// Dissipated by the normal damping, `(P - P_e) delta_dot dt`.
@@ -582,27 +582,27 @@ pub struct PairDissipation {
 pub struct PairForces {
     /// Whether the contact carries force (overlap > 0, some body movable, a curved surface).
     pub touching: bool,
-    /// Force on p at the contact point [N] (`-force_p` on q): `Q - n P`.
+    /// Force on p at the contact point \[N\] (`-force_p` on q): `Q - n P`.
     pub force_p: Vec3,
     /// Torque on p about its centre [N m]: `(c - x_p) x force_p - M_roll`.
     pub torque_p: Vec3,
     /// Torque on q about its centre [N m]: `(c - x_q) x (-force_p) + M_roll`.
     pub torque_q: Vec3,
-    /// Contact point [m].
+    /// Contact point \[m\].
     pub point: Vec3,
-    /// Normal force on q along `n` [N], damping included (>= 0).
+    /// Normal force on q along `n` \[N\], damping included (>= 0).
     pub normal_force: f64,
-    /// Elastic (Hertz) part of the normal force [N].
+    /// Elastic (Hertz) part of the normal force \[N\].
     pub elastic_normal_force: f64,
-    /// Tangential force on p from q, world frame [N].
+    /// Tangential force on p from q, world frame \[N\].
     pub tangential_force: Vec3,
-    /// Contact radius `a = sqrt(R* delta)` [m].
+    /// Contact radius `a = sqrt(R* delta)` \[m\].
     pub contact_radius: f64,
     /// Whether the contact is at the Coulomb limit (`|Q| >= mu P_e`).
     pub sliding: bool,
-    /// Creep displacement of the step in `(t1, t2)` [m] (zero without creep).
+    /// Creep displacement of the step in `(t1, t2)` \[m\] (zero without creep).
     pub creep_displacement: Vec2,
-    /// `|du_disp|` of the step [m].
+    /// `|du_disp|` of the step \[m\].
     pub slide_length: f64,
     /// Kuhn & Bagi sliding velocity, world frame [m/s].
     pub v_disp: Vec3,
@@ -612,7 +612,7 @@ pub struct PairForces {
     pub dissipation: PairDissipation,
 }
 
-/// The pair force of one contact for one step of length `dt` [s]: bodies `p` and `q`, the pair's
+/// The pair force of one contact for one step of length `dt` \[s\]: bodies `p` and `q`, the pair's
 /// constants `c`, the geometry `g` (normal from p to q) and the contact's history `h` (updated in
 /// place; reset when the contact is open). See the module docs for the law.
 ///
@@ -781,7 +781,7 @@ fn rates_and_approach(p: &PairBody, q: &PairBody, cp: Vec3, n: Vec3) -> (Contact
 }
 
 /// Opens a contact: resets its history and returns the tangential elastic energy it still
-/// held [J], which the springs release as they leave the contact (booked as slip dissipation,
+/// held \[J\], which the springs release as they leave the contact (booked as slip dissipation,
 /// as creep-law's Cattaneo-Mindlin memory books springs leaving a shrinking contact). Hosts
 /// call it when they find a contact apart without calling [`pair_force`].
 #[inline]
@@ -813,7 +813,7 @@ pub fn rotate_to(v: Vec3, from: Vec3, to: Vec3) -> Vec3 {
     v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
 }
 
-/// `v` turned by `angle` [rad] about the unit `axis` (Rodrigues).
+/// `v` turned by `angle` \[rad\] about the unit `axis` (Rodrigues).
 #[inline]
 pub fn rotate_about(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
     if angle == 0.0 {

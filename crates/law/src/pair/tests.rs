@@ -61,7 +61,7 @@ fn static_normal_force_is_hertz() {
 }
 
 /// Head-on impact of two equal spheres, integrated with the kernel (symplectic Euler);
-/// returns (rebound ratio, contact duration [s]).
+/// returns (rebound ratio, contact duration \[s\]).
 fn impact<T: TangentialLaw>(e: f64, v0: f64, steps_per_contact: f64) -> (f64, f64) {
     let c = constants(0.5, e, Some(CreepModel::Kuhn));
     let r = 1e-3;
