@@ -23,7 +23,7 @@
 //!     `F_ss(|Q|/(mu P)) Q/|Q| |du_roll|` subtracted from the displacement.
 //!
 //!   Both are fed `du_disp = v_disp dt` and `du_roll = v_roll dt` (Kuhn & Bagi 2004 rates,
-//!   [`contact_rates`]) at the contact radius `a = sqrt(R* delta)`; without creep
+//!   [`contact_rates`](crate::kinematics::contact_rates)) at the contact radius `a = sqrt(R* delta)`; without creep
 //!   ([`PairConstants::creep`] `None`) no rolling displacement is fed: plain Coulomb-Mindlin.
 //! * The tangential history lives in a tangent basis `(t1, t2)` carried by the contact: each
 //!   step the basis turns with the normal (the smallest rotation taking the last normal to the
