@@ -42,6 +42,7 @@
 //! (sigma_1 + sigma_3)`; dilatancy rate `D = -d eps_v / d eps_a` and angle
 //! `sin psi = D / (2 + D)` (triaxial compression, e.g. Bolton 1986).
 
+mod dem;
 mod params;
 mod protocol;
 mod report;
@@ -49,7 +50,8 @@ mod servo;
 mod specimen;
 mod stress;
 
-pub use params::TriaxialParams;
+pub use dem::{DemSpecimen, compact_dem, shear_dem};
+pub use params::{TriaxialEngine, TriaxialParams};
 pub use protocol::{CompactionSummary, ShearRun, compact, compact_observed, shear, shear_observed};
 pub use report::{
     CSV_HEADER, ShearSummary, TriaxialRow, time_compliant_steps, time_dem_steps,

@@ -144,6 +144,10 @@ impl TriaxialParams {
                 "rayleigh_fraction" => p.rayleigh_fraction = num()?,
                 "seed" => p.seed = int()?,
                 "rows_per_percent" => p.rows_per_percent = int()? as usize,
+                // The engine is the runner's choice ([`TriaxialEngine::from_conf`]); checked here.
+                "engine" => {
+                    value.parse::<TriaxialEngine>()?;
+                }
                 _ => return Err(bad("unknown key")),
             }
         }
@@ -167,5 +171,53 @@ impl TriaxialParams {
     pub fn time_step(&self) -> f64 {
         let r_min = self.radius * (1.0 - self.radius_spread);
         self.rayleigh_fraction * creep_law::hertz::rayleigh_time_step(&self.material, r_min)
+    }
+}
+
+/// The engine a triaxial test runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TriaxialEngine {
+    /// creep-dem ([`super::DemSpecimen`]): f64, neighbour lists, the exact tangential tier.
+    #[default]
+    Dem,
+    /// The compliant regime of creep-rapier ([`super::Specimen`]).
+    Rapier,
+}
+
+impl std::str::FromStr for TriaxialEngine {
+    type Err = SceneError;
+    fn from_str(s: &str) -> Result<Self, SceneError> {
+        match s.trim() {
+            "dem" => Ok(Self::Dem),
+            "rapier" => Ok(Self::Rapier),
+            other => Err(SceneError::Parameter(format!(
+                "triaxial: engine `{other}` must be `dem` or `rapier`"
+            ))),
+        }
+    }
+}
+
+impl TriaxialEngine {
+    /// The `engine = dem|rapier` key of a config text (the form of
+    /// [`TriaxialParams::from_conf`]); the default ([`TriaxialEngine::Dem`]) when absent.
+    pub fn from_conf(text: &str) -> Result<Self, SceneError> {
+        let mut engine = Self::default();
+        for line in text.lines() {
+            let line = line.split('#').next().unwrap_or("").trim();
+            if let Some((key, value)) = line.split_once('=')
+                && key.trim() == "engine"
+            {
+                engine = value.parse()?;
+            }
+        }
+        Ok(engine)
+    }
+
+    /// `dem` or `rapier`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Dem => "dem",
+            Self::Rapier => "rapier",
+        }
     }
 }

@@ -1,6 +1,7 @@
 //! The protocols: isotropic compaction and drained shear at constant lateral stress.
 
 use super::TriaxialRow;
+use super::params::TriaxialParams;
 use super::report::row;
 use super::specimen::Specimen;
 use super::stress::Stress;
@@ -44,9 +45,19 @@ pub fn compact_observed(
     progress: &mut dyn FnMut(f64),
     observe: &mut dyn FnMut(&Specimen),
 ) -> Result<CompactionSummary, SceneError> {
-    let p0 = specimen.params.confining_pressure;
-    let rate = specimen.params.strain_rate();
-    let dt = specimen.params.time_step();
+    compact_on(specimen, max_steps, progress, observe)
+}
+
+/// [`compact_observed`] on either engine (the one protocol of both).
+pub(super) fn compact_on<E: Host>(
+    specimen: &mut E,
+    max_steps: usize,
+    progress: &mut dyn FnMut(f64),
+    observe: &mut dyn FnMut(&E),
+) -> Result<CompactionSummary, SceneError> {
+    let p0 = specimen.params().confining_pressure;
+    let rate = specimen.params().strain_rate();
+    let dt = specimen.params().time_step();
     let mut settled_for = 0;
     let mut last = Stress::default();
     for i in 0..max_steps {
@@ -58,10 +69,10 @@ pub fn compact_observed(
         } else {
             5.0
         };
-        for (k, w) in specimen.walls.iter().enumerate() {
-            v[k] = s.servo(k, p0, dt, cap * rate * s.dims[w.axis] / 2.0);
+        for (k, vk) in v.iter_mut().enumerate() {
+            *vk = s.servo(k, p0, dt, cap * rate * s.dims[k / 2] / 2.0);
         }
-        specimen.set_wall_speeds(v);
+        specimen.set_wall_speeds(v)?;
         specimen.step()?;
         observe(specimen);
         last = specimen.stress();
@@ -83,7 +94,7 @@ pub fn compact_observed(
             progress(est);
         }
         if settled_for >= 200 {
-            specimen.set_wall_speeds([0.0; 6]);
+            specimen.set_wall_speeds([0.0; 6])?;
             progress(1.0);
             let (n, ..) = specimen.contact_shares();
             let dims = last.dims;
@@ -140,19 +151,24 @@ pub fn shear_observed(
     progress: &mut dyn FnMut(f64),
     observe: &mut dyn FnMut(&Specimen, Option<&TriaxialRow>),
 ) -> Result<ShearRun, SceneError> {
-    let mut s = specimen.clone_fresh(creep)?;
-    let params = s.params;
+    shear_on(specimen, creep, progress, observe)
+}
+
+/// [`shear_observed`] on either engine (the one protocol of both).
+pub(super) fn shear_on<E: Host>(
+    specimen: &E,
+    creep: bool,
+    progress: &mut dyn FnMut(f64),
+    observe: &mut dyn FnMut(&E, Option<&TriaxialRow>),
+) -> Result<ShearRun, SceneError> {
+    // A copy with the balls' friction on (the walls stay frictionless) and creep on or off.
+    let mut s = specimen.shear_copy(creep)?;
+    let params = *s.params();
     let p0 = params.confining_pressure;
     let rate = params.strain_rate();
     let dt = params.time_step();
-    // Friction on the balls (the walls stay frictionless by their Min combine rule).
-    for &(_, c) in &s.balls {
-        if let Some(co) = s.world.physics.colliders.get_mut(c) {
-            co.set_friction(params.mu as f32);
-        }
-    }
     // One step at rest, so that the fresh regime has found its contacts.
-    s.set_wall_speeds([0.0; 6]);
+    s.set_wall_speeds([0.0; 6])?;
     s.step()?;
     let s0 = s.stress();
     let h0 = s0.dims[1];
@@ -164,7 +180,7 @@ pub fn shear_observed(
         .max(1.0) as usize;
     let mut rows = Vec::new();
     let mut mismatch = 0f64;
-    s.world.compliant.reset_energy();
+    s.reset_energy();
     for i in 0..=total_steps {
         let st = s.stress();
         let eps_a = (h0 - st.dims[1]) / h0;
@@ -186,23 +202,101 @@ pub fn shear_observed(
             break;
         }
         let mut v = [0.0; 6];
-        for (k, w) in s.walls.iter().enumerate() {
-            v[k] = if w.axis == 1 {
+        for (k, vk) in v.iter_mut().enumerate() {
+            *vk = if k / 2 == 1 {
                 -0.5 * rate * h0
             } else {
-                st.servo(k, p0, dt, 5.0 * rate * st.dims[w.axis] / 2.0)
+                st.servo(k, p0, dt, 5.0 * rate * st.dims[k / 2] / 2.0)
             };
         }
-        s.set_wall_speeds(v);
+        s.set_wall_speeds(v)?;
         s.step()?;
     }
-    let e = s.world.compliant.energy();
+    let (creep_dissipation, slip_dissipation) = s.dissipation();
     Ok(ShearRun {
         creep,
-        steps: s.steps - specimen.steps,
+        steps: s.steps() - specimen.steps(),
         rows,
         max_stress_mismatch: mismatch,
-        creep_dissipation: e.creep,
-        slip_dissipation: e.slip,
+        creep_dissipation,
+        slip_dissipation,
     })
+}
+
+/// What the protocol needs of an engine: the Rapier compliant regime ([`Specimen`]) or
+/// creep-dem ([`super::DemSpecimen`]). Wall `k` is on axis `k / 2`, on the low side for even
+/// `k`.
+pub(super) trait Host: Sized {
+    /// The parameters.
+    fn params(&self) -> &TriaxialParams;
+    /// Wall and contact stresses of the current state.
+    fn stress(&self) -> Stress;
+    /// Sets each wall's outward speed [m/s].
+    fn set_wall_speeds(&mut self, outward: [f64; 6]) -> Result<(), SceneError>;
+    /// One time step.
+    fn step(&mut self) -> Result<(), SceneError>;
+    /// Steps taken since generation.
+    fn steps(&self) -> usize;
+    /// Number of balls.
+    fn len(&self) -> usize;
+    /// Ball-ball contacts: (contacts, sliding, rolling, creeping).
+    fn contact_shares(&self) -> (usize, usize, usize, usize);
+    /// Volume of the balls [m^3].
+    fn solids(&self) -> f64;
+    /// Kinetic energy of the balls \[J\].
+    fn kinetic_energy(&self) -> f64;
+    /// A copy for the shear: the balls' friction `mu`, creep on or off.
+    fn shear_copy(&self, creep: bool) -> Result<Self, SceneError>;
+    /// Starts the dissipation count.
+    fn reset_energy(&mut self);
+    /// Creep and slip dissipation since [`Host::reset_energy`] \[J\].
+    fn dissipation(&self) -> (f64, f64);
+}
+
+impl Host for Specimen {
+    fn params(&self) -> &TriaxialParams {
+        Specimen::params(self)
+    }
+    fn stress(&self) -> Stress {
+        Specimen::stress(self)
+    }
+    fn set_wall_speeds(&mut self, outward: [f64; 6]) -> Result<(), SceneError> {
+        Specimen::set_wall_speeds(self, outward);
+        Ok(())
+    }
+    fn step(&mut self) -> Result<(), SceneError> {
+        Specimen::step(self)
+    }
+    fn steps(&self) -> usize {
+        Specimen::steps(self)
+    }
+    fn len(&self) -> usize {
+        Specimen::len(self)
+    }
+    fn contact_shares(&self) -> (usize, usize, usize, usize) {
+        Specimen::contact_shares(self)
+    }
+    fn solids(&self) -> f64 {
+        Specimen::solids(self)
+    }
+    fn kinetic_energy(&self) -> f64 {
+        Specimen::kinetic_energy(self)
+    }
+    fn shear_copy(&self, creep: bool) -> Result<Self, SceneError> {
+        let mut s = self.clone_fresh(creep)?;
+        // Friction on the balls (the walls stay frictionless by their Min combine rule).
+        for &(_, c) in &s.balls {
+            if let Some(co) = s.world.physics.colliders.get_mut(c) {
+                co.set_friction(s.params.mu as f32);
+            }
+        }
+        Ok(s)
+    }
+    fn reset_energy(&mut self) {
+        self.world.compliant.reset_energy();
+    }
+    fn dissipation(&self) -> (f64, f64) {
+        let e = self.world.compliant.energy();
+        (e.creep, e.slip)
+    }
 }

@@ -1,5 +1,6 @@
 //! The record: rows, the shear's summary, CSV, and step timing.
 
+use super::protocol::Host;
 use super::specimen::Specimen;
 use super::stress::Stress;
 use super::{ShearRun, dem_engine};
@@ -43,7 +44,7 @@ pub struct TriaxialRow {
     pub kinetic_energy: f64,
 }
 
-pub(super) fn row(s: &Specimen, st: &Stress, eps_a: f64, v0: f64, solids: f64) -> TriaxialRow {
+pub(super) fn row<E: Host>(s: &E, st: &Stress, eps_a: f64, v0: f64, solids: f64) -> TriaxialRow {
     let v = st.dims[0] * st.dims[1] * st.dims[2];
     let sigma_1 = st.walls[1];
     let sigma_3 = 0.5 * (st.walls[0] + st.walls[2]);
