@@ -59,9 +59,11 @@ pub(super) fn compact_on<E: Host>(
     let rate = specimen.params().strain_rate();
     let dt = specimen.params().time_step();
     let mut settled_for = 0;
-    let mut last = Stress::default();
+    // The stress after a step is the next servo input (stress() is a pure function of the
+    // state), so it is measured once per step.
+    let mut last = specimen.stress();
     for i in 0..max_steps {
-        let s = specimen.stress();
+        let s = last;
         let mut v = [0.0; 6];
         // Fast while nothing touches (a gas: up to 20 eps_dot), then at most 5 eps_dot.
         let cap = if s.walls.iter().all(|&w| w < 0.05 * p0) {
