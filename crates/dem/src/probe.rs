@@ -56,6 +56,11 @@ impl<T: TangentialLaw> Dem<T> {
                 }
             }
         }
+        self.for_each_wall_contact_force(dt, f);
+    }
+
+    /// [`Dem::for_each_contact_force`] for the particle-wall contacts only.
+    pub fn for_each_wall_contact_force(&self, dt: f64, mut f: impl FnMut(ContactForce)) {
         for e in 0..self.wl_i.len() {
             if self.wl_h[e].is_virgin() {
                 continue;

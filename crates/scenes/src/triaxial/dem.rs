@@ -82,6 +82,52 @@ impl DemSpecimen {
         self.dem.is_empty()
     }
 
+    /// The stresses of the module docs from the forces the contacts carry
+    /// ([`Dem::for_each_contact_force`] with `dt = 0`); with `love_too` false the walls'
+    /// entries only (the wall contacts alone; the Love-Weber tensor then holds only their
+    /// share and is not a stress).
+    fn measure(&self, love_too: bool) -> Stress {
+        let dims = self.dims();
+        let volume = dims[0] * dims[1] * dims[2];
+        let mut st = Stress {
+            dims,
+            ..Stress::default()
+        };
+        let love = &mut st.love;
+        let mut add = |arm: Vec3, f: Vec3| {
+            let (a, f) = ([arm.x, arm.y, arm.z], [f.x, f.y, f.z]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    love[i][j] -= a[i] * f[j] / volume;
+                }
+            }
+        };
+        let each = |c: ContactForce| {
+            let f = c.forces.force_p;
+            match c.wall {
+                None => add(c.x_q - c.x_p, f),
+                Some(k) => {
+                    // The ball is q and gets -f; the wall gets f.
+                    add(c.forces.point - c.x_q, -f);
+                    st.each[k] += side(k) * comp(f, k / 2);
+                    st.stiffness[k] += 1.5 * c.forces.normal_force / c.overlap;
+                }
+            }
+        };
+        if love_too {
+            self.dem.for_each_contact_force(0.0, each);
+        } else {
+            self.dem.for_each_wall_contact_force(0.0, each);
+        }
+        for axis in 0..3 {
+            let area = dims[(axis + 1) % 3] * dims[(axis + 2) % 3];
+            st.each[2 * axis] /= area;
+            st.each[2 * axis + 1] /= area;
+            st.walls[axis] = 0.5 * (st.each[2 * axis] + st.each[2 * axis + 1]);
+        }
+        st
+    }
+
     /// Box dimensions between the walls' planes [m].
     fn dims(&self) -> [f64; 3] {
         let w = self.dem.walls();
@@ -107,40 +153,12 @@ impl Host for DemSpecimen {
     /// The stresses of the module docs from the forces the contacts carry
     /// ([`Dem::for_each_contact_force`] with `dt = 0`).
     fn stress(&self) -> Stress {
-        let dims = self.dims();
-        let volume = dims[0] * dims[1] * dims[2];
-        let mut st = Stress {
-            dims,
-            ..Stress::default()
-        };
-        let love = &mut st.love;
-        let mut add = |arm: Vec3, f: Vec3| {
-            let (a, f) = ([arm.x, arm.y, arm.z], [f.x, f.y, f.z]);
-            for i in 0..3 {
-                for j in 0..3 {
-                    love[i][j] -= a[i] * f[j] / volume;
-                }
-            }
-        };
-        self.dem.for_each_contact_force(0.0, |c: ContactForce| {
-            let f = c.forces.force_p;
-            match c.wall {
-                None => add(c.x_q - c.x_p, f),
-                Some(k) => {
-                    // The ball is q and gets -f; the wall gets f.
-                    add(c.forces.point - c.x_q, -f);
-                    st.each[k] += side(k) * comp(f, k / 2);
-                    st.stiffness[k] += 1.5 * c.forces.normal_force / c.overlap;
-                }
-            }
-        });
-        for axis in 0..3 {
-            let area = dims[(axis + 1) % 3] * dims[(axis + 2) % 3];
-            st.each[2 * axis] /= area;
-            st.each[2 * axis + 1] /= area;
-            st.walls[axis] = 0.5 * (st.each[2 * axis] + st.each[2 * axis + 1]);
-        }
-        st
+        self.measure(true)
+    }
+
+    /// The walls' entries only ([`DemSpecimen::measure`]).
+    fn wall_stress(&self) -> Stress {
+        self.measure(false)
     }
 
     fn set_wall_speeds(&mut self, outward: [f64; 6]) -> Result<(), SceneError> {
