@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use creep_scenes::triaxial::{
-    CSV_HEADER, ShearRun, ShearSummary, Specimen, TriaxialParams, compact, shear,
+    CSV_HEADER, CompactionSummary, DemSpecimen, ShearRun, ShearSummary, Specimen, TriaxialEngine,
+    TriaxialParams, compact, compact_dem, shear, shear_dem,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -31,6 +32,48 @@ pub struct TriaxialArgs {
     /// built-in copy of crates/cli/assets/triaxial.conf.
     #[arg(long)]
     config: Option<PathBuf>,
+    /// Engine: `dem` (creep-dem, f64; the default) or `rapier` (the compliant regime);
+    /// overrides the config file's `engine` key.
+    #[arg(long)]
+    engine: Option<String>,
+}
+
+/// A compacted specimen on either engine.
+enum Compacted {
+    Dem(Box<DemSpecimen>),
+    Rapier(Box<Specimen>),
+}
+
+impl Compacted {
+    fn compact(
+        engine: TriaxialEngine,
+        params: TriaxialParams,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<(Self, CompactionSummary), Box<dyn std::error::Error>> {
+        Ok(match engine {
+            TriaxialEngine::Dem => {
+                let mut s = DemSpecimen::generate(params)?;
+                let sum = compact_dem(&mut s, 2_000_000, progress)?;
+                (Self::Dem(Box::new(s)), sum)
+            }
+            TriaxialEngine::Rapier => {
+                let mut s = Specimen::generate(params)?;
+                let sum = compact(&mut s, 2_000_000, progress)?;
+                (Self::Rapier(Box::new(s)), sum)
+            }
+        })
+    }
+
+    fn shear(
+        &self,
+        creep: bool,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<ShearRun, Box<dyn std::error::Error>> {
+        Ok(match self {
+            Self::Dem(s) => shear_dem(s, creep, progress)?,
+            Self::Rapier(s) => shear(s, creep, progress)?,
+        })
+    }
 }
 
 fn bar(len: u64, what: &str) -> ProgressBar {
@@ -54,6 +97,10 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         None => DEFAULTS.to_string(),
     };
     let mut params = TriaxialParams::from_conf(&text)?;
+    let engine = match &args.engine {
+        Some(e) => e.parse::<TriaxialEngine>()?,
+        None => TriaxialEngine::from_conf(&text)?,
+    };
     if args.quick {
         let q = TriaxialParams::quick();
         params.n_per_side = q.n_per_side;
@@ -66,9 +113,14 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     let n = params.n_per_side.pow(3);
     let m = params.material;
     let header = format!(
-        "Drained triaxial compression, compliant regime (creep-rapier), Coulomb-Mindlin vs creep-friction\n\
+        "Drained triaxial compression, engine {} ({}), Coulomb-Mindlin vs creep-friction\n\
          {n} spheres, radius uniform in [{:.3e}, {:.3e}] m; G = {:.3e} Pa, nu = {}, rho = {} kg/m^3, mu = {}, e = {}\n\
          confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R)",
+        engine.name(),
+        match engine {
+            TriaxialEngine::Dem => "creep-dem, f64",
+            TriaxialEngine::Rapier => "the compliant regime of creep-rapier",
+        },
         params.radius * (1.0 - params.radius_spread),
         params.radius * (1.0 + params.radius_spread),
         m.shear_modulus(),
@@ -92,9 +144,8 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     }
 
     let t0 = Instant::now();
-    let mut specimen = Specimen::generate(params)?;
     let pb = bar(1000, "isotropic compaction");
-    let summary = compact(&mut specimen, 2_000_000, &mut |f| {
+    let (specimen, summary) = Compacted::compact(engine, params, &mut |f| {
         pb.set_position((f * 1000.0) as u64)
     })?;
     pb.finish();
@@ -121,9 +172,7 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         };
         let pb = bar(1000, label);
         let t = Instant::now();
-        let run = shear(&specimen, creep, &mut |f| {
-            pb.set_position((f * 1000.0) as u64)
-        })?;
+        let run = specimen.shear(creep, &mut |f| pb.set_position((f * 1000.0) as u64))?;
         pb.finish();
         let secs = t.elapsed().as_secs_f64();
         let name = if creep { "creep" } else { "coulomb" };

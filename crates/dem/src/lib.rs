@@ -35,6 +35,9 @@
 #![allow(clippy::needless_range_loop)]
 
 mod grid;
+mod probe;
+
+pub use probe::ContactForce;
 
 use creep_law::pair::{
     ContactGeometry, ContactHistory, PairBody, PairConstants, pair_force, release,

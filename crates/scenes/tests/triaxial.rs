@@ -115,3 +115,80 @@ fn the_packing_moves_to_the_dem_engine() {
     assert_eq!(t.len(), 27 * 8);
     assert!(dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 0).is_err());
 }
+
+#[test]
+fn the_engine_key_and_flag_parse() {
+    use creep_scenes::triaxial::TriaxialEngine;
+    assert_eq!(
+        TriaxialEngine::from_conf(CONF).unwrap(),
+        TriaxialEngine::Dem
+    );
+    assert_eq!(
+        TriaxialEngine::from_conf("engine = rapier").unwrap(),
+        TriaxialEngine::Rapier
+    );
+    assert!(TriaxialEngine::from_conf("engine = lammps").is_err());
+    assert!(TriaxialParams::from_conf("engine = lammps").is_err());
+}
+
+/// The same protocol and checks as `a_small_packing_compacts_and_shears_quasi_statically`, on
+/// the creep-dem engine; the forces the contacts report for the stress add up to the engine's
+/// own wall forces (to the damping's half-step lag).
+#[test]
+fn a_small_packing_compacts_and_shears_on_the_dem_engine() {
+    use creep_scenes::triaxial::{DemSpecimen, compact_dem, shear_dem};
+    let params = TriaxialParams {
+        n_per_side: 5,
+        inertial_number: 1e-3,
+        axial_strain: 0.03,
+        rows_per_percent: 4,
+        ..TriaxialParams::default()
+    };
+    let mut s = DemSpecimen::generate(params).unwrap();
+    assert_eq!(s.len(), 125);
+    let c = compact_dem(&mut s, 100_000, &mut |_| {}).unwrap();
+    println!("compaction: {c:?}");
+    let p0 = params.confining_pressure;
+    assert!(c.max_wall_error < 0.01, "{c:?}");
+    assert!((c.p_walls / p0 - 1.0).abs() < 0.01, "{c:?}");
+    assert!((c.p_contacts / c.p_walls - 1.0).abs() < 0.02, "{c:?}");
+    assert!(c.solid_fraction > 0.55 && c.solid_fraction < 0.68, "{c:?}");
+    assert!(c.coordination > 5.0 && c.coordination < 7.0, "{c:?}");
+    let d = s.engine();
+    let mut sums = [creep_law::Vec3::ZERO; 6];
+    d.for_each_contact_force(0.0, |f| {
+        if let Some(k) = f.wall {
+            sums[k] += f.forces.force_p;
+        }
+    });
+    for (k, sum) in sums.iter().enumerate() {
+        let w = d.wall_force(k);
+        assert!(w.length() > 0.0);
+        // The engine's evaluation damped with the half-step velocities and the servo's wall
+        // speeds, the re-evaluation with the end-of-step velocities and the walls stopped:
+        // equal up to that change of the damping force (~0.1 %).
+        assert!(
+            (*sum - w).length() <= 1e-2 * w.length(),
+            "wall {k}: {sum:?} vs {w:?}"
+        );
+    }
+    for creep in [false, true] {
+        let r = shear_dem(&s, creep, &mut |_| {}).unwrap();
+        let last = *r.rows.last().unwrap();
+        println!(
+            "creep {creep}: {} steps, stress gap {:.4}, last row {last:?}",
+            r.steps, r.max_stress_mismatch
+        );
+        assert!(r.max_stress_mismatch < 0.02, "{}", r.max_stress_mismatch);
+        for row in r.rows.iter().skip(1) {
+            assert!(
+                (row.sigma_lateral / p0 - 1.0).abs() < 0.02,
+                "lateral stress {row:?}"
+            );
+            assert!(row.q_over_p.is_finite() && row.volumetric_strain.is_finite());
+        }
+        assert!(last.q_over_p > 0.3, "{last:?}");
+        assert!((last.axial_strain - 0.03).abs() < 1e-3, "{last:?}");
+        assert_eq!(r.creep_dissipation > 0.0, creep);
+    }
+}

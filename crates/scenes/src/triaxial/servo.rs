@@ -1,0 +1,25 @@
+//! The servo-controlled walls.
+
+use super::stress::Stress;
+
+/// Share of a wall's stress error the servo corrects per step (the servo of Itasca's PFC,
+/// e.g. Cundall & Strack's walls: the wall speed `alpha (sigma - p0) A / (K dt)` with `K` the
+/// summed normal stiffness of its contacts would remove the error `alpha` per step if the
+/// packing were a spring). With the stiffness of a Hertz packing, the stress lag of a wall
+/// moving at `v` is `~ 1.5 v dt / (alpha delta)` of p0 (0.1 % at the default test's lateral
+/// speeds).
+const SERVO_ALPHA: f64 = 0.3;
+
+impl Stress {
+    /// The servo speed of wall `k` (outwards, m/s) towards `p0`, capped at `cap` [m/s].
+    pub(super) fn servo(&self, k: usize, p0: f64, dt: f64, cap: f64) -> f64 {
+        let axis = k / 2;
+        let area = self.dims[(axis + 1) % 3] * self.dims[(axis + 2) % 3];
+        let v = if self.stiffness[k] > 0.0 {
+            SERVO_ALPHA * (self.each[k] - p0) * area / (self.stiffness[k] * dt)
+        } else {
+            -cap // nothing touches: close in
+        };
+        v.clamp(-cap, cap)
+    }
+}
