@@ -32,7 +32,7 @@ pub struct TriaxialArgs {
     /// built-in copy of crates/cli/assets/triaxial.conf.
     #[arg(long)]
     config: Option<PathBuf>,
-    /// Engine: `dem` (creep-dem, f64; the default) or `rapier` (the compliant regime);
+    /// Engine: `rapier` (the compliant regime; the default) or `dem` (creep-dem, f64);
     /// overrides the config file's `engine` key.
     #[arg(long)]
     engine: Option<String>,

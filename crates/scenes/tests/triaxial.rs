@@ -119,8 +119,14 @@ fn the_packing_moves_to_the_dem_engine() {
 #[test]
 fn the_engine_key_and_flag_parse() {
     use creep_scenes::triaxial::TriaxialEngine;
+    // The shipped defaults stay on the Rapier compliant regime until a full creep-dem run
+    // reproduces the published results (issue #15).
     assert_eq!(
         TriaxialEngine::from_conf(CONF).unwrap(),
+        TriaxialEngine::Rapier
+    );
+    assert_eq!(
+        TriaxialEngine::from_conf("engine = dem").unwrap(),
         TriaxialEngine::Dem
     );
     assert_eq!(

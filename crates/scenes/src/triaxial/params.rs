@@ -178,9 +178,10 @@ impl TriaxialParams {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TriaxialEngine {
     /// creep-dem ([`super::DemSpecimen`]): f64, neighbour lists, the exact tangential tier.
-    #[default]
     Dem,
-    /// The compliant regime of creep-rapier ([`super::Specimen`]).
+    /// The compliant regime of creep-rapier ([`super::Specimen`]); the default until a full
+    /// creep-dem run reproduces its published results.
+    #[default]
     Rapier,
 }
 
