@@ -386,6 +386,7 @@ fn sync_materials(
         }
         if m.fidelity != Fidelity::Compliant
             && state
+                .pipeline
                 .hooks
                 .registry()
                 .get(handle)
