@@ -9,9 +9,9 @@
 //!   of Tsuji et al. (1992), `alpha sqrt(m* k_H) delta^(1/4) delta_dot`, with `alpha` chosen so
 //!   that the impact rebounds with the pair's restitution `e` exactly (see [`damping`]); the
 //!   total is never attractive (`P >= 0`).
-//! * Tangential: Cattaneo-Mindlin with Kuhn's creep term, creep-law's [`CreepState`], fed
+//! * Tangential: Cattaneo-Mindlin with Kuhn's creep term, creep-law's [`CreepState`](creep_law::CreepState), fed
 //!   `du_disp = v_disp dt` and `du_roll = v_roll dt` (Kuhn & Bagi 2004 rates, creep-law
-//!   [`contact_rates`]) at the contact radius `a = sqrt(R* delta)`; its Coulomb limit is
+//!   [`contact_rates`](creep_law::kinematics::contact_rates)) at the contact radius `a = sqrt(R* delta)`; its Coulomb limit is
 //!   `mu P_e` (creep-law's spring row carries `mu` times the Hertz pressure).
 //!   [`CompliantSettings::creep`] = false feeds no rolling displacement: plain Coulomb-Mindlin.
 //! * The tangential history lives in a tangent basis `(t1, t2)` carried by the contact: each
@@ -20,7 +20,7 @@
 //!   re-orthonormalised. The stored 2-D force therefore follows the contact as a rigid body and
 //!   needs no re-projection.
 //! * Optional contact-torque rolling resistance (creep-law `rolling_torque`), from the
-//!   colliders' [`RollingResistance`].
+//!   colliders' [`RollingResistance`](crate::RollingResistance).
 //! * Walls (cuboid faces, half-spaces) are the same law with an infinite radius on the wall side
 //!   (`Surface::Plane`); a sphere over a cuboid's edge or corner meets it along the line to the
 //!   closest point.

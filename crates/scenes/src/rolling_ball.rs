@@ -279,7 +279,7 @@ fn sample(p: &PhysicsWorld, ball: RigidBodyHandle, t: f64, y0: f64) -> Sample {
 }
 
 /// The resting height of the ball's centre on this ground at this step: a ball set at rest on
-/// the ground, after [`REST_STEPS`] steps \[m\].
+/// the ground, after `REST_STEPS` steps \[m\].
 pub fn rest_height(
     material: Material,
     dt: f64,

@@ -54,12 +54,12 @@ pub struct Trace {
     /// Largest `|v|` of any body [m/s].
     pub max_speed: f64,
     /// Largest energy of a step minus that of the same step at Coulomb fidelity from the same
-    /// state, relative to E0 (see [`run`]).
+    /// state, relative to E0 (see `run::run`).
     pub paired_excess: f64,
     /// The step of `paired_excess`.
     pub paired_at: usize,
     /// Largest `paired_excess` minus 4 times the creep energy the plugin booked in that step or
-    /// the one before, relative to E0 (see [`common_verdicts`]).
+    /// the one before, relative to E0 (see `common_verdicts`).
     pub paired_beyond_lag: f64,
     /// Largest running sum of the paired excesses, relative to E0: the plugin's net energy
     /// contribution along the run.

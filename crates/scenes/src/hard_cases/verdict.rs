@@ -224,7 +224,7 @@ pub(super) fn common_verdicts(
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Check {
     /// Step by step against the twin stepped at Coulomb fidelity from the same state (see
-    /// [`run`]): cancels the engine's own slip and phase-dependent losses, which exceed a stiff
+    /// `run::run`): cancels the engine's own slip and phase-dependent losses, which exceed a stiff
     /// material's creep. Valid while the creep slip velocity is small enough for the twin's
     /// friction to arrest within its step.
     Paired,
