@@ -1,14 +1,17 @@
-//! The per-collider creep material: a Bevy component that mirrors creep-rapier's
-//! [`creep_rapier::CreepMaterial`] one to one.
+//! The per-collider creep material: a Bevy component wrapping creep-rapier's
+//! [`creep_rapier::CreepMaterial`] (one definition of the fields and builders; the component
+//! derefs to it).
 
 use bevy::prelude::*;
 use creep_law::Material;
 use creep_law::rolling_torque::RollingModel;
-use creep_rapier::{Fidelity, RollingResistance};
+use creep_rapier::Fidelity;
+use std::ops::{Deref, DerefMut};
 
-/// Opts a collider entity (one with a bevy_rapier3d `Collider`) in to creep-friction.
+/// Opts a collider entity (one with a bevy_rapier3d `Collider`) in to creep-friction. The fields
+/// are creep-rapier's (reached through `Deref`/`DerefMut`, e.g. `m.fidelity = ...`):
 ///
-/// - `material`: shear modulus G \[Pa\], Poisson's ratio nu [-] and density rho [kg/m^3]
+/// - `material`: shear modulus G \[Pa\], Poisson's ratio nu \[-\] and density rho \[kg/m^3\]
 ///   (creep-law's validated [`Material`]). The friction coefficient mu is **not** taken from the
 ///   material: the collider's bevy_rapier3d `Friction` component supplies it (Rapier's combine
 ///   rule applies; Rapier's default is 0.5), so Coulomb and creep-friction see the same mu.
@@ -28,23 +31,12 @@ use creep_rapier::{Fidelity, RollingResistance};
 /// Both colliders of a pair need a `CreepMaterial`; a contact with a collider that has none
 /// draws a warning (once per collider) and stays Coulomb.
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
-pub struct CreepMaterial {
-    /// Elastic properties (G \[Pa\], nu [-]) and density [kg/m^3].
-    pub material: Material,
-    /// Requested fidelity.
-    pub fidelity: Fidelity,
-    /// Contact-torque rolling resistance.
-    pub rolling: RollingResistance,
-}
+pub struct CreepMaterial(pub creep_rapier::CreepMaterial);
 
 impl CreepMaterial {
     /// A material with `Fidelity::Auto` and no rolling torque.
     pub fn new(material: Material) -> Self {
-        Self {
-            material,
-            fidelity: Fidelity::Auto,
-            rolling: RollingResistance::None,
-        }
+        Self(creep_rapier::CreepMaterial::new(material))
     }
     /// Steel (creep-law's [`Material::steel`]), `Fidelity::Auto`.
     pub fn steel() -> Self {
@@ -59,35 +51,44 @@ impl CreepMaterial {
         Self::new(Material::rubber())
     }
     /// This material with another fidelity.
-    pub fn with_fidelity(mut self, fidelity: Fidelity) -> Self {
-        self.fidelity = fidelity;
-        self
+    pub fn with_fidelity(self, fidelity: Fidelity) -> Self {
+        Self(self.0.with_fidelity(fidelity))
     }
     /// This material with a contact-torque rolling model.
-    pub fn with_rolling(mut self, model: RollingModel) -> Self {
-        self.rolling = RollingResistance::Torque(model);
-        self
+    pub fn with_rolling(self, model: RollingModel) -> Self {
+        Self(self.0.with_rolling(model))
     }
-    /// The density rho [kg/m^3], as the `f32` Rapier uses.
+    /// The density rho \[kg/m^3\], as the `f32` Rapier uses.
     pub fn density(&self) -> f32 {
-        self.material.density() as f32
+        self.0.material.density() as f32
     }
     /// The same material in creep-rapier's form (what the plugin registers).
     pub fn to_rapier(&self) -> creep_rapier::CreepMaterial {
-        creep_rapier::CreepMaterial {
-            material: self.material,
-            fidelity: self.fidelity,
-            rolling: self.rolling,
-        }
+        self.0
+    }
+}
+
+impl Deref for CreepMaterial {
+    type Target = creep_rapier::CreepMaterial;
+    fn deref(&self) -> &Self::Target {
+        &self.0
+    }
+}
+
+impl DerefMut for CreepMaterial {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.0
     }
 }
 
 impl From<creep_rapier::CreepMaterial> for CreepMaterial {
     fn from(m: creep_rapier::CreepMaterial) -> Self {
-        Self {
-            material: m.material,
-            fidelity: m.fidelity,
-            rolling: m.rolling,
-        }
+        Self(m)
+    }
+}
+
+impl From<CreepMaterial> for creep_rapier::CreepMaterial {
+    fn from(m: CreepMaterial) -> Self {
+        m.0
     }
 }

@@ -9,9 +9,9 @@
 //!   of Tsuji et al. (1992), `alpha sqrt(m* k_H) delta^(1/4) delta_dot`, with `alpha` chosen so
 //!   that the impact rebounds with the pair's restitution `e` exactly (see [`damping`]); the
 //!   total is never attractive (`P >= 0`).
-//! * Tangential: Cattaneo-Mindlin with Kuhn's creep term, creep-law's [`CreepState`], fed
+//! * Tangential: Cattaneo-Mindlin with Kuhn's creep term, creep-law's [`CreepState`](creep_law::CreepState), fed
 //!   `du_disp = v_disp dt` and `du_roll = v_roll dt` (Kuhn & Bagi 2004 rates, creep-law
-//!   [`contact_rates`]) at the contact radius `a = sqrt(R* delta)`; its Coulomb limit is
+//!   [`contact_rates`](creep_law::kinematics::contact_rates)) at the contact radius `a = sqrt(R* delta)`; its Coulomb limit is
 //!   `mu P_e` (creep-law's spring row carries `mu` times the Hertz pressure).
 //!   [`CompliantSettings::creep`] = false feeds no rolling displacement: plain Coulomb-Mindlin.
 //! * The tangential history lives in a tangent basis `(t1, t2)` carried by the contact: each
@@ -20,7 +20,7 @@
 //!   re-orthonormalised. The stored 2-D force therefore follows the contact as a rigid body and
 //!   needs no re-projection.
 //! * Optional contact-torque rolling resistance (creep-law `rolling_torque`), from the
-//!   colliders' [`RollingResistance`].
+//!   colliders' [`RollingResistance`](crate::RollingResistance).
 //! * Walls (cuboid faces, half-spaces) are the same law with an infinite radius on the wall side
 //!   (`Surface::Plane`); a sphere over a cuboid's edge or corner meets it along the line to the
 //!   closest point.
@@ -77,14 +77,14 @@
 //! `Real` values, `as f32`) made generic over `Real`, and the f32-only tests adjusted; the
 //! contact laws (creep-law) are already f64.
 
+mod colliders;
 pub mod damping;
 mod geometry;
+mod pairs;
+mod records;
+mod settings;
 
-use creep_law::pair::{
-    ContactGeometry, ContactHistory, Exact, PairBody, PairConstants, pair_force,
-};
-use creep_law::rolling_torque::RollingState;
-use creep_law::{CreepModel, CreepState, PairMaterial, Surface, Vec2, Vec3, hertz};
+use creep_law::{Vec3, hertz};
 use rapier3d::prelude::*;
 
 pub use damping::{
@@ -92,157 +92,10 @@ pub use damping::{
 };
 
 use crate::error::PluginError;
-use crate::hooks::{FastMap, body_motion as motion, v3, vf};
-use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
-use geometry::{Frame, Touch};
-
-/// Default largest `dt / T_R` (Rayleigh time step) [-]; DEM practice is 0.1-0.3.
-pub const DEFAULT_RAYLEIGH_FRACTION: f64 = 0.2;
-
-/// Relative slack of the Rayleigh check [-]: four f32 ulps, the rounding of `dt` and of the
-/// radii that Rapier stores as f32, so a step set to exactly the fraction passes.
-const RAYLEIGH_ROUNDING: f64 = 4.0 * f32::EPSILON as f64;
-
-/// What to do when `dt` exceeds the safe fraction of the Rayleigh time step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum RayleighCheck {
-    /// Return [`PluginError::RayleighTimeStep`] (default).
-    #[default]
-    Error,
-    /// Step anyway and flag it in [`CompliantCounts::rayleigh_exceeded`].
-    Warn,
-    /// Do not check.
-    Off,
-}
-
-/// Settings of the compliant regime.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CompliantSettings {
-    /// Largest `dt / T_R` accepted [-], in (0, 1]; default [`DEFAULT_RAYLEIGH_FRACTION`].
-    pub rayleigh_fraction: f64,
-    /// What exceeding it does.
-    pub rayleigh_check: RayleighCheck,
-    /// Kuhn's creep term on (default) or off (plain Coulomb-Mindlin).
-    pub creep: bool,
-    /// Steady (and transient) creep law of the creep term (default Kuhn's, Kalker's `F_ss`).
-    pub creep_model: CreepModel,
-}
-
-impl Default for CompliantSettings {
-    fn default() -> Self {
-        Self {
-            rayleigh_fraction: DEFAULT_RAYLEIGH_FRACTION,
-            rayleigh_check: RayleighCheck::Error,
-            creep: true,
-            creep_model: CreepModel::Kuhn,
-        }
-    }
-}
-
-impl CompliantSettings {
-    /// Validates the settings.
-    pub fn validate(&self) -> Result<(), PluginError> {
-        if !(self.rayleigh_fraction > 0.0 && self.rayleigh_fraction <= 1.0) {
-            return Err(PluginError::Setting {
-                name: "rayleigh_fraction",
-                value: self.rayleigh_fraction,
-                why: "must be in (0, 1] [-]",
-            });
-        }
-        Ok(())
-    }
-}
-
-/// Energy bookkeeping of the compliant contacts \[J\]. The elastic terms are the current stored
-/// energies; the others accumulate from the creation of the regime (or [`CompliantRegime::reset_energy`]).
-/// Balance: work of the contact forces = change of `elastic()` + `dissipated()`.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CompliantEnergy {
-    /// Elastic energy in the Hertz normal springs, `(8/15) E* sqrt(R*) delta^(5/2)` summed \[J\].
-    pub normal_elastic: f64,
-    /// Elastic energy in the Cattaneo-Mindlin tangential springs (creep-law
-    /// `MindlinState::elastic_energy`) summed \[J\].
-    pub tangential_elastic: f64,
-    /// Dissipated by the normal damping, `sum (P - P_e) delta_dot dt` \[J\].
-    pub damping: f64,
-    /// Dissipated by micro-slip and gross slip (creep-law `CreepStep::slip_dissipation`) \[J\].
-    pub slip: f64,
-    /// Dissipated by creep (`CreepStep::creep_dissipation`) \[J\].
-    pub creep: f64,
-    /// Dissipated by contact-torque rolling resistance (`RollingStep::dissipation`) \[J\].
-    pub rolling: f64,
-    /// Added by simplifying over-full Mindlin memories (`CreepStep::truncation_energy`) \[J\].
-    pub truncation: f64,
-}
-
-impl CompliantEnergy {
-    /// Stored elastic energy \[J\].
-    pub fn elastic(&self) -> f64 {
-        self.normal_elastic + self.tangential_elastic
-    }
-    /// Net dissipated energy \[J\] (dissipation minus truncation energy).
-    pub fn dissipated(&self) -> f64 {
-        self.damping + self.slip + self.creep + self.rolling - self.truncation
-    }
-}
-
-/// What the compliant regime did in the last step.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CompliantCounts {
-    /// Touching compliant contacts (overlap > 0).
-    pub contacts: usize,
-    /// Of which at the Coulomb limit (`|Q| >= mu P_e`, gross sliding).
-    pub sliding: usize,
-    /// Of which creeping (a non-zero creep displacement this step).
-    pub creeping: usize,
-    /// Compliant pairs skipped: shapes other than ball, cuboid, half-space, or two walls.
-    pub unsupported: usize,
-    /// Smallest Rayleigh time step of the compliant balls \[s\] (infinite if none).
-    pub rayleigh_time_step: f64,
-    /// Whether `dt > rayleigh_fraction T_R` (only with [`RayleighCheck::Warn`]).
-    pub rayleigh_exceeded: bool,
-    /// Largest `|v| dt` of a body with a compliant collider this step \[m\]. A contact cannot
-    /// start unseen while twice this stays below `IntegrationParameters::prediction_distance()`
-    /// (the broad phase pairs colliders closer than it).
-    pub max_step_displacement: f64,
-}
-
-/// State of one compliant contact.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CompliantContact {
-    /// Cattaneo-Mindlin memory and creep state; its 2-D vectors are in `(t1, t2)`.
-    pub state: CreepState,
-    /// First tangent of the contact-following basis [-].
-    pub t1: Vec3,
-    /// Second tangent, `n x t1` [-].
-    pub t2: Vec3,
-    /// Unit normal from p to q [-].
-    pub normal: Vec3,
-    /// Contact point \[m\].
-    pub point: Vec3,
-    /// Overlap \[m\].
-    pub overlap: f64,
-    /// Normal force on q (along `n`) \[N\], damping included.
-    pub normal_force: f64,
-    /// Tangential force on p from q, world frame \[N\].
-    pub tangential_force: Vec3,
-    /// Contact-torque rolling state.
-    pub rolling: RollingState,
-    /// Whether the contact slid (Coulomb limit) this step.
-    pub sliding: bool,
-    /// Creep displacement of the step over the sliding displacement `|du_disp|` [-] (0 without
-    /// creep; Kuhn's rule feeds `du_disp` minus the creep displacement to Cattaneo-Mindlin).
-    pub creep_ratio: f64,
-    /// Sliding velocity `v_disp` of the step (Kuhn & Bagi), world frame [m/s].
-    pub v_disp: Vec3,
-    /// Rolling velocity `v_roll` of the step (Kuhn & Bagi), world frame [m/s].
-    pub v_roll: Vec3,
-    generation: u64,
-}
-
-/// Key of a compliant contact: the collider pair, in the narrow phase's order (balls, cuboids
-/// and half-spaces are convex: one contact per pair).
-pub type PairKey = (ColliderHandle, ColliderHandle);
+use crate::hooks::{FastMap, vf};
+use crate::registry::{Fidelity, MaterialRegistry};
+pub use records::*;
+pub use settings::*;
 
 /// The compliant regime: per-contact state, the forces it added, its energy totals.
 #[derive(Debug, Clone)]
@@ -412,189 +265,22 @@ impl CompliantRegime {
 
         let mut accum = std::mem::take(&mut self.accum);
         accum.clear();
-        let mut normal_elastic = 0.0;
-        let mut tangential_elastic = 0.0;
+        let mut elastic = (0.0, 0.0);
         for pair in narrow_phase.contact_pairs() {
-            let (c1, c2) = (pair.collider1, pair.collider2);
-            let (Some(m1), Some(m2)) = (registry.get(c1), registry.get(c2)) else {
-                let compliant = |c| {
-                    registry
-                        .get(c)
-                        .is_some_and(|m| m.fidelity == Fidelity::Compliant)
-                };
-                if compliant(c1) || compliant(c2) {
-                    self.counts.unsupported += 1; // an unregistered partner: passed through
-                }
-                continue;
-            };
-            if m1.fidelity != Fidelity::Compliant && m2.fidelity != Fidelity::Compliant {
-                continue;
-            }
-            let (Some(co1), Some(co2)) = (colliders.get(c1), colliders.get(c2)) else {
-                continue;
-            };
-            let Some(touch) = touch_of(co1, co2) else {
-                self.counts.unsupported += 1;
-                continue;
-            };
-            if !(touch.overlap > 0.0) {
-                continue; // open: the record is swept below, the memory is lost
-            }
-            let (Some(s1), Some(s2)) = (surface(co1), surface(co2)) else {
-                self.counts.unsupported += 1;
-                continue;
-            };
-            let mu = f64::from(CoefficientCombineRule::combine(
-                co1.friction(),
-                co2.friction(),
-                co1.friction_combine_rule(),
-                co2.friction_combine_rule(),
-            ));
-            let e = f64::from(CoefficientCombineRule::combine(
-                co1.restitution(),
-                co2.restitution(),
-                co1.restitution_combine_rule(),
-                co2.restitution_combine_rule(),
-            ));
-            let pm = PairMaterial::new(&m1.material, &m2.material, s1, s2)
-                .and_then(|p| p.with_friction(mu));
-            let Ok(pm) = pm else {
-                self.counts.unsupported += 1;
-                continue;
-            };
-            let alpha = self.alpha(e)?;
-            let (h1, h2) = (co1.parent(), co2.parent());
-            let b1 = h1.and_then(|h| bodies.get(h));
-            let b2 = h2.and_then(|h| bodies.get(h));
-            let inv_m = |b: Option<&RigidBody>| match b {
-                Some(rb) if rb.is_dynamic() && rb.mass() > 0.0 => 1.0 / f64::from(rb.mass()),
-                _ => 0.0,
-            };
-            let inv_sum = inv_m(b1) + inv_m(b2);
-            if !(inv_sum > 0.0) {
-                continue;
-            }
-            let n = touch.normal;
-            let c = touch.point;
-            let p_motion = motion(b1, c - n, s1);
-            let q_motion = motion(b2, c + n, s2);
-            let mass = |b: Option<&RigidBody>| match b {
-                Some(rb) if rb.is_dynamic() && rb.mass() > 0.0 => f64::from(rb.mass()),
-                _ => f64::INFINITY,
-            };
-            let body = |m: &creep_law::kinematics::BodyMotion, mass: f64| PairBody {
-                position: m.position,
-                velocity: m.velocity,
-                angular_velocity: m.angular_velocity,
-                surface: m.surface,
-                mass,
-            };
-            let (bp, bq) = (body(&p_motion, mass(b1)), body(&q_motion, mass(b2)));
-            let rolling = match (m1.rolling, m2.rolling) {
-                (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
-                _ => None,
-            };
-            let creep = self.settings.creep.then_some(self.settings.creep_model);
-            let Ok(constants) = PairConstants::from_parts(&pm, alpha, creep, rolling) else {
-                self.counts.unsupported += 1;
-                continue;
-            };
-
-            // Contact record, its tangent basis carried with the contact.
-            let generation = self.generation;
-            let rec = self.contacts.entry((c1, c2)).or_insert_with(|| {
-                let (t1, _) = n.tangent_basis();
-                CompliantContact {
-                    state: CreepState::new(),
-                    t1,
-                    t2: n.cross(t1),
-                    normal: n,
-                    point: c,
-                    overlap: 0.0,
-                    normal_force: 0.0,
-                    tangential_force: Vec3::ZERO,
-                    rolling: RollingState::default(),
-                    sliding: false,
-                    creep_ratio: 0.0,
-                    v_disp: Vec3::ZERO,
-                    v_roll: Vec3::ZERO,
-                    generation,
-                }
-            });
-            let mut history = ContactHistory::<Exact> {
-                tangential: rec.state,
-                t1: rec.t1,
-                normal: rec.normal,
-                rolling: rec.rolling,
-                overlap: rec.overlap,
-            };
-            // The pure pair kernel (creep-law `pair`): the DEM engine calls the same function.
-            let f = pair_force(
-                &constants,
-                &bp,
-                &bq,
-                &touch_geometry(&touch),
-                &mut history,
+            self.pair_contact(
+                pair,
+                registry,
+                bodies,
+                colliders,
                 dt,
-            );
-            if !f.touching {
-                continue; // degenerate basis: the record is swept below
-            }
-            let d = f.dissipation;
-            self.energy.damping += d.damping;
-            self.energy.slip += d.slip;
-            self.energy.creep += d.creep;
-            self.energy.truncation += d.truncation;
-            self.energy.rolling += d.rolling;
-
-            rec.state = history.tangential;
-            rec.t1 = history.t1;
-            rec.t2 = history.normal.cross(history.t1);
-            rec.normal = history.normal;
-            rec.rolling = history.rolling;
-            rec.point = c;
-            rec.overlap = history.overlap;
-            rec.normal_force = f.normal_force;
-            rec.tangential_force = f.tangential_force;
-            rec.sliding = f.sliding;
-            let creep_len = f.creep_displacement.length();
-            rec.creep_ratio = if f.slide_length > 0.0 {
-                creep_len / f.slide_length
-            } else if f.creep_displacement != Vec2::ZERO {
-                f64::INFINITY
-            } else {
-                0.0
-            };
-            rec.v_disp = f.v_disp;
-            rec.v_roll = f.v_roll;
-            rec.generation = generation;
-            let (wn, wt) = history.elastic_energy(&constants, s1, s2);
-            normal_elastic += wn;
-            tangential_elastic += wt;
-            self.counts.contacts += 1;
-            self.counts.sliding += usize::from(f.sliding);
-            self.counts.creeping += usize::from(f.creep_displacement != Vec2::ZERO);
-
-            // Forces and torques (about the centres of mass), equal and opposite.
-            for (b, h, f, m) in [
-                (b1, h1, f.force_p, f.torque_p),
-                (b2, h2, -f.force_p, f.torque_q),
-            ] {
-                let (Some(rb), Some(h)) = (b, h) else {
-                    continue;
-                };
-                if !rb.is_dynamic() {
-                    continue;
-                }
-                let e = accum.entry(h).or_insert((Vec3::ZERO, Vec3::ZERO));
-                e.0 += f;
-                e.1 += m;
-            }
+                &mut accum,
+                &mut elastic,
+            )?;
         }
         let g = self.generation;
         self.contacts.retain(|_, r| r.generation == g);
-        self.energy.normal_elastic = normal_elastic;
-        self.energy.tangential_elastic = tangential_elastic;
+        self.energy.normal_elastic = elastic.0;
+        self.energy.tangential_elastic = elastic.1;
 
         for (&h, &(f, m)) in &accum {
             if let Some(rb) = bodies.get_mut(h) {
@@ -618,48 +304,5 @@ impl CompliantRegime {
                 rb.add_torque(m, false);
             }
         }
-    }
-}
-
-fn surface(co: &Collider) -> Option<Surface> {
-    crate::registry::surface_of(co)
-}
-
-/// Centre of a collider in f64 \[m\].
-fn centre(co: &Collider) -> Vec3 {
-    Frame::of(co.position()).t
-}
-
-/// Geometry of a supported pair (ball-ball, wall-ball, ball-wall), normal from collider 1 to 2.
-fn touch_of(co1: &Collider, co2: &Collider) -> Option<Touch> {
-    let wall = |co: &Collider, ball_centre: Vec3, r: f64| {
-        let frame = Frame::of(co.position());
-        if let Some(cub) = co.shape().as_cuboid() {
-            geometry::cuboid_sphere(&frame, v3(cub.half_extents), ball_centre, r)
-        } else if let Some(hs) = co.shape().as_halfspace() {
-            geometry::halfspace_sphere(&frame, v3(hs.normal), ball_centre, r)
-        } else {
-            None
-        }
-    };
-    match (co1.shape().as_ball(), co2.shape().as_ball()) {
-        (Some(b1), Some(b2)) => geometry::sphere_sphere(
-            centre(co1),
-            f64::from(b1.radius),
-            centre(co2),
-            f64::from(b2.radius),
-        ),
-        (None, Some(b2)) => wall(co1, centre(co2), f64::from(b2.radius)),
-        (Some(b1), None) => wall(co2, centre(co1), f64::from(b1.radius)).map(Touch::flipped),
-        (None, None) => None,
-    }
-}
-
-/// The kernel's geometry of a touch.
-fn touch_geometry(t: &Touch) -> ContactGeometry {
-    ContactGeometry {
-        normal: t.normal,
-        point: t.point,
-        overlap: t.overlap,
     }
 }
