@@ -36,7 +36,7 @@ pub struct TriaxialRow {
     /// Share of the ball-ball contacts rolling more than sliding (`|v_roll| > |v_disp|`) [-].
     pub share_rolling: f64,
     /// Share of the ball-ball contacts whose creep displacement in the step is at least
-    /// [`CREEPING`] of their sliding displacement [-].
+    /// [`CREEPING`](super::CREEPING) of their sliding displacement [-].
     pub share_creeping: f64,
     /// Solid fraction [-].
     pub solid_fraction: f64,
