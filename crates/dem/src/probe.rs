@@ -16,20 +16,20 @@ pub struct ContactForce {
     pub wall: Option<usize>,
     /// Particle id of q.
     pub q: usize,
-    /// Centre of p [m] (for a wall: the contact's point on the wall plane).
+    /// Centre of p \[m\] (for a wall: the contact's point on the wall plane).
     pub x_p: Vec3,
-    /// Centre of q [m] (minimum image of p's partner under periodic axes).
+    /// Centre of q \[m\] (minimum image of p's partner under periodic axes).
     pub x_q: Vec3,
-    /// Overlap [m].
+    /// Overlap \[m\].
     pub overlap: f64,
     /// The kernel's output ([`creep_law::pair::pair_force`]): `force_p` is the force on p
-    /// from q [N].
+    /// from q \[N\].
     pub forces: PairForces,
 }
 
 impl<T: TangentialLaw> Dem<T> {
     /// Calls `f` for every touching contact with the pair kernel evaluated at the current
-    /// positions and velocities on a copy of the contact's history, with a step of `dt` [s]:
+    /// positions and velocities on a copy of the contact's history, with a step of `dt` \[s\]:
     /// `dt = 0` gives the forces the contacts carry now (no tangential increment, the memory
     /// unchanged: the forces of the last evaluation); `dt > 0` the increments of one more step
     /// at the current velocities (sliding flag, creep displacement, `v_disp`, `v_roll`).

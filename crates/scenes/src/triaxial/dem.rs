@@ -128,7 +128,7 @@ impl DemSpecimen {
         st
     }
 
-    /// Box dimensions between the walls' planes [m].
+    /// Box dimensions between the walls' planes \[m\].
     fn dims(&self) -> [f64; 3] {
         let w = self.dem.walls();
         std::array::from_fn(|a| comp(w[2 * a + 1].point, a) - comp(w[2 * a].point, a))
