@@ -742,7 +742,7 @@ pub fn pair_force<T: TangentialLaw>(
 /// rate `delta_dot = -(u'_q - u'_p) . n` [m/s]: creep-law's [`crate::kinematics::contact_rates`]
 /// with the same arithmetic (so the same result to the last bit), inlined into the kernel and
 /// sharing the two surface velocities `u' = v + w x (c - x)` with `delta_dot` (the
-/// the profile in crates/dem/README.md had the out-of-line call at a third of the kernel's cost).
+/// profile in crates/dem/README.md had the out-of-line call at a third of the kernel's cost).
 #[inline(always)]
 fn rates_and_approach(p: &PairBody, q: &PairBody, cp: Vec3, n: Vec3) -> (ContactRates, f64) {
     let up = p.velocity + p.angular_velocity.cross(cp - p.position);
