@@ -28,7 +28,7 @@ typedef struct CreepLammpsModel CreepLammpsModel;
 
 // Coefficients of one pair type (SI, like LAMMPS' `granular` style).
 typedef struct CreepLammpsSettings {
-  // Young's modulus E [Pa].
+  // Young's modulus E (Pa).
   double young_modulus;
   // Poisson's ratio nu [-].
   double poisson_ratio;
@@ -50,15 +50,15 @@ typedef struct CreepLammpsSettings {
 
 // One sphere of a contact (SI).
 typedef struct CreepLammpsBody {
-  // Centre [m].
+  // Centre (m).
   double x[3];
   // Velocity [m/s].
   double v[3];
   // Angular velocity [rad/s].
   double omega[3];
-  // Radius [m].
+  // Radius (m).
   double radius;
-  // Mass [kg].
+  // Mass (kg).
   double mass;
 } CreepLammpsBody;
 
@@ -72,7 +72,7 @@ typedef struct CreepLammpsContact {
 
 // What one contact gives back.
 typedef struct CreepLammpsOutput {
-  // Force on p [N] (`-force_p` on q).
+  // Force on p (N) (`-force_p` on q).
   double force_p[3];
   // Torque on p about its centre [N m].
   double torque_p[3];
@@ -85,7 +85,7 @@ typedef struct CreepLammpsOutput {
 // One sphere against a plane wall (the wall is body p: the normal points from the wall into
 // the domain, towards the sphere).
 typedef struct CreepLammpsWallContact {
-  // A point on the wall plane [m].
+  // A point on the wall plane (m).
   double point[3];
   // Unit normal of the wall, pointing into the domain [-].
   double normal[3];
@@ -119,7 +119,7 @@ void creep_lammps_model_free(struct CreepLammpsModel *model);
 // unknown tier.
 size_t creep_lammps_history_len(uint32_t tier);
 
-// Steps `n` contacts by `dt` [s]: contact `k` uses `models[k]`, reads and rewrites its history
+// Steps `n` contacts by `dt` (s): contact `k` uses `models[k]`, reads and rewrites its history
 // `history[k * stride ..][..stride]` (all zero: a new contact) and writes `out[k]`. Returns 0,
 // or 1 with the reason in `err` (bad input, corrupt history, mixed tiers, wrong stride).
 //
@@ -138,7 +138,7 @@ int32_t creep_lammps_compute(const struct CreepLammpsModel *const *models,
                              char *err,
                              size_t err_len);
 
-// Steps `n` sphere-wall contacts by `dt` [s], as [`creep_lammps_compute`]: the wall is body p
+// Steps `n` sphere-wall contacts by `dt` (s), as [`creep_lammps_compute`]: the wall is body p
 // (`out[k].force_p` is the force on the wall, `out[k].torque_q` the torque on the sphere).
 //
 // # Safety

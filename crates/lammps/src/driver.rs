@@ -37,22 +37,22 @@ pub struct Packing {
     pub tag: Vec<i64>,
     /// Atom types.
     pub kind: Vec<i64>,
-    /// Radii \[m\] (half the file's diameters).
+    /// Radii (m) (half the file's diameters).
     pub radius: Vec<f64>,
     /// Densities [kg/m^3] as in the file.
     pub density: Vec<f64>,
-    /// Masses \[kg\], computed as LAMMPS' `atom_style sphere` does:
+    /// Masses (kg), computed as LAMMPS' `atom_style sphere` does:
     /// `rho * (4 pi / 3 * r * r * r)`.
     pub mass: Vec<f64>,
-    /// Centres \[m\].
+    /// Centres (m).
     pub x: Vec<[f64; 3]>,
     /// Velocities [m/s].
     pub v: Vec<[f64; 3]>,
     /// Angular velocities [rad/s].
     pub omega: Vec<[f64; 3]>,
-    /// Box lower corner \[m\].
+    /// Box lower corner (m).
     pub lo: [f64; 3],
-    /// Box upper corner \[m\].
+    /// Box upper corner (m).
     pub hi: [f64; 3],
     /// Number of atom types declared.
     pub types: i64,
@@ -67,7 +67,7 @@ fn nums(line: &str) -> Result<Vec<f64>, DriverError> {
         .collect()
 }
 
-/// Mass of a sphere of radius `r` \[m\] and density `rho` [kg/m^3], in LAMMPS' operation order
+/// Mass of a sphere of radius `r` (m) and density `rho` [kg/m^3], in LAMMPS' operation order
 /// (`atom_style sphere`: `rmass = density; rmass *= 4 pi / 3 * r * r * r`).
 pub fn sphere_mass(r: f64, rho: f64) -> f64 {
     rho * (4.0 * PI / 3.0 * r * r * r)
@@ -204,7 +204,7 @@ impl Packing {
     }
 
     /// A quick test packing (seconds, not the minute of a compaction): `n^3` spheres of mean
-    /// radius `r` \[m\] and density `rho` on a simple cubic lattice of spacing `2 r (1 - squeeze)`,
+    /// radius `r` (m) and density `rho` on a simple cubic lattice of spacing `2 r (1 - squeeze)`,
     /// with radii and positions perturbed by a fixed pseudo-random sequence of relative size
     /// `jitter` (of `r`), so neighbours overlap by different amounts; the box is the lattice's
     /// bounding box plus one radius.
@@ -286,9 +286,9 @@ pub fn lammps_variable(text: &str, name: &str) -> Result<f64, DriverError> {
 pub struct Thermo {
     /// Step number (0: set-up).
     pub step: u64,
-    /// Pair pressure `sum r_ij . f_ij / (3 V)` \[Pa\] (LAMMPS `compute pressure NULL pair`).
+    /// Pair pressure `sum r_ij . f_ij / (3 V)` (Pa) (LAMMPS `compute pressure NULL pair`).
     pub pressure: f64,
-    /// Translational kinetic energy `sum m v^2 / 2` \[J\] (LAMMPS `compute ke`).
+    /// Translational kinetic energy `sum m v^2 / 2` (J) (LAMMPS `compute ke`).
     pub ke: f64,
     /// Touching contacts.
     pub contacts: usize,
@@ -318,7 +318,7 @@ pub struct Sim {
 }
 
 impl Sim {
-    /// A driver over `packing` with `model` for every pair and time step `dt` \[s\]; computes the
+    /// A driver over `packing` with `model` for every pair and time step `dt` (s); computes the
     /// set-up forces (step 0) with no displacement (`dt = 0`).
     pub fn new(packing: Packing, model: Model, dt: f64) -> Result<(Self, Thermo), DriverError> {
         let n = packing.tag.len();
@@ -442,7 +442,7 @@ impl Sim {
         self.forces_with(if commit { self.dt } else { 0.0 }, commit)
     }
 
-    /// [`Sim::forces`] with the step `dt` given \[s\].
+    /// [`Sim::forces`] with the step `dt` given (s).
     fn forces_with(&mut self, dt: f64, commit: bool) -> Result<Thermo, DriverError> {
         self.find_pairs()?;
         let p = &self.packing;

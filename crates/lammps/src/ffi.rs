@@ -28,7 +28,7 @@ pub const CREEP_LAMMPS_ROLLING_EPSD: u32 = 2;
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct CreepLammpsSettings {
-    /// Young's modulus E \[Pa\].
+    /// Young's modulus E (Pa).
     pub young_modulus: f64,
     /// Poisson's ratio nu [-].
     pub poisson_ratio: f64,
@@ -161,7 +161,7 @@ pub extern "C" fn creep_lammps_history_len(tier: u32) -> usize {
     }
 }
 
-/// Steps `n` contacts by `dt` \[s\]: contact `k` uses `models[k]`, reads and rewrites its history
+/// Steps `n` contacts by `dt` (s): contact `k` uses `models[k]`, reads and rewrites its history
 /// `history[k * stride ..][..stride]` (all zero: a new contact) and writes `out[k]`. Returns 0,
 /// or 1 with the reason in `err` (bad input, corrupt history, mixed tiers, wrong stride).
 ///
@@ -221,7 +221,7 @@ pub unsafe extern "C" fn creep_lammps_compute(
     1
 }
 
-/// Steps `n` sphere-wall contacts by `dt` \[s\], as [`creep_lammps_compute`]: the wall is body p
+/// Steps `n` sphere-wall contacts by `dt` (s), as [`creep_lammps_compute`]: the wall is body p
 /// (`out[k].force_p` is the force on the wall, `out[k].torque_q` the torque on the sphere).
 ///
 /// # Safety

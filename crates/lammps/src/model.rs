@@ -34,7 +34,7 @@ impl Tier {
 /// (`hertz/material E e nu`, `mindlin NULL 0 mu`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
-    /// Young's modulus `E` \[Pa\] of both spheres; `G = E / (2 (1 + nu))`.
+    /// Young's modulus `E` (Pa) of both spheres; `G = E / (2 (1 + nu))`.
     pub young_modulus: f64,
     /// Poisson's ratio `nu` [-], in (-1, 0.5].
     pub poisson_ratio: f64,
@@ -77,9 +77,9 @@ pub enum ModelError {
     Body {
         /// Index in the batch.
         index: usize,
-        /// Radius \[m\].
+        /// Radius (m).
         radius: f64,
-        /// Mass \[kg\].
+        /// Mass (kg).
         mass: f64,
     },
     /// No model for a contact (a null pointer from C).
@@ -120,15 +120,15 @@ pub struct Model {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Body {
-    /// Centre \[m\].
+    /// Centre (m).
     pub x: [f64; 3],
     /// Velocity [m/s].
     pub v: [f64; 3],
     /// Angular velocity [rad/s].
     pub omega: [f64; 3],
-    /// Radius \[m\].
+    /// Radius (m).
     pub radius: f64,
-    /// Mass \[kg\].
+    /// Mass (kg).
     pub mass: f64,
 }
 
@@ -147,7 +147,7 @@ pub struct Contact {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct WallContact {
-    /// A point on the wall plane \[m\].
+    /// A point on the wall plane (m).
     pub point: [f64; 3],
     /// Unit normal of the wall, pointing into the domain [-].
     pub normal: [f64; 3],
@@ -161,7 +161,7 @@ pub struct WallContact {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ContactOutput {
-    /// Force on p \[N\] (`-force_p` on q).
+    /// Force on p (N) (`-force_p` on q).
     pub force_p: [f64; 3],
     /// Torque on p about its centre [N m].
     pub torque_p: [f64; 3],
