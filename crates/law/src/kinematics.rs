@@ -59,7 +59,21 @@ impl BodyMotion {
 /// Kuhn & Bagi (2004) contact rates of bodies `p` and `q` touching at `point` with unit normal
 /// `normal` (from p to q). For two planes (no curved surface) the rolling rate is taken as zero.
 /// Finite inputs give finite outputs.
+#[inline]
 pub fn contact_rates(p: &BodyMotion, q: &BodyMotion, point: Vec3, normal: Vec3) -> ContactRates {
+    contact_rates_and_approach(p, q, point, normal).0
+}
+
+/// [`contact_rates`] and the approach rate `delta_dot = -(u'_q - u'_p) . n` \[m/s\] (the rate
+/// at which the overlap grows), from the same two surface velocities: the soft-sphere pair
+/// kernel (`crate::pair`) needs both.
+#[inline]
+pub fn contact_rates_and_approach(
+    p: &BodyMotion,
+    q: &BodyMotion,
+    point: Vec3,
+    normal: Vec3,
+) -> (ContactRates, f64) {
     let n = normal;
     let up = p.velocity_at(point);
     let uq = q.velocity_at(point);
@@ -92,12 +106,13 @@ pub fn contact_rates(p: &BodyMotion, q: &BodyMotion, point: Vec3, normal: Vec3) 
         (Surface::Plane, Surface::Plane) => (up + uq) * 0.5,
     };
     let v_roll = ((up + uq) * 0.5 - c_dot).reject(n);
-    ContactRates {
+    let rates = ContactRates {
         v_disp,
         v_roll,
         w_roll,
         w_twist,
-    }
+    };
+    (rates, -(uq - up).dot(n))
 }
 
 #[cfg(test)]

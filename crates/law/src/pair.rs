@@ -44,7 +44,7 @@ pub mod damping;
 use crate::LawError;
 use crate::creep::{CreepInput, CreepLaw, CreepState};
 use crate::hertz;
-use crate::kinematics::ContactRates;
+use crate::kinematics::{BodyMotion, ContactRates, contact_rates_and_approach};
 use crate::material::{Material, PairMaterial, Surface};
 use crate::mindlin::{MINDLIN_FLAT_LEN, MindlinState};
 use crate::rolling_torque::{RollingInput, RollingModel, RollingState, epsd_rolling_inertia};
@@ -739,45 +739,16 @@ pub fn pair_force<T: TangentialLaw>(
 }
 
 /// Kuhn & Bagi's (2004) contact rates of `p` and `q` at `cp` with normal `n`, and the approach
-/// rate `delta_dot = -(u'_q - u'_p) . n` [m/s]: creep-law's [`crate::kinematics::contact_rates`]
-/// with the same arithmetic (so the same result to the last bit), inlined into the kernel and
-/// sharing the two surface velocities `u' = v + w x (c - x)` with `delta_dot` (the
-/// profile in crates/dem/README.md had the out-of-line call at a third of the kernel's cost).
+/// rate `delta_dot` \[m/s\]: creep-law's [`crate::kinematics::contact_rates_and_approach`].
 #[inline(always)]
 fn rates_and_approach(p: &PairBody, q: &PairBody, cp: Vec3, n: Vec3) -> (ContactRates, f64) {
-    let up = p.velocity + p.angular_velocity.cross(cp - p.position);
-    let uq = q.velocity + q.angular_velocity.cross(cp - q.position);
-    let rel = uq - up;
-    let w_rel = q.angular_velocity - p.angular_velocity;
-    let c_dot = match (p.surface, q.surface) {
-        (Surface::Sphere(_), Surface::Sphere(_)) => {
-            // c' = v_p + rho_p n',  n' = (v_q - v_p)_t / d.
-            let rho_p = (cp - p.position).dot(n);
-            let rho_q = (q.position - cp).dot(n);
-            let d = rho_p + rho_q;
-            if d > 0.0 && d.is_finite() {
-                p.velocity + (q.velocity - p.velocity) * (rho_p / d)
-            } else {
-                (up + uq) * 0.5
-            }
-        }
-        (Surface::Plane, Surface::Sphere(_)) => {
-            let rho_q = (q.position - cp).dot(n);
-            q.velocity - p.angular_velocity.cross(n) * rho_q
-        }
-        (Surface::Sphere(_), Surface::Plane) => {
-            let rho_p = (cp - p.position).dot(n);
-            p.velocity + q.angular_velocity.cross(n) * rho_p
-        }
-        (Surface::Plane, Surface::Plane) => (up + uq) * 0.5,
+    let motion = |b: &PairBody| BodyMotion {
+        position: b.position,
+        velocity: b.velocity,
+        angular_velocity: b.angular_velocity,
+        surface: b.surface,
     };
-    let rates = ContactRates {
-        v_disp: rel.reject(n),
-        v_roll: ((up + uq) * 0.5 - c_dot).reject(n),
-        w_roll: w_rel.reject(n),
-        w_twist: w_rel.dot(n),
-    };
-    (rates, -rel.dot(n))
+    contact_rates_and_approach(&motion(p), &motion(q), cp, n)
 }
 
 /// Opens a contact: resets its history and returns the tangential elastic energy it still
