@@ -327,46 +327,23 @@ impl Model {
         stride: usize,
         out: &mut [ContactOutput],
     ) -> Result<(), ModelError> {
-        if !(dt.is_finite() && dt >= 0.0) {
-            return Err(ModelError::TimeStep(dt));
-        }
-        if contacts.is_empty() {
-            return Ok(());
-        }
-        if out.len() < contacts.len() {
-            return Err(ModelError::Output {
-                got: out.len(),
-                want: contacts.len(),
-            });
-        }
-        let first = model_of(0).ok_or(ModelError::MissingModel(0))?;
-        let want = first.tier.history_len();
-        if stride != want || history.len() < stride * contacts.len() {
-            return Err(ModelError::Stride { got: stride, want });
-        }
-        for (k, (c, o)) in contacts.iter().zip(out.iter_mut()).enumerate() {
-            let m = model_of(k).ok_or(ModelError::MissingModel(k))?;
-            if m.tier != first.tier {
-                return Err(ModelError::MixedTiers);
-            }
-            let b = &c.sphere;
-            if !(b.radius.is_finite() && b.radius > 0.0 && b.mass.is_finite() && b.mass > 0.0) {
-                return Err(ModelError::Body {
-                    index: k,
-                    radius: b.radius,
-                    mass: b.mass,
-                });
-            }
-            let unit = (v3(c.normal).length() - 1.0).abs() <= 1e-9; // false for NaN too
-            if !unit {
-                return Err(ModelError::WallNormal(k));
-            }
-            let h = &mut history[k * stride..(k + 1) * stride];
-            *o = m
-                .step_wall(c, h, dt)
-                .map_err(|source| ModelError::History { index: k, source })?;
-        }
-        Ok(())
+        Self::batch(
+            model_of,
+            dt,
+            contacts,
+            history,
+            stride,
+            out,
+            |k, m, c, h| {
+                check_body(k, &c.sphere)?;
+                let unit = (v3(c.normal).length() - 1.0).abs() <= 1e-9; // false for NaN too
+                if !unit {
+                    return Err(ModelError::WallNormal(k));
+                }
+                m.step_wall(c, h, dt)
+                    .map_err(|source| ModelError::History { index: k, source })
+            },
+        )
     }
 
     /// A batch: contact `k` uses `models[k]`, its history is `history[k * stride ..][..stride]`
@@ -401,6 +378,34 @@ impl Model {
         stride: usize,
         out: &mut [ContactOutput],
     ) -> Result<(), ModelError> {
+        Self::batch(
+            model_of,
+            dt,
+            contacts,
+            history,
+            stride,
+            out,
+            |k, m, c, h| {
+                check_body(k, &c.p)?;
+                check_body(k, &c.q)?;
+                m.step(c, h, dt)
+                    .map_err(|source| ModelError::History { index: k, source })
+            },
+        )
+    }
+
+    /// The checks and the loop every batch shares: `dt`, the output and history sizes, one
+    /// tier for all models; then `step(k, model, contact, history row)` for each contact in
+    /// order, stopping at the first error.
+    fn batch<'a, C>(
+        model_of: impl Fn(usize) -> Option<&'a Model>,
+        dt: f64,
+        contacts: &[C],
+        history: &mut [f64],
+        stride: usize,
+        out: &mut [ContactOutput],
+        mut step: impl FnMut(usize, &Model, &C, &mut [f64]) -> Result<ContactOutput, ModelError>,
+    ) -> Result<(), ModelError> {
         if !(dt.is_finite() && dt >= 0.0) {
             return Err(ModelError::TimeStep(dt));
         }
@@ -423,20 +428,21 @@ impl Model {
             if m.tier != first.tier {
                 return Err(ModelError::MixedTiers);
             }
-            for b in [&c.p, &c.q] {
-                if !(b.radius.is_finite() && b.radius > 0.0 && b.mass.is_finite() && b.mass > 0.0) {
-                    return Err(ModelError::Body {
-                        index: k,
-                        radius: b.radius,
-                        mass: b.mass,
-                    });
-                }
-            }
-            let h = &mut history[k * stride..(k + 1) * stride];
-            *o = m
-                .step(c, h, dt)
-                .map_err(|source| ModelError::History { index: k, source })?;
+            *o = step(k, m, c, &mut history[k * stride..(k + 1) * stride])?;
         }
         Ok(())
+    }
+}
+
+/// A body's radius and mass must be finite and > 0 (contact `k` of a batch).
+fn check_body(k: usize, b: &Body) -> Result<(), ModelError> {
+    if b.radius.is_finite() && b.radius > 0.0 && b.mass.is_finite() && b.mass > 0.0 {
+        Ok(())
+    } else {
+        Err(ModelError::Body {
+            index: k,
+            radius: b.radius,
+            mass: b.mass,
+        })
     }
 }
