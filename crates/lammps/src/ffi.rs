@@ -11,7 +11,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use creep_law::rolling_torque::RollingModel;
 
-use crate::model::{Contact, ContactOutput, Model, Settings, Tier, WallContact};
+use crate::model::{Contact, ContactOutput, Model, ModelError, Settings, Tier, WallContact};
 
 /// Tangential tier: Cattaneo-Mindlin with exact load-history memory and Kuhn's creep.
 pub const CREEP_LAMMPS_TIER_EXACT: u32 = 0;
@@ -183,42 +183,31 @@ pub unsafe extern "C" fn creep_lammps_compute(
     err: *mut c_char,
     err_len: usize,
 ) -> i32 {
-    if n == 0 {
-        return 0;
-    }
-    if models.is_null() || contacts.is_null() || history.is_null() || out.is_null() {
-        // SAFETY: `err` as the contract says.
-        unsafe { write_error(err, err_len, "null buffer") };
-        return 1;
-    }
-    // SAFETY: sizes and validity as the contract says.
-    let (models, contacts, history, out) = unsafe {
-        (
-            std::slice::from_raw_parts(models, n),
-            std::slice::from_raw_parts(contacts, n),
-            std::slice::from_raw_parts_mut(history, n * stride),
-            std::slice::from_raw_parts_mut(out, n),
-        )
-    };
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        Model::compute_by(
-            // SAFETY: each pointer is null or a live model, as the contract says.
-            |k| unsafe { models[k].as_ref() }.map(|m| &m.0),
-            dt,
+    // SAFETY: as this function's contract says.
+    unsafe {
+        batch_ffi(
+            models,
+            n,
             contacts,
             history,
             stride,
             out,
+            err,
+            err_len,
+            "pair law",
+            |models, c, h, o| {
+                Model::compute_by(
+                    // SAFETY: each pointer is null or a live model, as the contract says.
+                    |k| models[k].as_ref().map(|m| &m.0),
+                    dt,
+                    c,
+                    h,
+                    stride,
+                    o,
+                )
+            },
         )
-    }));
-    let msg = match result {
-        Ok(Ok(())) => return 0,
-        Ok(Err(e)) => e.to_string(),
-        Err(_) => "internal error (panic) in the pair law".to_string(),
-    };
-    // SAFETY: `err` as the contract says.
-    unsafe { write_error(err, err_len, &msg) };
-    1
+    }
 }
 
 /// Steps `n` sphere-wall contacts by `dt` (s), as [`creep_lammps_compute`]: the wall is body p
@@ -239,6 +228,56 @@ pub unsafe extern "C" fn creep_lammps_compute_walls(
     err: *mut c_char,
     err_len: usize,
 ) -> i32 {
+    // SAFETY: as this function's contract says.
+    unsafe {
+        batch_ffi(
+            models,
+            n,
+            contacts,
+            history,
+            stride,
+            out,
+            err,
+            err_len,
+            "wall law",
+            |models, c, h, o| {
+                Model::compute_walls_by(
+                    // SAFETY: each pointer is null or a live model, as the contract says.
+                    |k| models[k].as_ref().map(|m| &m.0),
+                    dt,
+                    c,
+                    h,
+                    stride,
+                    o,
+                )
+            },
+        )
+    }
+}
+
+/// The part both batch entry points share: null checks, the slices, the panic guard and the
+/// error message. `batch` runs the law on the slices.
+///
+/// # Safety
+/// As [`creep_lammps_compute`], with `contacts` pointing to `n` values of `C`.
+#[allow(clippy::too_many_arguments)]
+unsafe fn batch_ffi<C>(
+    models: *const *const CreepLammpsModel,
+    n: usize,
+    contacts: *const C,
+    history: *mut f64,
+    stride: usize,
+    out: *mut ContactOutput,
+    err: *mut c_char,
+    err_len: usize,
+    law: &str,
+    batch: impl FnOnce(
+        &[*const CreepLammpsModel],
+        &[C],
+        &mut [f64],
+        &mut [ContactOutput],
+    ) -> Result<(), ModelError>,
+) -> i32 {
     if n == 0 {
         return 0;
     }
@@ -256,21 +295,11 @@ pub unsafe extern "C" fn creep_lammps_compute_walls(
             std::slice::from_raw_parts_mut(out, n),
         )
     };
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        Model::compute_walls_by(
-            // SAFETY: each pointer is null or a live model, as the contract says.
-            |k| unsafe { models[k].as_ref() }.map(|m| &m.0),
-            dt,
-            contacts,
-            history,
-            stride,
-            out,
-        )
-    }));
+    let result = catch_unwind(AssertUnwindSafe(|| batch(models, contacts, history, out)));
     let msg = match result {
         Ok(Ok(())) => return 0,
         Ok(Err(e)) => e.to_string(),
-        Err(_) => "internal error (panic) in the wall law".to_string(),
+        Err(_) => format!("internal error (panic) in the {law}"),
     };
     // SAFETY: `err` as the contract says.
     unsafe { write_error(err, err_len, &msg) };
