@@ -1012,26 +1012,25 @@ impl Carry {
     }
     /// Index in the old pair list of the contact `(lo, hi)`, if it was touching.
     fn find(&self, lo: u32, hi: u32) -> Option<usize> {
-        let (a, b) = (
-            self.start[lo as usize] as usize,
-            self.start[lo as usize + 1] as usize,
-        );
-        self.entries[a..b]
-            .iter()
-            .find(|e| e.1 == hi)
-            .map(|e| e.2 as usize)
+        lookup(&self.start, &self.entries, lo, hi)
     }
     /// Index in the old wall list of the contact of particle `id` with `wall`.
     fn find_wall(&self, id: u32, wall: u32) -> Option<usize> {
-        let (a, b) = (
-            self.wall_start[id as usize] as usize,
-            self.wall_start[id as usize + 1] as usize,
-        );
-        self.walls[a..b]
-            .iter()
-            .find(|e| e.1 == wall)
-            .map(|e| e.2 as usize)
+        lookup(&self.wall_start, &self.walls, id, wall)
     }
+}
+
+/// In CSR rows `start` over `entries` `(owner, partner, index)`, the index stored for
+/// `partner` in `owner`'s row.
+fn lookup(start: &[u32], entries: &[(u32, u32, u32)], owner: u32, partner: u32) -> Option<usize> {
+    let (a, b) = (
+        start[owner as usize] as usize,
+        start[owner as usize + 1] as usize,
+    );
+    entries[a..b]
+        .iter()
+        .find(|e| e.1 == partner)
+        .map(|e| e.2 as usize)
 }
 
 #[cfg(feature = "parallel")]
