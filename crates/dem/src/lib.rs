@@ -34,9 +34,11 @@
 // Loops index several per-particle arrays at once (structure of arrays) on purpose.
 #![allow(clippy::needless_range_loop)]
 
+mod external;
 mod grid;
 mod probe;
 
+pub use external::{ExternalForces, ExternalView, NoExternal};
 pub use probe::ContactForce;
 
 use creep_law::pair::{
@@ -677,6 +679,13 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// One velocity-Verlet step of [`DemConfig::dt`].
     pub fn step(&mut self) -> Result<(), DemError> {
+        self.step_with(&mut NoExternal)
+    }
+
+    /// One velocity-Verlet step of [`DemConfig::dt`] with forces from outside the engine:
+    /// `external` adds its forces after the contact forces, at the same positions and
+    /// half-step velocities, before the second half-kick.
+    pub fn step_with<E: ExternalForces>(&mut self, external: &mut E) -> Result<(), DemError> {
         let dt = self.cfg.dt;
         let h = 0.5 * dt;
         let n = self.len();
@@ -703,6 +712,7 @@ impl<T: TangentialLaw> Dem<T> {
             self.rebuild();
         }
         self.forces(dt);
+        external.add_forces(self.external_view(dt))?;
         for i in 0..n {
             self.v[i] += self.f[i] * (h * self.inv_m[i]);
             self.w[i] += self.t[i] * (h * self.inv_i[i]);

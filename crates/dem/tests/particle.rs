@@ -12,7 +12,9 @@
 //!
 //! `cargo test -p creep-dem --test particle -- --nocapture` prints the numbers.
 
-use creep_dem::{Cheap, Dem, DemConfig, Exact, MaterialTable, Particle, Wall};
+use creep_dem::{
+    Cheap, Dem, DemConfig, Exact, ExternalForces, ExternalView, MaterialTable, Particle, Wall,
+};
 use creep_law::pair::TangentialLaw;
 use creep_law::{CreepModel, Material, Vec3};
 
@@ -510,4 +512,63 @@ fn parallel_force_loop_is_deterministic() {
         .fold(0.0, f64::max);
     println!("parallel vs serial after 1500 steps: largest position difference {worst:.2e} m");
     assert!(worst < 1e-9, "{worst}");
+}
+
+/// A constant external force on one free particle (no gravity, no contacts) through
+/// `Dem::step_with`: velocity Verlet integrates a constant force exactly, so after n steps
+/// to rounding. The first step's first half-kick uses the forces `Dem::new` evaluated (no
+/// external force yet), so with h = dt/2: v = F (t - h) / m and x = F h (t - dt)/m +
+/// F (t - dt)^2 / (2 m). The view reports ids and the end time.
+#[test]
+fn external_forces_enter_the_step_like_contact_forces() {
+    struct Push {
+        force: Vec3,
+        calls: usize,
+        last_time: f64,
+    }
+    impl ExternalForces for Push {
+        fn add_forces(&mut self, view: ExternalView<'_>) -> Result<(), creep_dem::DemError> {
+            assert_eq!(view.ids, &[0]);
+            view.forces[0] += self.force;
+            self.calls += 1;
+            self.last_time = view.time;
+            Ok(())
+        }
+    }
+    let dt = 1e-4;
+    let mut c = cfg(dt, 1e-3);
+    c.gravity = Vec3::ZERO;
+    let mat = alloy(0.3);
+    let r = 0.01;
+    let m = sphere_mass(&mat, r);
+    let table = MaterialTable::new(&[mat], 0.5, Some(CreepModel::Kuhn), None).unwrap();
+    let mut d = Dem::<Exact>::new(c, table, &[particle(Vec3::ZERO, Vec3::ZERO, r)], &[]).unwrap();
+    let mut push = Push {
+        force: Vec3::new(2.0, -1.0, 0.5),
+        calls: 0,
+        last_time: 0.0,
+    };
+    let n = 100;
+    for _ in 0..n {
+        d.step_with(&mut push).unwrap();
+    }
+    let t = n as f64 * dt;
+    assert_eq!(push.calls, n);
+    assert!((push.last_time - t).abs() < 1e-15);
+    let p = d.particle(0);
+    let h = 0.5 * dt;
+    let v = push.force * ((t - h) / m);
+    let x = push.force * ((h * (t - dt) + 0.5 * (t - dt) * (t - dt)) / m);
+    assert!(
+        (p.velocity - v).length() <= 1e-12 * v.length(),
+        "{:?} vs {:?}",
+        p.velocity,
+        v
+    );
+    assert!(
+        (p.position - x).length() <= 1e-12 * x.length(),
+        "{:?} vs {:?}",
+        p.position,
+        x
+    );
 }
