@@ -1,5 +1,10 @@
+use super::kernel::rates_and_approach;
 use super::*;
+use crate::hertz;
 use crate::kalker;
+use crate::material::{Material, PairMaterial, Surface};
+use crate::steady_law::CreepModel;
+use crate::vector::Vec3;
 
 fn glass() -> Material {
     Material::glass()

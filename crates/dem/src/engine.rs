@@ -1,0 +1,269 @@
+//! The engine's constructor (validation, arrays, first list and forces) and its accessors.
+
+use creep_law::Vec3;
+use creep_law::pair::TangentialLaw;
+
+use crate::{Dem, DemConfig, DemCounts, DemEnergy, DemError, MaterialTable, Particle, Wall, grid};
+
+fn check(name: &'static str, value: f64, ok: bool, why: &'static str) -> Result<(), DemError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(DemError::Parameter { name, value, why })
+    }
+}
+impl<T: TangentialLaw> Dem<T> {
+    /// An engine with the given particles (their ids are their indices in `particles`) and
+    /// walls. Validates everything, builds the neighbour list and evaluates the initial forces.
+    pub fn new(
+        cfg: DemConfig,
+        table: MaterialTable,
+        particles: &[Particle],
+        walls: &[Wall],
+    ) -> Result<Self, DemError> {
+        check(
+            "time step dt",
+            cfg.dt,
+            cfg.dt.is_finite() && cfg.dt > 0.0,
+            "must be finite and > 0 [s]",
+        )?;
+        check(
+            "skin",
+            cfg.skin,
+            cfg.skin.is_finite() && cfg.skin > 0.0,
+            "must be finite and > 0 [m]",
+        )?;
+        check(
+            "gravity",
+            cfg.gravity.length(),
+            cfg.gravity.is_finite(),
+            "must be finite [m/s^2]",
+        )?;
+        for (i, c) in table.pairs.iter().enumerate() {
+            if !T::supports(c.creep()) {
+                let _ = i;
+                return Err(DemError::Unsupported {
+                    tier: T::NAME,
+                    model: c.creep(),
+                });
+            }
+        }
+        if particles.len() >= u32::MAX as usize {
+            return Err(DemError::Parameter {
+                name: "number of particles",
+                value: particles.len() as f64,
+                why: "must be below 2^32 - 1",
+            });
+        }
+        let mut r_max: f64 = 0.0;
+        for p in particles {
+            check(
+                "particle radius",
+                p.radius,
+                p.radius.is_finite() && p.radius > 0.0,
+                "must be finite and > 0 [m]",
+            )?;
+            if !(p.position.is_finite() && p.velocity.is_finite() && p.angular_velocity.is_finite())
+            {
+                return Err(DemError::Parameter {
+                    name: "particle state",
+                    value: f64::NAN,
+                    why: "position and velocities must be finite",
+                });
+            }
+            if p.material >= table.len() {
+                return Err(DemError::Material(p.material));
+            }
+            if !(table.materials[p.material].density() > 0.0) {
+                return Err(DemError::Parameter {
+                    name: "particle density",
+                    value: table.materials[p.material].density(),
+                    why: "a particle's material must have a density > 0 [kg/m^3]",
+                });
+            }
+            r_max = r_max.max(p.radius);
+        }
+        for wall in walls {
+            let nl = wall.normal.length();
+            check(
+                "wall normal length",
+                nl,
+                (nl - 1.0).abs() < 1e-9,
+                "must be a unit vector",
+            )?;
+            if !(wall.point.is_finite() && wall.velocity.is_finite()) {
+                return Err(DemError::Parameter {
+                    name: "wall state",
+                    value: f64::NAN,
+                    why: "point and velocity must be finite",
+                });
+            }
+            if wall.material >= table.len() {
+                return Err(DemError::Material(wall.material));
+            }
+        }
+        let grid = grid::Grid::new(cfg.periodic, 2.0 * r_max + cfg.skin)?;
+        let n = particles.len();
+        let mass: Vec<f64> = particles
+            .iter()
+            .map(|p| {
+                4.0 / 3.0
+                    * std::f64::consts::PI
+                    * p.radius.powi(3)
+                    * table.materials[p.material].density()
+            })
+            .collect();
+        let mut dem = Self {
+            cfg,
+            x: particles.iter().map(|p| p.position).collect(),
+            v: particles.iter().map(|p| p.velocity).collect(),
+            w: particles.iter().map(|p| p.angular_velocity).collect(),
+            f: vec![Vec3::ZERO; n],
+            t: vec![Vec3::ZERO; n],
+            r: particles.iter().map(|p| p.radius).collect(),
+            inv_m: mass.iter().map(|m| 1.0 / m).collect(),
+            // Solid sphere: I = (2/5) m r^2.
+            inv_i: particles
+                .iter()
+                .zip(&mass)
+                .map(|(p, m)| 1.0 / (0.4 * m * p.radius * p.radius))
+                .collect(),
+            mass,
+            mat: particles.iter().map(|p| p.material as u32).collect(),
+            id: (0..n as u32).collect(),
+            index: (0..n as u32).collect(),
+            x_build: Vec::new(),
+            walls: walls.to_vec(),
+            wall_build: Vec::new(),
+            wall_force: vec![Vec3::ZERO; walls.len()],
+            nl_start: Vec::new(),
+            nl_j: Vec::new(),
+            nl_h: Vec::new(),
+            wl_k: Vec::new(),
+            wl_i: Vec::new(),
+            wl_h: Vec::new(),
+            grid,
+            table,
+            energy: DemEnergy::default(),
+            counts: DemCounts::default(),
+            time: 0.0,
+            steps: 0,
+            #[cfg(feature = "parallel")]
+            par: crate::par::Buffers::default(),
+        };
+        for i in 0..n {
+            dem.x[i] = dem.grid.wrap(dem.x[i]);
+        }
+        dem.rebuild();
+        // Initial forces with dt = 0: the histories see no displacement.
+        dem.forces(0.0);
+        Ok(dem)
+    }
+
+    /// Number of particles.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+    /// Whether there are no particles.
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+    /// The settings.
+    pub fn config(&self) -> &DemConfig {
+        &self.cfg
+    }
+    /// The material table.
+    pub fn table(&self) -> &MaterialTable {
+        &self.table
+    }
+    /// Replaces the material table (e.g. to switch friction on after compaction); the contact
+    /// histories are kept. The table must have as many materials.
+    pub fn set_table(&mut self, table: MaterialTable) -> Result<(), DemError> {
+        if table.len() != self.table.len() {
+            return Err(DemError::Parameter {
+                name: "number of materials",
+                value: table.len() as f64,
+                why: "must equal the current table's",
+            });
+        }
+        for c in &table.pairs {
+            if !T::supports(c.creep()) {
+                return Err(DemError::Unsupported {
+                    tier: T::NAME,
+                    model: c.creep(),
+                });
+            }
+        }
+        self.table = table;
+        Ok(())
+    }
+    /// Simulated time \[s\].
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// What the last force evaluation saw.
+    pub fn counts(&self) -> DemCounts {
+        self.counts
+    }
+    /// The walls.
+    pub fn walls(&self) -> &[Wall] {
+        &self.walls
+    }
+    /// Sets the velocity of wall `k` [m/s] (servo control).
+    pub fn set_wall_velocity(&mut self, k: usize, velocity: Vec3) -> Result<(), DemError> {
+        if !velocity.is_finite() {
+            return Err(DemError::Parameter {
+                name: "wall velocity",
+                value: velocity.length(),
+                why: "must be finite [m/s]",
+            });
+        }
+        let wall = self.walls.get_mut(k).ok_or(DemError::Parameter {
+            name: "wall index",
+            value: k as f64,
+            why: "no such wall",
+        })?;
+        wall.velocity = velocity;
+        Ok(())
+    }
+    /// Force of the particles on wall `k` in the last force evaluation \[N\].
+    pub fn wall_force(&self, k: usize) -> Vec3 {
+        self.wall_force[k]
+    }
+
+    /// The state of particle `id` (as given to [`Dem::new`]; material and radius unchanged).
+    pub fn particle(&self, id: usize) -> Particle {
+        let i = self.index[id] as usize;
+        Particle {
+            position: self.x[i],
+            velocity: self.v[i],
+            angular_velocity: self.w[i],
+            radius: self.r[i],
+            material: self.mat[i] as usize,
+        }
+    }
+    /// Mass of particle `id` \[kg\].
+    pub fn mass(&self, id: usize) -> f64 {
+        self.mass[self.index[id] as usize]
+    }
+    /// Positions in the engine's current (cell) order \[m\]; see [`Dem::ids`].
+    pub fn positions(&self) -> &[Vec3] {
+        &self.x
+    }
+    /// Velocities in the engine's order [m/s].
+    pub fn velocities(&self) -> &[Vec3] {
+        &self.v
+    }
+    /// Radii in the engine's order \[m\].
+    pub fn radii(&self) -> &[f64] {
+        &self.r
+    }
+    /// The particle id at each position of the engine's order.
+    pub fn ids(&self) -> &[u32] {
+        &self.id
+    }
+}

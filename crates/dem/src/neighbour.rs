@@ -1,0 +1,169 @@
+//! The neighbour list: re-sorting by cell, the half list with a skin, the wall lists, and the
+//! carry-over of the contact histories by partner id at a rebuild.
+
+use creep_law::pair::{ContactHistory, TangentialLaw};
+
+use crate::Dem;
+
+impl<T: TangentialLaw> Dem<T> {
+    /// Re-sorts the particles by cell, rebuilds the half neighbour list and the wall lists, and
+    /// carries the histories of the contacts over by partner id.
+    pub(crate) fn rebuild(&mut self) {
+        let n = self.len();
+        self.counts.rebuilds += 1;
+        // Old histories stay where they are; the carry-over indexes them by the smaller id
+        // (CSR), partner by the larger, so each history is copied once, into the new list (the
+        // exact tier's history is ~0.5 kB: copying it through the sort cost more than the rest
+        // of the rebuild).
+        let old_h = std::mem::replace(&mut self.nl_h, Vec::with_capacity(self.nl_j.len()));
+        let old_wh = std::mem::replace(&mut self.wl_h, Vec::with_capacity(self.wl_i.len()));
+        let mut carry = Carry::default();
+        for i in 0..n {
+            for k in self.nl_start.get(i).copied().unwrap_or(0) as usize
+                ..self.nl_start.get(i + 1).copied().unwrap_or(0) as usize
+            {
+                if !old_h[k].is_virgin() {
+                    let (a, b) = (self.id[i], self.id[self.nl_j[k] as usize]);
+                    carry.push(a.min(b), a.max(b), k as u32);
+                }
+            }
+        }
+        for e in 0..self.wl_i.len() {
+            if !old_wh[e].is_virgin() {
+                carry.push_wall(self.id[self.wl_i[e] as usize], self.wl_k[e], e as u32);
+            }
+        }
+        carry.finish(n);
+
+        // Sort by cell (counting sort, stable).
+        let order = self.grid.sort(&self.x);
+        permute(&mut self.x, &order);
+        permute(&mut self.v, &order);
+        permute(&mut self.w, &order);
+        permute(&mut self.f, &order);
+        permute(&mut self.t, &order);
+        permute(&mut self.r, &order);
+        permute(&mut self.mass, &order);
+        permute(&mut self.inv_m, &order);
+        permute(&mut self.inv_i, &order);
+        permute(&mut self.mat, &order);
+        permute(&mut self.id, &order);
+        for (i, &id) in self.id.iter().enumerate() {
+            self.index[id as usize] = i as u32;
+        }
+
+        // Half neighbour list.
+        let skin = self.cfg.skin;
+        self.nl_start.clear();
+        self.nl_j.clear();
+        self.nl_start.push(0);
+        for i in 0..n {
+            let xi = self.x[i];
+            let ri = self.r[i];
+            let (x, r, grid) = (&self.x, &self.r, &self.grid);
+            let (nl_j, nl_h, id) = (&mut self.nl_j, &mut self.nl_h, &self.id);
+            grid.for_half_neighbours(i, |j| {
+                let d = grid.min_image(x[j] - xi);
+                let cut = ri + r[j] + skin;
+                if d.dot(d) < cut * cut {
+                    let (a, b) = (id[i], id[j]);
+                    nl_j.push(j as u32);
+                    nl_h.push(
+                        carry
+                            .find(a.min(b), a.max(b))
+                            .map_or_else(ContactHistory::default, |k| old_h[k]),
+                    );
+                }
+            });
+            self.nl_start.push(self.nl_j.len() as u32);
+        }
+
+        // Wall lists.
+        self.wl_k.clear();
+        self.wl_i.clear();
+        for (k, wall) in self.walls.iter().enumerate() {
+            for i in 0..n {
+                if (self.x[i] - wall.point).dot(wall.normal) < self.r[i] + skin {
+                    self.wl_k.push(k as u32);
+                    self.wl_i.push(i as u32);
+                    self.wl_h.push(
+                        carry
+                            .find_wall(self.id[i], k as u32)
+                            .map_or_else(ContactHistory::default, |e| old_wh[e]),
+                    );
+                }
+            }
+        }
+        self.x_build.clone_from(&self.x);
+        self.wall_build = self.walls.iter().map(|w| w.point).collect();
+    }
+}
+
+/// `v[i] = old[order[i]]`.
+fn permute<X: Copy>(v: &mut Vec<X>, order: &[u32]) {
+    let old = std::mem::take(v);
+    v.extend(order.iter().map(|&o| old[o as usize]));
+}
+
+/// Where the histories of the last list are, keyed by particle id (CSR), for the carry-over
+/// at a rebuild: `(smaller id, partner id or wall, index in the old list)`.
+#[derive(Default)]
+struct Carry {
+    entries: Vec<(u32, u32, u32)>,
+    walls: Vec<(u32, u32, u32)>,
+    start: Vec<u32>,
+    wall_start: Vec<u32>,
+}
+
+impl Carry {
+    fn push(&mut self, lo: u32, hi: u32, k: u32) {
+        self.entries.push((lo, hi, k));
+    }
+    fn push_wall(&mut self, id: u32, wall: u32, e: u32) {
+        self.walls.push((id, wall, e));
+    }
+    /// Sorts the entries by key (counting sort) and builds the offsets.
+    fn finish(&mut self, n: usize) {
+        fn csr(v: &mut Vec<(u32, u32, u32)>, n: usize) -> Vec<u32> {
+            let mut start = vec![0u32; n + 1];
+            for e in v.iter() {
+                start[e.0 as usize + 1] += 1;
+            }
+            for i in 0..n {
+                start[i + 1] += start[i];
+            }
+            let mut fill = start.clone();
+            let mut out = vec![(0, 0, 0); v.len()];
+            for e in v.iter() {
+                let s = &mut fill[e.0 as usize];
+                out[*s as usize] = *e;
+                *s += 1;
+            }
+            *v = out;
+            start
+        }
+        self.start = csr(&mut self.entries, n);
+        self.wall_start = csr(&mut self.walls, n);
+    }
+    /// Index in the old pair list of the contact `(lo, hi)`, if it was touching.
+    fn find(&self, lo: u32, hi: u32) -> Option<usize> {
+        lookup(&self.start, &self.entries, lo, hi)
+    }
+    /// Index in the old wall list of the contact of particle `id` with `wall`.
+    fn find_wall(&self, id: u32, wall: u32) -> Option<usize> {
+        lookup(&self.wall_start, &self.walls, id, wall)
+    }
+}
+
+/// In CSR rows `start` over `entries` `(owner, partner, index)`, the index stored for
+/// `partner` in `owner`'s row.
+fn lookup(start: &[u32], entries: &[(u32, u32, u32)], owner: u32, partner: u32) -> Option<usize> {
+    let (a, b) = (
+        start[owner as usize] as usize,
+        start[owner as usize + 1] as usize,
+    );
+    entries[a..b]
+        .iter()
+        .find(|e| e.1 == partner)
+        .map(|e| e.2 as usize)
+}

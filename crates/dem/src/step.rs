@@ -1,0 +1,218 @@
+//! One velocity-Verlet step and the force loops (serial; the parallel one is in `par`).
+
+use creep_law::pair::{
+    ContactGeometry, ContactHistory, PairBody, TangentialLaw, pair_force, release,
+};
+use creep_law::{Surface, Vec3};
+
+use crate::{Dem, DemCounts, DemEnergy, DemError, ExternalForces, NoExternal};
+
+impl<T: TangentialLaw> Dem<T> {
+    /// One velocity-Verlet step of [`DemConfig::dt`](crate::DemConfig::dt).
+    pub fn step(&mut self) -> Result<(), DemError> {
+        self.step_with(&mut NoExternal)
+    }
+
+    /// One velocity-Verlet step of [`DemConfig::dt`](crate::DemConfig::dt) with forces from outside the engine:
+    /// `external` adds its forces after the contact forces, at the same positions and
+    /// half-step velocities, before the second half-kick.
+    pub fn step_with<E: ExternalForces>(&mut self, external: &mut E) -> Result<(), DemError> {
+        let dt = self.cfg.dt;
+        let h = 0.5 * dt;
+        let n = self.len();
+        let mut d2_max: f64 = 0.0;
+        for i in 0..n {
+            self.v[i] += self.f[i] * (h * self.inv_m[i]);
+            self.w[i] += self.t[i] * (h * self.inv_i[i]);
+            let x = self.grid.wrap(self.x[i] + self.v[i] * dt);
+            self.x[i] = x;
+            let d = self.grid.min_image(x - self.x_build[i]);
+            d2_max = d2_max.max(d.dot(d));
+        }
+        let mut wall_max: f64 = 0.0;
+        for (k, wall) in self.walls.iter_mut().enumerate() {
+            wall.point += wall.velocity * dt;
+            wall_max = wall_max.max((wall.point - self.wall_build[k]).dot(wall.normal).abs());
+        }
+        let d_max = d2_max.sqrt();
+        if !d_max.is_finite() {
+            let i = (0..n).find(|&i| !self.x[i].is_finite()).unwrap_or(0);
+            return Err(DemError::NonFinite(self.id[i] as usize));
+        }
+        if 2.0 * d_max > self.cfg.skin || d_max + wall_max > self.cfg.skin {
+            self.rebuild();
+        }
+        self.forces(dt);
+        external.add_forces(self.external_view(dt))?;
+        for i in 0..n {
+            self.v[i] += self.f[i] * (h * self.inv_m[i]);
+            self.w[i] += self.t[i] * (h * self.inv_i[i]);
+        }
+        self.time += dt;
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// Evaluates every contact force (and gravity) into `f`, `t` and the wall forces.
+    pub(crate) fn forces(&mut self, dt: f64) {
+        let n = self.len();
+        let g = self.cfg.gravity;
+        for i in 0..n {
+            self.f[i] = g * self.mass[i];
+            self.t[i] = Vec3::ZERO;
+        }
+        let mut counts = DemCounts {
+            neighbours: self.nl_j.len(),
+            rebuilds: self.counts.rebuilds,
+            ..DemCounts::default()
+        };
+        let mut energy = self.energy;
+        #[cfg(feature = "parallel")]
+        let done = if self.cfg.parallel {
+            self.pair_forces_parallel(dt, &mut counts, &mut energy);
+            true
+        } else {
+            false
+        };
+        #[cfg(not(feature = "parallel"))]
+        let done = false;
+        if !done {
+            self.pair_forces_serial(dt, &mut counts, &mut energy);
+        }
+        self.wall_forces(dt, &mut counts, &mut energy);
+        self.counts = counts;
+        self.energy = energy;
+    }
+
+    #[inline]
+    pub(crate) fn body(&self, i: usize, position: Vec3) -> PairBody {
+        PairBody {
+            position,
+            velocity: self.v[i],
+            angular_velocity: self.w[i],
+            surface: Surface::Sphere(self.r[i]),
+            mass: self.mass[i],
+        }
+    }
+
+    /// The pair `(i, j)` of list entry `k`: `None` when apart (the history is reset), else the
+    /// indices of p and q and the kernel's output.
+    /// `Err(released energy)` when the pair is apart (its history reset).
+    #[inline]
+    pub(crate) fn pair(
+        &self,
+        i: usize,
+        j: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+    ) -> Result<(usize, usize, creep_law::pair::PairForces), f64> {
+        let d = self.grid.min_image(self.x[j] - self.x[i]);
+        let rs = self.r[i] + self.r[j];
+        if d.dot(d) >= rs * rs {
+            if h.is_virgin() {
+                return Err(0.0);
+            }
+            let c = self.table.pair(self.mat[i] as usize, self.mat[j] as usize);
+            return Err(release(
+                c,
+                Surface::Sphere(self.r[i]),
+                Surface::Sphere(self.r[j]),
+                h,
+            ));
+        }
+        let (p, q, dpq) = if self.id[i] < self.id[j] {
+            (i, j, d)
+        } else {
+            (j, i, -d)
+        };
+        let xp = self.x[p];
+        let xq = xp + dpq;
+        let c = self.table.pair(self.mat[p] as usize, self.mat[q] as usize);
+        let Some(geo) = ContactGeometry::sphere_sphere(xp, self.r[p], xq, self.r[q]) else {
+            return Err(release(
+                c,
+                Surface::Sphere(self.r[p]),
+                Surface::Sphere(self.r[q]),
+                h,
+            ));
+        };
+        let out = pair_force(c, &self.body(p, xp), &self.body(q, xq), &geo, h, dt);
+        if out.touching {
+            Ok((p, q, out))
+        } else {
+            Err(out.dissipation.slip)
+        }
+    }
+
+    fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
+        let n = self.len();
+        let mut hist = std::mem::take(&mut self.nl_h);
+        for i in 0..n {
+            let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
+            for k in a..b {
+                let j = self.nl_j[k] as usize;
+                match self.pair(i, j, &mut hist[k], dt) {
+                    Ok((p, q, out)) => {
+                        self.f[p] += out.force_p;
+                        self.f[q] -= out.force_p;
+                        self.t[p] += out.torque_p;
+                        self.t[q] += out.torque_q;
+                        tally(counts, energy, &out);
+                        counts.contacts += 1;
+                    }
+                    Err(released) => energy.slip += released,
+                }
+            }
+        }
+        self.nl_h = hist;
+    }
+
+    fn wall_forces(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
+        for f in &mut self.wall_force {
+            *f = Vec3::ZERO;
+        }
+        let mut hist = std::mem::take(&mut self.wl_h);
+        for (e, h) in hist.iter_mut().enumerate() {
+            let k = self.wl_k[e] as usize;
+            let i = self.wl_i[e] as usize;
+            let wall = self.walls[k];
+            let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, self.x[i], self.r[i]);
+            let c = self.table.pair(wall.material, self.mat[i] as usize);
+            if !(geo.overlap > 0.0) {
+                energy.slip += release(c, Surface::Plane, Surface::Sphere(self.r[i]), h);
+                continue;
+            }
+            let bp = PairBody {
+                position: geo.point,
+                velocity: wall.velocity,
+                angular_velocity: Vec3::ZERO,
+                surface: Surface::Plane,
+                mass: f64::INFINITY,
+            };
+            let out = pair_force(c, &bp, &self.body(i, self.x[i]), &geo, h, dt);
+            if out.touching {
+                self.f[i] -= out.force_p;
+                self.t[i] += out.torque_q;
+                self.wall_force[k] += out.force_p;
+                tally(counts, energy, &out);
+                counts.wall_contacts += 1;
+            }
+        }
+        self.wl_h = hist;
+    }
+}
+
+pub(crate) fn tally(
+    counts: &mut DemCounts,
+    energy: &mut DemEnergy,
+    out: &creep_law::pair::PairForces,
+) {
+    let d = out.dissipation;
+    energy.damping += d.damping;
+    energy.slip += d.slip;
+    energy.creep += d.creep;
+    energy.rolling += d.rolling;
+    energy.truncation += d.truncation;
+    counts.sliding += usize::from(out.sliding);
+    counts.creeping += usize::from(out.creep_displacement != creep_law::Vec2::ZERO);
+}

@@ -1,0 +1,252 @@
+//! The kernel: [`pair_force`], its outputs, [`release`] and the rotations of the carried basis.
+
+use super::{ContactGeometry, ContactHistory, PairBody, PairConstants, TangentialLaw};
+use crate::hertz;
+use crate::kinematics::{BodyMotion, ContactRates, contact_rates_and_approach};
+use crate::material::Surface;
+use crate::rolling_torque::{RollingInput, epsd_rolling_inertia};
+use crate::vector::{Vec2, Vec3};
+
+/// Energies of one step of one contact \[J\].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PairDissipation {
+    /// Dissipated by the normal damping, `(P - P_e) delta_dot dt`.
+    pub damping: f64,
+    /// Dissipated by micro-slip and gross slip.
+    pub slip: f64,
+    /// Dissipated by creep.
+    pub creep: f64,
+    /// Dissipated by contact-torque rolling resistance.
+    pub rolling: f64,
+    /// Added by the tangential law's simplifications (see the tier).
+    pub truncation: f64,
+}
+
+/// What [`pair_force`] returns. All zero (`touching == false`) for an open contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PairForces {
+    /// Whether the contact carries force (overlap > 0, some body movable, a curved surface).
+    pub touching: bool,
+    /// Force on p at the contact point \[N\] (`-force_p` on q): `Q - n P`.
+    pub force_p: Vec3,
+    /// Torque on p about its centre [N m]: `(c - x_p) x force_p - M_roll`.
+    pub torque_p: Vec3,
+    /// Torque on q about its centre [N m]: `(c - x_q) x (-force_p) + M_roll`.
+    pub torque_q: Vec3,
+    /// Contact point \[m\].
+    pub point: Vec3,
+    /// Normal force on q along `n` \[N\], damping included (>= 0).
+    pub normal_force: f64,
+    /// Elastic (Hertz) part of the normal force \[N\].
+    pub elastic_normal_force: f64,
+    /// Tangential force on p from q, world frame \[N\].
+    pub tangential_force: Vec3,
+    /// Contact radius `a = sqrt(R* delta)` \[m\].
+    pub contact_radius: f64,
+    /// Whether the contact is at the Coulomb limit (`|Q| >= mu P_e`).
+    pub sliding: bool,
+    /// Creep displacement of the step in `(t1, t2)` \[m\] (zero without creep).
+    pub creep_displacement: Vec2,
+    /// `|du_disp|` of the step \[m\].
+    pub slide_length: f64,
+    /// Kuhn & Bagi sliding velocity, world frame [m/s].
+    pub v_disp: Vec3,
+    /// Kuhn & Bagi rolling velocity, world frame [m/s].
+    pub v_roll: Vec3,
+    /// The step's energies.
+    pub dissipation: PairDissipation,
+}
+
+/// The pair force of one contact for one step of length `dt` \[s\]: bodies `p` and `q`, the pair's
+/// constants `c`, the geometry `g` (normal from p to q) and the contact's history `h` (updated in
+/// place; reset when the contact is open). See the module docs for the law.
+///
+/// Always inlined: a host's loop uses a few of the outputs, and inlining lets the compiler drop
+/// the work of the others (e.g. `slide_length`'s square root).
+#[inline(always)]
+pub fn pair_force<T: TangentialLaw>(
+    c: &PairConstants,
+    p: &PairBody,
+    q: &PairBody,
+    g: &ContactGeometry,
+    h: &mut ContactHistory<T>,
+    dt: f64,
+) -> PairForces {
+    let delta = g.overlap;
+    let inv_sum = p.inv_mass() + q.inv_mass();
+    let pm = c.pair_material(p.surface, q.surface);
+    if !(delta > 0.0 && inv_sum > 0.0 && pm.r_star.is_finite()) {
+        let released = release(c, p.surface, q.surface, h);
+        return PairForces {
+            dissipation: PairDissipation {
+                slip: released,
+                ..PairDissipation::default()
+            },
+            ..PairForces::default()
+        };
+    }
+    let m_star = 1.0 / inv_sum;
+    let n = g.normal;
+    let cp = g.point;
+    let (rates, delta_dot) = rates_and_approach(p, q, cp, n);
+
+    // The tangent basis carried with the contact.
+    if h.is_virgin() {
+        h.t1 = n.tangent_basis().0;
+        h.normal = n;
+    }
+    let spin = 0.5 * (p.angular_velocity + q.angular_velocity).dot(n);
+    let t1 = rotate_to(h.t1, h.normal, n);
+    let t1 = rotate_about(t1, n, spin * dt);
+    let Some(t1) = t1.reject(n).try_normalize() else {
+        *h = ContactHistory::default();
+        return PairForces::default();
+    };
+    let t2 = n.cross(t1);
+
+    // Normal force: Hertz `(4/3) E* sqrt(R* delta) delta = (4/3) E* a delta` (Johnson 1985,
+    // §4.2) + Tsuji damping tuned to e, `alpha sqrt(m* k_H) delta^(1/4)` with
+    // `k_H = (4/3) E* sqrt(R*)`, i.e. `alpha sqrt((4/3) E* m* a)`; never attractive.
+    let a = (pm.r_star * delta).sqrt();
+    let e43 = 4.0 / 3.0 * pm.e_star;
+    let p_el = e43 * a * delta;
+    let damp = c.alpha * (e43 * m_star * a).sqrt();
+    let p_tot = (p_el + damp * delta_dot).max(0.0);
+    let damping = (p_tot - p_el) * delta_dot * dt;
+
+    // Tangential force.
+    let du_disp = Vec2::from_basis(rates.v_disp * dt, t1, t2);
+    let du_roll = if c.creep.is_some() {
+        Vec2::from_basis(rates.v_roll * dt, t1, t2)
+    } else {
+        Vec2::ZERO
+    };
+    let step = T::step(&mut h.tangential, c, &pm, p_el, a, du_disp, du_roll);
+    let q_world = step.q.to_3d(t1, t2);
+    // `|Q| >= (1 - 1e-9) mu P_e`, squared (both sides >= 0): one square root less per contact.
+    let limit = (1.0 - 1e-9) * pm.mu * p_el;
+    let sliding = pm.mu.is_finite() && step.q.length_squared() >= limit * limit;
+
+    // Contact-torque rolling resistance (on q; -M on p).
+    let mut torque_roll = Vec3::ZERO;
+    let mut rolling = 0.0;
+    if let Some(model) = c.rolling {
+        let term = |b: &PairBody| match b.surface {
+            Surface::Sphere(r) if b.mass.is_finite() && b.mass > 0.0 => {
+                (b.mass, 0.4 * b.mass * r * r, r)
+            }
+            _ => (f64::INFINITY, f64::INFINITY, 1.0),
+        };
+        let (ma, ia, ra) = term(p);
+        let (mb, ib, rb) = term(q);
+        let input = RollingInput {
+            p: p_tot,
+            r_star: pm.r_star,
+            k_n: hertz::normal_stiffness(&pm, delta),
+            w_roll: rates.w_roll,
+            normal: n,
+            dt,
+            rolling_inertia: epsd_rolling_inertia(ma, ia, ra, mb, ib, rb),
+        };
+        let r = model.torque(&mut h.rolling, &input);
+        torque_roll = r.torque;
+        rolling = r.dissipation;
+    }
+
+    h.t1 = t1;
+    h.normal = n;
+    h.overlap = delta;
+
+    let f_p = q_world - n * p_tot;
+    PairForces {
+        touching: true,
+        force_p: f_p,
+        torque_p: (cp - p.position).cross(f_p) + (-torque_roll),
+        torque_q: (cp - q.position).cross(-f_p) + torque_roll,
+        point: cp,
+        normal_force: p_tot,
+        elastic_normal_force: p_el,
+        tangential_force: q_world,
+        contact_radius: a,
+        sliding,
+        creep_displacement: step.creep_displacement,
+        slide_length: du_disp.length(),
+        v_disp: rates.v_disp,
+        v_roll: rates.v_roll,
+        dissipation: PairDissipation {
+            damping,
+            slip: step.slip,
+            creep: step.creep,
+            rolling,
+            truncation: step.truncation,
+        },
+    }
+}
+
+/// Kuhn & Bagi's (2004) contact rates of `p` and `q` at `cp` with normal `n`, and the approach
+/// rate `delta_dot` \[m/s\]: creep-law's [`crate::kinematics::contact_rates_and_approach`].
+#[inline(always)]
+pub(super) fn rates_and_approach(
+    p: &PairBody,
+    q: &PairBody,
+    cp: Vec3,
+    n: Vec3,
+) -> (ContactRates, f64) {
+    let motion = |b: &PairBody| BodyMotion {
+        position: b.position,
+        velocity: b.velocity,
+        angular_velocity: b.angular_velocity,
+        surface: b.surface,
+    };
+    contact_rates_and_approach(&motion(p), &motion(q), cp, n)
+}
+
+/// Opens a contact: resets its history and returns the tangential elastic energy it still
+/// held \[J\], which the springs release as they leave the contact (booked as slip dissipation,
+/// as creep-law's Cattaneo-Mindlin memory books springs leaving a shrinking contact). Hosts
+/// call it when they find a contact apart without calling [`pair_force`].
+#[inline]
+pub fn release<T: TangentialLaw>(
+    c: &PairConstants,
+    sp: Surface,
+    sq: Surface,
+    h: &mut ContactHistory<T>,
+) -> f64 {
+    if h.is_virgin() {
+        return 0.0;
+    }
+    let (_, wt) = h.elastic_energy(c, sp, sq);
+    *h = ContactHistory::default();
+    if wt.is_finite() { wt } else { 0.0 }
+}
+
+/// `v` turned by the smallest rotation taking the unit vector `from` to the unit vector `to`
+/// (Rodrigues' formula; identity when they coincide, a half turn when opposite).
+#[inline]
+pub fn rotate_to(v: Vec3, from: Vec3, to: Vec3) -> Vec3 {
+    let axis = from.cross(to);
+    let s = axis.length();
+    let c = from.dot(to);
+    if !(s > 1e-15) {
+        return if c >= 0.0 { v } else { -v };
+    }
+    let k = axis * (1.0 / s);
+    v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
+}
+
+/// `v` turned by `angle` \[rad\] about the unit `axis` (Rodrigues).
+#[inline]
+pub fn rotate_about(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
+    if angle == 0.0 {
+        return v;
+    }
+    // DEM steps turn a contact by micro-radians: the Taylor series is exact to rounding below
+    // 1e-3 rad (next terms a^5/120, a^6/720 < 1e-17) and saves the libm call.
+    let (s, c) = if angle.abs() < 1e-3 {
+        let a2 = angle * angle;
+        (angle * (1.0 - a2 / 6.0), 1.0 - 0.5 * a2 * (1.0 - a2 / 12.0))
+    } else {
+        angle.sin_cos()
+    };
+    v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
+}

@@ -1,0 +1,258 @@
+//! The tangential tiers: the [`TangentialLaw`] trait, [`Exact`] (Cattaneo-Mindlin memory with
+//! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
+
+use super::PairConstants;
+use crate::LawError;
+use crate::creep::{CreepInput, CreepLaw, CreepState};
+use crate::material::PairMaterial;
+use crate::mindlin::{MINDLIN_FLAT_LEN, MindlinState};
+use crate::steady_law::CreepModel;
+use crate::vector::Vec2;
+
+/// What one tangential update did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TangentialStep {
+    /// Tangential force on p from q after the step, in the contact's `(t1, t2)` \[N\].
+    pub q: Vec2,
+    /// Creep displacement of the step \[m\].
+    pub creep_displacement: Vec2,
+    /// Energy dissipated by micro-slip and gross slip \[J\].
+    pub slip: f64,
+    /// Energy dissipated by creep \[J\].
+    pub creep: f64,
+    /// Energy added by the model's simplifications \[J\] (see each tier).
+    pub truncation: f64,
+}
+
+/// A tangential contact law: the generic parameter of [`pair_force`](super::pair_force).
+pub trait TangentialLaw:
+    Copy + Clone + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static
+{
+    /// Per-contact history of the law (flat, `Copy`, all f64).
+    type History: Copy + Clone + Default + std::fmt::Debug + PartialEq + Send + Sync;
+    /// Name of the tier (`"exact"` or `"cheap"`).
+    const NAME: &'static str;
+    /// Number of `f64` of the flat history.
+    const HISTORY_LEN: usize;
+    /// Whether the tier implements the creep model (the cheap tier has no lag state).
+    fn supports(model: Option<CreepModel>) -> bool;
+    /// One step: elastic normal force `p` \[N\], contact radius `a` \[m\], displacements `du_disp`,
+    /// `du_roll` \[m\] in the tangent basis (`du_roll` zero without creep).
+    fn step(
+        h: &mut Self::History,
+        c: &PairConstants,
+        pm: &PairMaterial,
+        p: f64,
+        a: f64,
+        du_disp: Vec2,
+        du_roll: Vec2,
+    ) -> TangentialStep;
+    /// The stored tangential force \[N\].
+    fn force(h: &Self::History) -> Vec2;
+    /// Elastic energy stored in the tangential spring(s) \[J\].
+    fn elastic_energy(h: &Self::History, pm: &PairMaterial) -> f64;
+    /// Writes the history into `out` (length [`TangentialLaw::HISTORY_LEN`]).
+    fn write(h: &Self::History, out: &mut [f64]);
+    /// Reads a history written by [`TangentialLaw::write`].
+    fn read(v: &[f64]) -> Result<Self::History, LawError>;
+}
+
+/// Cattaneo-Mindlin with load-history memory (Popov & Heß's method of dimensionality reduction,
+/// creep-law [`MindlinState`]) and Kuhn's (2011) creep term ([`CreepState`]): the exact tier.
+/// `truncation` is [`crate::CreepStep::truncation_energy`] (>= 0).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Exact;
+
+impl TangentialLaw for Exact {
+    type History = CreepState;
+    const NAME: &'static str = "exact";
+    const HISTORY_LEN: usize = MINDLIN_FLAT_LEN + 4;
+
+    #[inline]
+    fn supports(_: Option<CreepModel>) -> bool {
+        true
+    }
+
+    #[inline]
+    fn step(
+        h: &mut CreepState,
+        c: &PairConstants,
+        pm: &PairMaterial,
+        p: f64,
+        a: f64,
+        du_disp: Vec2,
+        du_roll: Vec2,
+    ) -> TangentialStep {
+        // The one call into CreepState.
+        let model = c.creep.unwrap_or(CreepModel::Kuhn);
+        let law = CreepLaw::from_parts(*pm, model, c.steady);
+        let s = h.update(&law, CreepInput::new(p, du_disp, du_roll).with_radius(a));
+        TangentialStep {
+            q: s.q,
+            creep_displacement: s.creep_displacement,
+            slip: s.slip_dissipation,
+            creep: s.creep_dissipation,
+            truncation: s.truncation_energy,
+        }
+    }
+
+    #[inline]
+    fn force(h: &CreepState) -> Vec2 {
+        h.force()
+    }
+
+    fn elastic_energy(h: &CreepState, pm: &PairMaterial) -> f64 {
+        h.mindlin().elastic_energy(pm)
+    }
+
+    fn write(h: &CreepState, out: &mut [f64]) {
+        out[..MINDLIN_FLAT_LEN].copy_from_slice(&h.mindlin().to_array());
+        let [l0, l1] = h.lag();
+        out[MINDLIN_FLAT_LEN..MINDLIN_FLAT_LEN + 4].copy_from_slice(&[l0.x, l0.y, l1.x, l1.y]);
+    }
+
+    fn read(v: &[f64]) -> Result<CreepState, LawError> {
+        let mut m = [0.0; MINDLIN_FLAT_LEN];
+        m.copy_from_slice(&v[..MINDLIN_FLAT_LEN]);
+        let mindlin = MindlinState::from_array(&m)?;
+        let l = &v[MINDLIN_FLAT_LEN..MINDLIN_FLAT_LEN + 4];
+        if !l.iter().all(|x| x.is_finite()) {
+            return Err(LawError::OutOfRange {
+                name: "creep lag state",
+                value: f64::NAN,
+                range: "finite",
+            });
+        }
+        Ok(CreepState::from_parts(
+            mindlin,
+            [Vec2::new(l[0], l[1]), Vec2::new(l[2], l[3])],
+        ))
+    }
+}
+
+/// History of the [`Cheap`] tier.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CheapHistory {
+    /// Tangential force on p from q \[N\], in the contact's `(t1, t2)`.
+    pub q: Vec2,
+    /// Spring stiffness `8 G* a` of the last step [N/m] (0: virgin).
+    pub k: f64,
+}
+
+/// The cheap tier: an incremental no-slip spring of Mindlin's (1949) initial stiffness
+/// `k_t = 8 G* a`, `Q += k_t du_eff`, scaled back onto `mu P_e` when it exceeds it (LAMMPS
+/// `granular` `tangential mindlin/force`, Thornton et al. 2013's incremental form), with Kuhn's
+/// creep term `du_eff = du_disp - F_ss(|Q|/(mu P)) Q/|Q| |du_roll|` (the explicit creep step is
+/// capped at `|Q|/k_t`, the displacement that unloads the linear spring to zero, so creep relaxes
+/// a force and never reverses it). Stored energy `|Q|^2 / (2 k_t)`; slip dissipation
+/// `Q . (du_eff - dQ/k_t)` (>= 0); `truncation` books the change of the stored energy when `k_t`
+/// changes at fixed `Q`, `|Q|^2 (1/k_t - 1/k_t,old) / 2` (signed: positive when the contact
+/// shrinks). Refuses [`CreepModel::FittedTransient`] (no lag state).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Cheap;
+
+impl TangentialLaw for Cheap {
+    type History = CheapHistory;
+    const NAME: &'static str = "cheap";
+    const HISTORY_LEN: usize = 3;
+
+    #[inline]
+    fn supports(model: Option<CreepModel>) -> bool {
+        model != Some(CreepModel::FittedTransient)
+    }
+
+    #[inline]
+    fn step(
+        h: &mut CheapHistory,
+        c: &PairConstants,
+        pm: &PairMaterial,
+        p: f64,
+        a: f64,
+        du_disp: Vec2,
+        du_roll: Vec2,
+    ) -> TangentialStep {
+        if !(p > 0.0 && p.is_finite() && a > 0.0 && a.is_finite()) {
+            let slip = Self::elastic_energy(h, pm);
+            *h = CheapHistory::default();
+            return TangentialStep {
+                slip,
+                ..TangentialStep::default()
+            };
+        }
+        let k = pm.tangential_stiffness(a);
+        let mu_p = pm.mu * p;
+        let q_old = h.q;
+        let q2 = q_old.length_squared();
+        let truncation = if q2 > 0.0 && h.k > 0.0 {
+            0.5 * q2 * (1.0 / k - 1.0 / h.k)
+        } else {
+            0.0
+        };
+        let roll = du_roll.length();
+        let mut creep_vec = Vec2::ZERO;
+        let mut creep_e = 0.0;
+        if roll > 0.0 && roll.is_finite() && q2 > 0.0 {
+            let q_abs = q2.sqrt();
+            let f = c.steady.creepage_for_force(q_abs, mu_p, pm.g, a);
+            let creep = (f * roll).min(q_abs / k);
+            if creep.is_finite() && creep > 0.0 {
+                creep_vec = q_old * (creep / q_abs);
+                creep_e = q_abs * creep;
+            }
+        }
+        let du_eff = if du_disp.is_finite() {
+            du_disp - creep_vec
+        } else {
+            -creep_vec
+        };
+        let trial = q_old + du_eff * k;
+        let t_abs = trial.length();
+        let (q, slip) = if mu_p.is_finite() && t_abs > mu_p {
+            let q = trial * (mu_p / t_abs);
+            (q, q.dot(trial - q) / k)
+        } else {
+            (trial, 0.0)
+        };
+        h.q = q;
+        h.k = k;
+        TangentialStep {
+            q,
+            creep_displacement: creep_vec,
+            slip,
+            creep: creep_e,
+            truncation,
+        }
+    }
+
+    #[inline]
+    fn force(h: &CheapHistory) -> Vec2 {
+        h.q
+    }
+
+    #[inline]
+    fn elastic_energy(h: &CheapHistory, _: &PairMaterial) -> f64 {
+        if h.k > 0.0 {
+            0.5 * h.q.length_squared() / h.k
+        } else {
+            0.0
+        }
+    }
+
+    fn write(h: &CheapHistory, out: &mut [f64]) {
+        out[..3].copy_from_slice(&[h.q.x, h.q.y, h.k]);
+    }
+
+    fn read(v: &[f64]) -> Result<CheapHistory, LawError> {
+        if !(v[..3].iter().all(|x| x.is_finite()) && v[2] >= 0.0) {
+            return Err(LawError::OutOfRange {
+                name: "cheap tangential history",
+                value: v[2],
+                range: "finite, stiffness >= 0",
+            });
+        }
+        Ok(CheapHistory {
+            q: Vec2::new(v[0], v[1]),
+            k: v[2],
+        })
+    }
+}
