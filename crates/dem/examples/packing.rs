@@ -10,7 +10,7 @@
 //! ```
 //!
 //! `tiers`: `cheap`, `exact` or `both` (default; interleaved per round). Prints, per round and
-//! tier, the mean seconds per step and the particle-steps per second, then the medians.
+//! tier, the mean CPU seconds per step and the particle-steps per second, then the medians.
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -100,7 +100,15 @@ fn load(dir: &str) -> Res<Packing> {
     })
 }
 
-/// Mean seconds per step of `steps` steps (the set-up excluded).
+/// CPU time of this thread \[s\] (Linux: the first field of `/proc/thread-self/schedstat`, in
+/// ns), so that other jobs' load on a shared machine does not enter; `None` elsewhere.
+fn cpu_s() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    Some(s.split_whitespace().next()?.parse::<f64>().ok()? * 1e-9)
+}
+
+/// Mean seconds per step of `steps` steps (the set-up excluded): CPU time of the thread where
+/// the system reports it, else wall-clock time.
 fn time<T: TangentialLaw>(p: &Packing, steps: usize) -> Res<f64> {
     let cfg = DemConfig {
         dt: p.dt,
@@ -108,11 +116,15 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize) -> Res<f64> {
         ..DemConfig::default()
     };
     let mut d = Dem::<T>::new(cfg, p.table.clone(), &p.particles, &p.walls)?;
-    let t = Instant::now();
+    let (t, c) = (Instant::now(), cpu_s());
     for _ in 0..steps {
         d.step()?;
     }
-    Ok(t.elapsed().as_secs_f64() / steps as f64)
+    let spent = match (c, cpu_s()) {
+        (Some(a), Some(b)) => b - a,
+        _ => t.elapsed().as_secs_f64(),
+    };
+    Ok(spent / steps as f64)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
