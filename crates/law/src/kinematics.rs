@@ -67,7 +67,7 @@ pub fn contact_rates(p: &BodyMotion, q: &BodyMotion, point: Vec3, normal: Vec3) 
 /// [`contact_rates`] and the approach rate `delta_dot = -(u'_q - u'_p) . n` \[m/s\] (the rate
 /// at which the overlap grows), from the same two surface velocities: the soft-sphere pair
 /// kernel (`crate::pair`) needs both.
-#[inline]
+#[inline(always)]
 pub fn contact_rates_and_approach(
     p: &BodyMotion,
     q: &BodyMotion,

@@ -93,8 +93,14 @@ impl PairConstants {
     /// treats as no contact). Radii must be finite and > 0 (hosts validate them once).
     #[inline]
     pub fn pair_material(&self, sp: Surface, sq: Surface) -> PairMaterial {
+        // `R_p R_q / (R_p + R_q)`: one division where `1/(1/R_p + 1/R_q)` takes three.
+        let r_star = match (sp, sq) {
+            (Surface::Sphere(rp), Surface::Sphere(rq)) => rp * rq / (rp + rq),
+            (Surface::Sphere(r), Surface::Plane) | (Surface::Plane, Surface::Sphere(r)) => r,
+            (Surface::Plane, Surface::Plane) => f64::INFINITY,
+        };
         PairMaterial {
-            r_star: 1.0 / (sp.curvature() + sq.curvature()),
+            r_star,
             surface_p: sp,
             surface_q: sq,
             ..self.material
@@ -118,13 +124,22 @@ pub struct PairBody {
 }
 
 impl PairBody {
-    /// `1/m` [1/kg], 0 for an immovable body.
+    /// Whether the contact can move the body (finite mass > 0).
     #[inline]
-    pub(super) fn inv_mass(&self) -> f64 {
-        if self.mass > 0.0 && self.mass.is_finite() {
-            1.0 / self.mass
-        } else {
-            0.0
+    fn movable(&self) -> bool {
+        self.mass > 0.0 && self.mass.is_finite()
+    }
+
+    /// The reduced mass `m* = 1/(1/m_p + 1/m_q)` \[kg\] of a pair, an immovable body counting
+    /// as `1/m = 0`; `None` when neither can move. Evaluated as `m_p m_q/(m_p + m_q)`: one
+    /// division where the reciprocals take three.
+    #[inline]
+    pub(super) fn reduced_mass(p: &PairBody, q: &PairBody) -> Option<f64> {
+        match (p.movable(), q.movable()) {
+            (true, true) => Some(p.mass * q.mass / (p.mass + q.mass)),
+            (true, false) => Some(p.mass),
+            (false, true) => Some(q.mass),
+            (false, false) => None,
         }
     }
 }

@@ -73,9 +73,9 @@ pub fn pair_force<T: TangentialLaw>(
     dt: f64,
 ) -> PairForces {
     let delta = g.overlap;
-    let inv_sum = p.inv_mass() + q.inv_mass();
+    let m_star = PairBody::reduced_mass(p, q).unwrap_or(f64::NAN);
     let pm = c.pair_material(p.surface, q.surface);
-    if !(delta > 0.0 && inv_sum > 0.0 && pm.r_star.is_finite()) {
+    if !(delta > 0.0 && m_star > 0.0 && pm.r_star.is_finite()) {
         let released = release(c, p.surface, q.surface, h);
         return PairForces {
             dissipation: PairDissipation {
@@ -85,7 +85,6 @@ pub fn pair_force<T: TangentialLaw>(
             ..PairForces::default()
         };
     }
-    let m_star = 1.0 / inv_sum;
     let n = g.normal;
     let cp = g.point;
     let (rates, delta_dot) = rates_and_approach(p, q, cp, n);
@@ -225,11 +224,19 @@ pub fn release<T: TangentialLaw>(
 #[inline]
 pub fn rotate_to(v: Vec3, from: Vec3, to: Vec3) -> Vec3 {
     let axis = from.cross(to);
-    let s = axis.length();
+    let s2 = axis.dot(axis);
     let c = from.dot(to);
-    if !(s > 1e-15) {
+    if !(s2 > 1e-30) {
         return if c >= 0.0 { v } else { -v };
     }
+    // Rodrigues with the unit axis `k = axis/s`, `s = sin(angle)`: `v c + (k x v) s + k (k.v)
+    // (1 - c)`. For turns below a quarter (`c > 0`, every DEM step) the same is
+    // `v c + axis x v + axis (axis.v) / (1 + c)` (`s^2 = (1 - c)(1 + c)`): no square root and
+    // one division; beyond, where `1 + c` may round to 0, the unit-axis form.
+    if c > 0.0 {
+        return v * c + axis.cross(v) + axis * (axis.dot(v) / (1.0 + c));
+    }
+    let s = s2.sqrt();
     let k = axis * (1.0 / s);
     v * c + k.cross(v) * s + k * (k.dot(v) * (1.0 - c))
 }

@@ -161,7 +161,7 @@ impl TangentialLaw for Cheap {
         model != Some(CreepModel::FittedTransient)
     }
 
-    #[inline]
+    #[inline(always)]
     fn step(
         h: &mut CheapHistory,
         c: &PairConstants,
@@ -184,7 +184,8 @@ impl TangentialLaw for Cheap {
         let q_old = h.q;
         let q2 = q_old.length_squared();
         let truncation = if q2 > 0.0 && h.k > 0.0 {
-            0.5 * q2 * (1.0 / k - 1.0 / h.k)
+            // `|Q|^2 (1/k - 1/k_old) / 2` with one division.
+            0.5 * q2 * ((h.k - k) / (k * h.k))
         } else {
             0.0
         };
