@@ -138,6 +138,30 @@ int32_t creep_lammps_compute(const struct CreepLammpsModel *const *models,
                              char *err,
                              size_t err_len);
 
+// Steps `n` contacts by `dt` (s) with their histories in place in one store, as
+// [`creep_lammps_compute`] except that contact `k` reads and rewrites
+// `history[offsets[k] ..][..stride]` (offsets in doubles), with `history_len` the store's
+// length in doubles. A host keeps each contact's history once (LAMMPS' plugin: one slot per
+// neighbour-list entry) and nothing is gathered or scattered. An offset whose row leaves the
+// store is an error (status 1), not an out-of-bounds access.
+//
+// # Safety
+// `models` points to `n` model pointers from [`creep_lammps_model_new`] (null ones are
+// reported as errors); `contacts` to `n` contacts; `offsets` to `n` offsets; `history` to
+// `history_len` doubles; `out` to `n` outputs; `err` is null or valid for writes of `err_len`
+// bytes. The buffers do not overlap. With `n == 0` the pointers are not read.
+int32_t creep_lammps_compute_at(const struct CreepLammpsModel *const *models,
+                                double dt,
+                                size_t n,
+                                const struct CreepLammpsContact *contacts,
+                                double *history,
+                                size_t history_len,
+                                const size_t *offsets,
+                                size_t stride,
+                                struct CreepLammpsOutput *out,
+                                char *err,
+                                size_t err_len);
+
 // Steps `n` sphere-wall contacts by `dt` (s), as [`creep_lammps_compute`]: the wall is body p
 // (`out[k].force_p` is the force on the wall, `out[k].torque_q` the torque on the sphere).
 //
