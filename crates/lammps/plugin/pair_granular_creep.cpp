@@ -311,13 +311,13 @@ void PairGranularCreep::compute(int eflag, int vflag)
                         "being saved first (a rebuild outside the pre-exchange path?)");
     rebuild_slots();
     if (!update->setupflag) rebuilt_at = update->ntimestep;
-    // A sphere larger than the cut-off was made for may have come in (created during the run
-    // by a fix other than pour/deposit): its contacts would be missed, so stop.
-    for (int i = 0; i < nlocal; i++)
-      if (radius[i] > maxrad)
-        error->one(FLERR, "pair granular/creep: atom {} has radius {} m, larger than the {} m the neighbour "
-                   "cut-off was set up for (pair_style granular/creep maxradius R)", tag[i], radius[i], maxrad);
   }
+  // A sphere larger than the cut-off was made for (created or grown during the run by a fix
+  // other than pour/deposit) would miss contacts: stop instead. One compare per owned atom.
+  for (int i = 0; i < nlocal; i++)
+    if (radius[i] > maxrad)
+      error->one(FLERR, "pair granular/creep: atom {} has radius {} m, larger than the {} m the neighbour "
+                 "cut-off was set up for (pair_style granular/creep maxradius R)", tag[i], radius[i], maxrad);
 
   batch.clear();
   batch_off.clear();
