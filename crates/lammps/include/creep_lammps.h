@@ -30,11 +30,11 @@ typedef struct CreepLammpsModel CreepLammpsModel;
 typedef struct CreepLammpsSettings {
   // Young's modulus E (Pa).
   double young_modulus;
-  // Poisson's ratio nu [-].
+  // Poisson's ratio nu (-).
   double poisson_ratio;
-  // Restitution e [-].
+  // Restitution e (-).
   double restitution;
-  // Friction mu [-].
+  // Friction mu (-).
   double friction;
   // `CREEP_LAMMPS_TIER_*`.
   uint32_t tier;
@@ -42,9 +42,9 @@ typedef struct CreepLammpsSettings {
   uint32_t creep;
   // `CREEP_LAMMPS_ROLLING_*`.
   uint32_t rolling;
-  // Rolling friction mu_r [-] (rolling types constant and epsd).
+  // Rolling friction mu_r (-) (rolling types constant and epsd).
   double rolling_friction;
-  // Rolling damping ratio eta [-] (epsd).
+  // Rolling damping ratio eta (-) (epsd).
   double rolling_damping;
 } CreepLammpsSettings;
 
@@ -52,9 +52,9 @@ typedef struct CreepLammpsSettings {
 typedef struct CreepLammpsBody {
   // Centre (m).
   double x[3];
-  // Velocity [m/s].
+  // Velocity (m/s).
   double v[3];
-  // Angular velocity [rad/s].
+  // Angular velocity (rad/s).
   double omega[3];
   // Radius (m).
   double radius;
@@ -74,9 +74,9 @@ typedef struct CreepLammpsContact {
 typedef struct CreepLammpsOutput {
   // Force on p (N) (`-force_p` on q).
   double force_p[3];
-  // Torque on p about its centre [N m].
+  // Torque on p about its centre (N m).
   double torque_p[3];
-  // Torque on q about its centre [N m].
+  // Torque on q about its centre (N m).
   double torque_q[3];
   // 1 if the spheres overlap (the history is live), 0 if apart (history reset to virgin).
   uint32_t touching;
@@ -87,9 +87,9 @@ typedef struct CreepLammpsOutput {
 typedef struct CreepLammpsWallContact {
   // A point on the wall plane (m).
   double point[3];
-  // Unit normal of the wall, pointing into the domain [-].
+  // Unit normal of the wall, pointing into the domain (-).
   double normal[3];
-  // Velocity of the wall [m/s] (it does not rotate).
+  // Velocity of the wall (m/s) (it does not rotate).
   double wall_velocity[3];
   // The sphere (body q).
   struct CreepLammpsBody sphere;

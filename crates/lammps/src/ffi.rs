@@ -30,11 +30,11 @@ pub const CREEP_LAMMPS_ROLLING_EPSD: u32 = 2;
 pub struct CreepLammpsSettings {
     /// Young's modulus E (Pa).
     pub young_modulus: f64,
-    /// Poisson's ratio nu [-].
+    /// Poisson's ratio nu (-).
     pub poisson_ratio: f64,
-    /// Restitution e [-].
+    /// Restitution e (-).
     pub restitution: f64,
-    /// Friction mu [-].
+    /// Friction mu (-).
     pub friction: f64,
     /// `CREEP_LAMMPS_TIER_*`.
     pub tier: u32,
@@ -42,9 +42,9 @@ pub struct CreepLammpsSettings {
     pub creep: u32,
     /// `CREEP_LAMMPS_ROLLING_*`.
     pub rolling: u32,
-    /// Rolling friction mu_r [-] (rolling types constant and epsd).
+    /// Rolling friction mu_r (-) (rolling types constant and epsd).
     pub rolling_friction: f64,
-    /// Rolling damping ratio eta [-] (epsd).
+    /// Rolling damping ratio eta (-) (epsd).
     pub rolling_damping: f64,
 }
 

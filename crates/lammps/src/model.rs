@@ -36,11 +36,11 @@ impl Tier {
 pub struct Settings {
     /// Young's modulus `E` (Pa) of both spheres; `G = E / (2 (1 + nu))`.
     pub young_modulus: f64,
-    /// Poisson's ratio `nu` [-], in (-1, 0.5].
+    /// Poisson's ratio `nu` (-), in (-1, 0.5].
     pub poisson_ratio: f64,
-    /// Coefficient of restitution `e` [-] that the Tsuji damping reproduces exactly.
+    /// Coefficient of restitution `e` (-) that the Tsuji damping reproduces exactly.
     pub restitution: f64,
-    /// Coulomb friction `mu` [-] (>= 0).
+    /// Coulomb friction `mu` (-) (>= 0).
     pub friction: f64,
     /// Tangential tier.
     pub tier: Tier,
@@ -144,9 +144,9 @@ pub struct Model {
 pub struct Body {
     /// Centre (m).
     pub x: [f64; 3],
-    /// Velocity [m/s].
+    /// Velocity (m/s).
     pub v: [f64; 3],
-    /// Angular velocity [rad/s].
+    /// Angular velocity (rad/s).
     pub omega: [f64; 3],
     /// Radius (m).
     pub radius: f64,
@@ -171,9 +171,9 @@ pub struct Contact {
 pub struct WallContact {
     /// A point on the wall plane (m).
     pub point: [f64; 3],
-    /// Unit normal of the wall, pointing into the domain [-].
+    /// Unit normal of the wall, pointing into the domain (-).
     pub normal: [f64; 3],
-    /// Velocity of the wall [m/s] (it does not rotate).
+    /// Velocity of the wall (m/s) (it does not rotate).
     pub wall_velocity: [f64; 3],
     /// The sphere (body q).
     pub sphere: Body,
@@ -185,9 +185,9 @@ pub struct WallContact {
 pub struct ContactOutput {
     /// Force on p (N) (`-force_p` on q).
     pub force_p: [f64; 3],
-    /// Torque on p about its centre [N m].
+    /// Torque on p about its centre (N m).
     pub torque_p: [f64; 3],
-    /// Torque on q about its centre [N m].
+    /// Torque on q about its centre (N m).
     pub torque_q: [f64; 3],
     /// 1 if the spheres overlap (the history is live), 0 if apart (history reset to virgin).
     pub touching: u32,
