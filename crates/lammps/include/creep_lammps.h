@@ -30,11 +30,11 @@ typedef struct CreepLammpsModel CreepLammpsModel;
 typedef struct CreepLammpsSettings {
   // Young's modulus E (Pa).
   double young_modulus;
-  // Poisson's ratio nu [-].
+  // Poisson's ratio nu (-).
   double poisson_ratio;
-  // Restitution e [-].
+  // Restitution e (-).
   double restitution;
-  // Friction mu [-].
+  // Friction mu (-).
   double friction;
   // `CREEP_LAMMPS_TIER_*`.
   uint32_t tier;
@@ -42,9 +42,9 @@ typedef struct CreepLammpsSettings {
   uint32_t creep;
   // `CREEP_LAMMPS_ROLLING_*`.
   uint32_t rolling;
-  // Rolling friction mu_r [-] (rolling types constant and epsd).
+  // Rolling friction mu_r (-) (rolling types constant and epsd).
   double rolling_friction;
-  // Rolling damping ratio eta [-] (epsd).
+  // Rolling damping ratio eta (-) (epsd).
   double rolling_damping;
 } CreepLammpsSettings;
 
@@ -52,9 +52,9 @@ typedef struct CreepLammpsSettings {
 typedef struct CreepLammpsBody {
   // Centre (m).
   double x[3];
-  // Velocity [m/s].
+  // Velocity (m/s).
   double v[3];
-  // Angular velocity [rad/s].
+  // Angular velocity (rad/s).
   double omega[3];
   // Radius (m).
   double radius;
@@ -74,9 +74,9 @@ typedef struct CreepLammpsContact {
 typedef struct CreepLammpsOutput {
   // Force on p (N) (`-force_p` on q).
   double force_p[3];
-  // Torque on p about its centre [N m].
+  // Torque on p about its centre (N m).
   double torque_p[3];
-  // Torque on q about its centre [N m].
+  // Torque on q about its centre (N m).
   double torque_q[3];
   // 1 if the spheres overlap (the history is live), 0 if apart (history reset to virgin).
   uint32_t touching;
@@ -87,9 +87,9 @@ typedef struct CreepLammpsOutput {
 typedef struct CreepLammpsWallContact {
   // A point on the wall plane (m).
   double point[3];
-  // Unit normal of the wall, pointing into the domain [-].
+  // Unit normal of the wall, pointing into the domain (-).
   double normal[3];
-  // Velocity of the wall [m/s] (it does not rotate).
+  // Velocity of the wall (m/s) (it does not rotate).
   double wall_velocity[3];
   // The sphere (body q).
   struct CreepLammpsBody sphere;
@@ -137,6 +137,30 @@ int32_t creep_lammps_compute(const struct CreepLammpsModel *const *models,
                              struct CreepLammpsOutput *out,
                              char *err,
                              size_t err_len);
+
+// Steps `n` contacts by `dt` (s) with their histories in place in one store, as
+// [`creep_lammps_compute`] except that contact `k` reads and rewrites
+// `history[offsets[k] ..][..stride]` (offsets in doubles), with `history_len` the store's
+// length in doubles. A host keeps each contact's history once (LAMMPS' plugin: one slot per
+// neighbour-list entry) and nothing is gathered or scattered. An offset whose row leaves the
+// store is an error (status 1), not an out-of-bounds access.
+//
+// # Safety
+// `models` points to `n` model pointers from [`creep_lammps_model_new`] (null ones are
+// reported as errors); `contacts` to `n` contacts; `offsets` to `n` offsets; `history` to
+// `history_len` doubles; `out` to `n` outputs; `err` is null or valid for writes of `err_len`
+// bytes. The buffers do not overlap. With `n == 0` the pointers are not read.
+int32_t creep_lammps_compute_at(const struct CreepLammpsModel *const *models,
+                                double dt,
+                                size_t n,
+                                const struct CreepLammpsContact *contacts,
+                                double *history,
+                                size_t history_len,
+                                const size_t *offsets,
+                                size_t stride,
+                                struct CreepLammpsOutput *out,
+                                char *err,
+                                size_t err_len);
 
 // Steps `n` sphere-wall contacts by `dt` (s), as [`creep_lammps_compute`]: the wall is body p
 // (`out[k].force_p` is the force on the wall, `out[k].torque_q` the torque on the sphere).

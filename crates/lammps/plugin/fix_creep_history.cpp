@@ -3,16 +3,19 @@
 
 #include "atom.h"
 #include "error.h"
+#include "force.h"
+#include "pair.h"
 #include "memory.h"
 #include "utils.h"
 
 #include <cstring>
 
 using namespace LAMMPS_NS;
+using namespace FixConst;
 
 // fix ID group creep/history maxpartners hlen
 FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), maxpartners(0), hlen(0), rowlen(0), rows(nullptr), spare(nullptr)
+    Fix(lmp, narg, arg), pair_store(true), maxpartners(0), hlen(0), rowlen(0), rows(nullptr), spare(nullptr)
 {
   if (narg != 5) error->all(FLERR, "Illegal fix creep/history command: expected maxpartners hlen");
   maxpartners = utils::inumeric(FLERR, arg[3], false, lmp);
@@ -22,7 +25,7 @@ FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg) :
 }
 
 FixCreepHistory::FixCreepHistory(LAMMPS *lmp, int narg, char **arg, int maxp, int hl) :
-    Fix(lmp, narg, arg), maxpartners(maxp), hlen(hl), rowlen(0), rows(nullptr), spare(nullptr)
+    Fix(lmp, narg, arg), pair_store(false), maxpartners(maxp), hlen(hl), rowlen(0), rows(nullptr), spare(nullptr)
 {
   if (maxpartners < 1 || hlen < 1) error->all(FLERR, "fix {}: no walls or no history", style);
   init_storage();
@@ -51,7 +54,35 @@ FixCreepHistory::~FixCreepHistory()
 
 int FixCreepHistory::setmask()
 {
-  return 0;
+  return PRE_EXCHANGE | MIN_PRE_EXCHANGE;
+}
+
+void FixCreepHistory::sync_from_pair()
+{
+  if (!pair_store) return;
+  if (auto *owner = dynamic_cast<CreepHistoryOwner *>(force->pair)) owner->sync_history_rows();
+}
+
+// Atoms are about to migrate (and be sorted): the rows must hold the current histories.
+void FixCreepHistory::setup_pre_exchange()
+{
+  sync_from_pair();
+}
+
+void FixCreepHistory::pre_exchange()
+{
+  sync_from_pair();
+}
+
+void FixCreepHistory::min_pre_exchange()
+{
+  sync_from_pair();
+}
+
+// Between runs atoms may be deleted, created or written to a restart: rows current.
+void FixCreepHistory::post_run()
+{
+  sync_from_pair();
 }
 
 void FixCreepHistory::grow_arrays(int nmax)
@@ -89,6 +120,7 @@ int FixCreepHistory::unpack_exchange(int nlocal, double *buf)
 // Restart: [n + 1, row...], LAMMPS' convention that the first value counts the values.
 int FixCreepHistory::pack_restart(int i, double *buf)
 {
+  sync_from_pair();    // a restart written during a run (restart N file): once, then current
   const int n = used(i);
   buf[0] = n + 1;
   std::memcpy(buf + 1, rows[i], sizeof(double) * n);
@@ -109,6 +141,7 @@ void FixCreepHistory::unpack_restart(int nlocal, int nth)
 
 int FixCreepHistory::size_restart(int i)
 {
+  sync_from_pair();
   return used(i) + 1;
 }
 

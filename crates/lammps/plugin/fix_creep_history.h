@@ -18,6 +18,15 @@
 
 namespace LAMMPS_NS {
 
+// A pair style that keeps its contact histories elsewhere between neighbour-list builds and
+// writes them into this fix's rows on request (before atoms migrate, before a restart is
+// written, at the end of a run).
+class CreepHistoryOwner {
+ public:
+  virtual ~CreepHistoryOwner() noexcept(false) = default;    // as LAMMPS' Pointers
+  virtual void sync_history_rows() = 0;
+};
+
 class FixCreepHistory : public Fix {
  public:
   FixCreepHistory(class LAMMPS *, int, char **);
@@ -30,6 +39,10 @@ class FixCreepHistory : public Fix {
 
  public:
   int setmask() override;
+  void setup_pre_exchange() override;
+  void pre_exchange() override;
+  void min_pre_exchange() override;
+  void post_run() override;
 
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
@@ -41,6 +54,11 @@ class FixCreepHistory : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
   double memory_usage() override;
+
+  // Asks the pair style (if it is a CreepHistoryOwner) to bring the rows up to date; only for
+  // the pair's own fix (not for fix wall/creep, which keeps its rows current itself).
+  void sync_from_pair();
+  bool pair_store;
 
   // Entries per atom and doubles per contact history.
   int maxpartners, hlen;

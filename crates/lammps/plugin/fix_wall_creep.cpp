@@ -1,18 +1,24 @@
 // creep-lammps plugin shim - GPL-2.0-only (see LICENSE-NOTE.md in this directory).
 //
-// fix ID group wall/creep E e nu mu [tier exact|spring] [creep yes|no]
+// fix ID group wall/creep E e nu mu [tier exact|spring] [creep yes|no] [velocity VX VY VZ]
 //     {xplane|yplane|zplane} LO|NULL HI|NULL ...
-// E Young's modulus [Pa], e restitution, nu Poisson ratio, mu friction of the sphere-wall pair
-// (the wall of the same elastic material). The wall is body p of each contact; the walls do not
-// move. compute_vector: the total force on each wall given (3 numbers per wall, in the order
-// given, lower before upper), summed over ranks.
+// E Young's modulus (Pa), e restitution, nu Poisson ratio, mu friction of the sphere-wall pair
+// (the wall of the same elastic material). The wall is body p of each contact. With
+// `velocity VX VY VZ` (m/s) all walls of the fix move rigidly: a wall given at position LO is at
+// LO + V_axis dt (step - step0) at a step (step0: the step the fix was defined at, kept in
+// restart files; constant dt), and the law sees the full wall velocity (a tangential
+// component shears without moving the plane), as creep-dem's moving plane walls (point +=
+// velocity dt per step). compute_vector: the total force on each wall given (3 numbers per
+// wall, in the order given, lower before upper), summed over ranks.
 #include "fix_wall_creep.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "error.h"
 #include "update.h"
 #include "utils.h"
 
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -45,7 +51,7 @@ Parsed parse(int narg, char **arg)
 
 FixWallCreep::FixWallCreep(LAMMPS *lmp, int narg, char **arg) :
     FixCreepHistory(lmp, narg, arg, parse(narg, arg).nwalls, static_cast<int>(creep_lammps_history_len(parse(narg, arg).tier))),
-    model(nullptr), force_flag(0)
+    velocity{0.0, 0.0, 0.0}, time_origin(update->ntimestep), model(nullptr), force_flag(0)
 {
   if (narg < 10) error->all(FLERR, "fix wall/creep: E e nu mu [tier exact|spring] [creep yes|no] xplane|yplane|zplane LO HI ...");
   CreepLammpsSettings s;
@@ -65,6 +71,9 @@ FixWallCreep::FixWallCreep(LAMMPS *lmp, int narg, char **arg) :
       if (v == "exact") s.tier = CREEP_LAMMPS_TIER_EXACT;
       else if (v == "spring") s.tier = CREEP_LAMMPS_TIER_SPRING;
       else error->all(FLERR, "fix wall/creep: tier must be exact or spring, not {}", v);
+    } else if (a == "velocity" && i + 3 < narg) {
+      for (int d = 0; d < 3; d++) velocity[d] = utils::numeric(FLERR, arg[i + 1 + d], false, lmp);
+      i += 3;
     } else if (a == "creep" && i + 1 < narg) {
       s.creep = utils::logical(FLERR, arg[++i], false, lmp) ? 1 : 0;
     } else if ((a == "xplane" || a == "yplane" || a == "zplane") && i + 2 < narg) {
@@ -80,6 +89,12 @@ FixWallCreep::FixWallCreep(LAMMPS *lmp, int narg, char **arg) :
     }
   }
   if (planes.empty()) error->all(FLERR, "fix wall/creep: no wall given");
+  for (double vd : velocity)
+    if (!std::isfinite(vd)) error->all(FLERR, "fix wall/creep: velocity must be finite (m/s)");
+  if (velocity[0] != 0.0 || velocity[1] != 0.0 || velocity[2] != 0.0) {
+    time_depend = 1;       // positions follow the step count
+    restart_global = 1;    // keep time_origin across restarts
+  }
   char msg[512] = {0};
   model = creep_lammps_model_new(&s, msg, sizeof(msg));
   if (!model) error->all(FLERR, "fix wall/creep: {}", msg);
@@ -120,6 +135,8 @@ void FixWallCreep::post_force(int /*vflag*/)
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const double dt = update->setupflag ? 0.0 : update->dt;    // as the pair style
+  // Moving walls: displacement since the step they were defined at (constant time step).
+  const double elapsed = update->dt * static_cast<double>(update->ntimestep - time_origin);
 
   batch.clear();
   batch_i.clear();
@@ -132,18 +149,19 @@ void FixWallCreep::post_force(int /*vflag*/)
     const int ni = static_cast<int>(row[0]);
     for (int w = 0; w < static_cast<int>(planes.size()); w++) {
       const Plane &pl = planes[w];
-      const double dist = pl.side * (x[i][pl.axis] - pl.at);
+      const double wall_at = pl.at + velocity[pl.axis] * elapsed;
+      const double dist = pl.side * (x[i][pl.axis] - wall_at);
       if (dist >= radius[i]) continue;
       CreepLammpsWallContact c;
       for (int d = 0; d < 3; d++) {
         c.point[d] = 0.0;
         c.normal[d] = 0.0;
-        c.wall_velocity[d] = 0.0;
+        c.wall_velocity[d] = velocity[d];
         c.sphere.x[d] = x[i][d];
         c.sphere.v[d] = v[i][d];
         c.sphere.omega[d] = omega[i][d];
       }
-      c.point[pl.axis] = pl.at;
+      c.point[pl.axis] = wall_at;
       c.normal[pl.axis] = pl.side;
       c.sphere.radius = radius[i];
       c.sphere.mass = rmass[i];
@@ -199,4 +217,22 @@ double FixWallCreep::compute_vector(int n)
     force_flag = 1;
   }
   return wall_force_all[n];
+}
+
+// Global restart state (moving walls only): the step the walls were at their given positions.
+void FixWallCreep::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    double list[2] = {1.0, static_cast<double>(time_origin)};
+    int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 2, fp);
+  }
+}
+
+void FixWallCreep::restart(char *buf)
+{
+  const auto *list = reinterpret_cast<const double *>(buf);
+  if (static_cast<int>(list[0]) != 1) error->all(FLERR, "fix wall/creep: restart data from another version");
+  time_origin = static_cast<bigint>(list[1]);
 }

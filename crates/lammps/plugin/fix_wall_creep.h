@@ -24,6 +24,8 @@ class FixWallCreep : public FixCreepHistory {
   void setup(int) override;
   void post_force(int) override;
   double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
 
  private:
   struct Plane {
@@ -32,6 +34,8 @@ class FixWallCreep : public FixCreepHistory {
     double at;       // position [m]
   };
   std::vector<Plane> planes;
+  double velocity[3];     // of all walls of this fix [m/s] (velocity VX VY VZ; default 0)
+  bigint time_origin;     // step at which the walls were at their given positions
   CreepLammpsModel *model;
   std::vector<CreepLammpsWallContact> batch;
   std::vector<double> batch_hist;

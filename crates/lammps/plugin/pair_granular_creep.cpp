@@ -36,7 +36,8 @@ static const char HISTORY_FIX_ID[] = "CREEP_HISTORY";
 PairGranularCreep::PairGranularCreep(LAMMPS *lmp) :
     Pair(lmp), maxpartners(24), tier(CREEP_LAMMPS_TIER_EXACT), creep(1), rolling(CREEP_LAMMPS_ROLLING_NONE),
     rolling_friction(0.0), rolling_damping(0.0),
-    models(nullptr), maxrad(0.0), fix_history(nullptr)
+    models(nullptr), maxrad(0.0), fix_history(nullptr), nslots(0), rows_stale(false), rebuilt_at(-1),
+    maxrad_user(0.0)
 {
   single_enable = 0;
   restartinfo = 0;    // re-issue pair_style and pair_coeff after read_restart
@@ -107,6 +108,9 @@ void PairGranularCreep::settings(int narg, char **arg)
       else error->all(FLERR, "pair_style granular/creep: tier must be exact or spring, not {}", val);
     } else if (key == "creep") {
       creep = utils::logical(FLERR, val, false, lmp);
+    } else if (key == "maxradius") {
+      maxrad_user = utils::numeric(FLERR, val, false, lmp);
+      if (!(maxrad_user > 0.0)) error->all(FLERR, "pair_style granular/creep: maxradius must be > 0 (m)");
     } else if (key == "maxpartners") {
       maxpartners = utils::inumeric(FLERR, val, false, lmp);
       if (maxpartners < 1) error->all(FLERR, "pair_style granular/creep: maxpartners must be >= 1");
@@ -169,9 +173,21 @@ void PairGranularCreep::init_style()
     error->all(FLERR, "pair granular/creep: fix {} has maxpartners {} hlen {}, need {} {}", HISTORY_FIX_ID,
                fix_history->maxpartners, fix_history->hlen, maxpartners, hlen);
 
-  double mine = 0.0;
+  // The cut-off (2 maxrad): the largest radius of the atoms now, of what fix pour / deposit
+  // will insert (their extract("radius")), and of pair_style ... maxradius R. Recomputed at
+  // every run's init; an atom larger than that appearing during a run is an error (compute).
+  double mine = maxrad_user;
   for (int i = 0; i < atom->nlocal; i++) mine = std::max(mine, atom->radius[i]);
+  for (const char *style : {"^pour", "^deposit"})
+    for (auto *ifix : modify->get_fix_by_style(style))
+      for (int t = 1; t <= atom->ntypes; t++) {
+        int itype = t;    // in: the type; the fix answers with its largest radius for it
+        if (auto *r = static_cast<double *>(ifix->extract("radius", itype))) mine = std::max(mine, *r);
+      }
   MPI_Allreduce(&mine, &maxrad, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (!(maxrad > 0.0))
+    error->all(FLERR, "pair granular/creep: no atoms and no pair_style ... maxradius R to size the cut-off");
+
 }
 
 double PairGranularCreep::init_one(int i, int j)
@@ -182,6 +198,88 @@ double PairGranularCreep::init_one(int i, int j)
   }
   // Cut-off: the largest contact distance (sizes set the real one per pair).
   return 2.0 * maxrad;
+}
+
+// Reads the per-atom rows into one slot per neighbour entry that has a history, in the
+// neighbour list's order (so the pool is also compacted: contacts that opened since the last
+// build are gone). Runs after each neighbour-list build, when the rows are current.
+void PairGranularCreep::rebuild_slots()
+{
+  const int hlen = fix_history->hlen;
+  double **rows = fix_history->rows;
+  const tagint *tag = atom->tag;
+  const int inum = list->inum;
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  slot_first.resize(inum + 1);
+  int total = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    slot_first[ii] = total;
+    total += numneigh[ilist[ii]];
+  }
+  slot_first[inum] = total;
+  slot.assign(total, -1);
+  nslots = 0;
+  pool.clear();
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    double *rowi = rows[i];
+    const int ni = static_cast<int>(rowi[0]);
+    if (ni == 0) continue;
+    const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const double partner = static_cast<double>(tag[jlist[jj] & NEIGHMASK]);
+      for (int e = 0; e < ni; e++)
+        if (tagsi[e] == partner) {
+          const double *h = fix_history->hist_of(rowi, e);
+          pool.insert(pool.end(), h, h + hlen);
+          slot[slot_first[ii] + jj] = nslots++;
+          break;
+        }
+    }
+  }
+}
+
+// Writes every live contact's history into the rows of its owned atoms (both, for a pair of
+// owned atoms, so that either may migrate), keyed by the partner's tag. Only when the pool is
+// newer than the rows; the neighbour list and the atom indices must still be those the slots
+// were built for (true before exchange, at the end of a run, when a restart is written).
+void PairGranularCreep::sync_history_rows()
+{
+  if (!rows_stale || !fix_history || !list) return;
+  const int hlen = fix_history->hlen;
+  double **rows = fix_history->rows;
+  const tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const int inum = list->inum;
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  for (int i = 0; i < nlocal; i++) rows[i][0] = 0.0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int s = slot[slot_first[ii] + jj];
+      if (s < 0) continue;
+      const int j = jlist[jj] & NEIGHMASK;
+      const double *h = &pool[static_cast<size_t>(s) * hlen];
+      for (int side = 0; side < 2; side++) {
+        const int a = side == 0 ? i : j, b = side == 0 ? j : i;
+        if (a >= nlocal) continue;
+        double *row = rows[a];
+        const int cnt = static_cast<int>(row[0]);
+        if (cnt >= maxpartners)
+          error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
+                     tag[a], maxpartners);
+        *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag[b]);
+        std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
+        row[0] = cnt + 1;
+      }
+    }
+  }
+  rows_stale = false;
 }
 
 void PairGranularCreep::compute(int eflag, int vflag)
@@ -198,33 +296,55 @@ void PairGranularCreep::compute(int eflag, int vflag)
   // Their history update only sets the contact's basis and radius (an identity for a contact
   // that was stepped before), so `run N; run M` and a restart continue alike.
   const double dt = update->setupflag ? 0.0 : update->dt;
-  const bool commit = true;
   const int hlen = fix_history->hlen;
-  double **rows = fix_history->rows;
 
   const int inum = list->inum;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
 
+  // 0. After a neighbour-list build: the histories from the rows into the slots. (Set-up
+  // always rebuilds, harmless when the list did not change: the rows were synced at the end
+  // of the previous run.)
+  if (neighbor->ago == 0 && (update->setupflag || update->ntimestep != rebuilt_at)) {
+    if (rows_stale)
+      error->one(FLERR, "pair granular/creep: neighbour lists were rebuilt without the contact histories "
+                        "being saved first (a rebuild outside the pre-exchange path?)");
+    rebuild_slots();
+    if (!update->setupflag) rebuilt_at = update->ntimestep;
+  }
+  // A sphere larger than the cut-off was made for (created or grown during the run by a fix
+  // other than pour/deposit) would miss contacts: stop instead. One compare per owned atom.
+  for (int i = 0; i < nlocal; i++)
+    if (radius[i] > maxrad)
+      error->one(FLERR, "pair granular/creep: atom {} has radius {} m, larger than the {} m the neighbour "
+                 "cut-off was set up for (pair_style granular/creep maxradius R)", tag[i], radius[i], maxrad);
+
   batch.clear();
+  batch_off.clear();
   batch_i.clear();
   batch_j.clear();
+  batch_e.clear();
   batch_swap.clear();
   batch_model.clear();
-  batch_hist.clear();
 
-  // 1. Gather the touching pairs and their histories (looked up in atom i's row by tag).
+  // 1. The touching pairs, in neighbour-list order; each history stays where it is.
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
-    double *rowi = rows[i];
-    const int ni = static_cast<int>(rowi[0]);
-    const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
+    const int e0 = slot_first[ii];
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
       const double rsum = radius[i] + radius[j];
-      if (dx * dx + dy * dy + dz * dz >= rsum * rsum) continue;
+      int &s = slot[e0 + jj];
+      if (dx * dx + dy * dy + dz * dz >= rsum * rsum) {
+        s = -1;    // apart: the history is dropped (its slot is reclaimed at the next build)
+        continue;
+      }
+      if (s < 0) {    // a new contact: a virgin (all-zero) history in a new slot
+        s = nslots++;
+        pool.resize(static_cast<size_t>(nslots) * hlen, 0.0);
+      }
       const bool swap = tag[i] > tag[j];
       const int p = swap ? j : i, q = swap ? i : j;
       CreepLammpsContact c;
@@ -241,41 +361,29 @@ void PairGranularCreep::compute(int eflag, int vflag)
       c.q.radius = radius[q];
       c.q.mass = rmass[q];
       batch.push_back(c);
+      batch_off.push_back(static_cast<size_t>(s) * hlen);
       batch_i.push_back(i);
       batch_j.push_back(j);
+      batch_e.push_back(e0 + jj);
       batch_swap.push_back(swap ? 1 : 0);
       const int ti = type[i], tj = type[j];
       batch_model.push_back(ti <= tj ? models[ti][tj] : models[tj][ti]);
-      const size_t at = batch_hist.size();
-      batch_hist.resize(at + hlen);
-      const double partner = static_cast<double>(tag[j]);
-      int found = -1;
-      for (int e = 0; e < ni; e++)
-        if (tagsi[e] == partner) {
-          found = e;
-          break;
-        }
-      if (found >= 0)
-        std::memcpy(&batch_hist[at], fix_history->hist_of(rowi, found), sizeof(double) * hlen);
-      else
-        std::memset(&batch_hist[at], 0, sizeof(double) * hlen);
     }
   }
 
-  // 2. One call into the law for all of them.
+  // 2. One call into the law for all of them, on the histories in place.
   const size_t n = batch.size();
   batch_out.resize(n);
   if (n > 0) {
     char msg[512] = {0};
-    const int rc = creep_lammps_compute(batch_model.data(), dt, n, batch.data(), batch_hist.data(),
-                                        static_cast<size_t>(hlen), batch_out.data(), msg, sizeof(msg));
+    const int rc = creep_lammps_compute_at(batch_model.data(), dt, n, batch.data(), pool.data(), pool.size(),
+                                           batch_off.data(), static_cast<size_t>(hlen), batch_out.data(), msg,
+                                           sizeof(msg));
     if (rc != 0) error->one(FLERR, "pair granular/creep: {}", msg);
   }
+  rows_stale = true;
 
-  // 3. Forces, torques, virial; the new histories into fresh rows of the owned atoms.
-  double **newrows = fix_history->spare;
-  if (commit)
-    for (int i = 0; i < nlocal; i++) newrows[i][0] = 0.0;
+  // 3. Forces, torques, virial.
   for (size_t k = 0; k < n; k++) {
     const int i = batch_i[k], j = batch_j[k];
     const CreepLammpsOutput &o = batch_out[k];
@@ -306,20 +414,6 @@ void PairGranularCreep::compute(int eflag, int vflag)
     if (evflag)
       ev_tally_xyz(i, j, nlocal, 0, 0.0, 0.0, fi[0], fi[1], fi[2], x[i][0] - x[j][0], x[i][1] - x[j][1],
                    x[i][2] - x[j][2]);
-    if (!commit || !o.touching) continue;
-    const double *h = &batch_hist[k * hlen];
-    for (int side = 0; side < 2; side++) {
-      const int a = side == 0 ? i : j, b = side == 0 ? j : i;
-      if (a >= nlocal) continue;
-      double *row = newrows[a];
-      const int cnt = static_cast<int>(row[0]);
-      if (cnt >= maxpartners)
-        error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
-                   tag[a], maxpartners);
-      *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag[b]);
-      std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
-      row[0] = cnt + 1;
-    }
+    if (!o.touching) slot[batch_e[k]] = -1;    // coincident centres: dropped, as the law says
   }
-  if (commit) fix_history->swap_rows();
 }

@@ -8,13 +8,15 @@
 
 #include "pair.h"
 
+#include "fix_creep_history.h"
+
 #include "creep_lammps.h"
 
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class PairGranularCreep : public Pair {
+class PairGranularCreep : public Pair, public CreepHistoryOwner {
  public:
   PairGranularCreep(class LAMMPS *);
   ~PairGranularCreep() override;
@@ -24,6 +26,7 @@ class PairGranularCreep : public Pair {
   void coeff(int, char **) override;
   void init_style() override;
   double init_one(int, int) override;
+  void sync_history_rows() override;
 
  private:
   void allocate();
@@ -37,11 +40,27 @@ class PairGranularCreep : public Pair {
   double maxrad;                        // largest radius of any atom [m]
   class FixCreepHistory *fix_history;   // per-atom history storage
 
+  void rebuild_slots();
+
+  // Contact histories, each stored once, in place between neighbour-list builds (as LAMMPS'
+  // fix neigh/history does): neighbour entry e (entry jj of list atom ii is
+  // slot_first[ii] + jj) has its history in pool[slot[e] * hlen ..] (slot -1: none). The law
+  // steps them there (creep_lammps_compute_at); the per-atom rows of fix creep/history are
+  // written from them only when atoms may move between ranks or a restart is written
+  // (sync_history_rows), and read back after each neighbour-list build (rebuild_slots).
+  std::vector<int> slot_first, slot;
+  std::vector<double> pool;
+  int nslots;
+  bool rows_stale;            // the pool holds newer histories than the rows
+  bigint rebuilt_at;          // timestep of the last rebuild_slots() outside set-up
+  double maxrad_user;         // pair_style ... maxradius R [m] (0: none)
+
   // Batch buffers (kept between steps: no allocation in the steady state).
   std::vector<CreepLammpsContact> batch;
-  std::vector<double> batch_hist;
+  std::vector<size_t> batch_off;
   std::vector<CreepLammpsOutput> batch_out;
-  std::vector<int> batch_i, batch_j, batch_swap;
+  std::vector<int> batch_i, batch_j, batch_e;
+  std::vector<char> batch_swap;
   std::vector<const CreepLammpsModel *> batch_model;
 };
 

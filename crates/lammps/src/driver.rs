@@ -39,16 +39,16 @@ pub struct Packing {
     pub kind: Vec<i64>,
     /// Radii (m) (half the file's diameters).
     pub radius: Vec<f64>,
-    /// Densities [kg/m^3] as in the file.
+    /// Densities (kg/m^3) as in the file.
     pub density: Vec<f64>,
     /// Masses (kg), computed as LAMMPS' `atom_style sphere` does:
     /// `rho * (4 pi / 3 * r * r * r)`.
     pub mass: Vec<f64>,
     /// Centres (m).
     pub x: Vec<[f64; 3]>,
-    /// Velocities [m/s].
+    /// Velocities (m/s).
     pub v: Vec<[f64; 3]>,
-    /// Angular velocities [rad/s].
+    /// Angular velocities (rad/s).
     pub omega: Vec<[f64; 3]>,
     /// Box lower corner (m).
     pub lo: [f64; 3],
@@ -67,7 +67,7 @@ fn nums(line: &str) -> Result<Vec<f64>, DriverError> {
         .collect()
 }
 
-/// Mass of a sphere of radius `r` (m) and density `rho` [kg/m^3], in LAMMPS' operation order
+/// Mass of a sphere of radius `r` (m) and density `rho` (kg/m^3), in LAMMPS' operation order
 /// (`atom_style sphere`: `rmass = density; rmass *= 4 pi / 3 * r * r * r`).
 pub fn sphere_mass(r: f64, rho: f64) -> f64 {
     rho * (4.0 * PI / 3.0 * r * r * r)
@@ -251,7 +251,7 @@ impl Packing {
     }
 
     /// Adds the periodic shear velocity field `v_x += rate L / (2 pi) sin(2 pi (z - z_lo) / L)`
-    /// [m/s], `L` the box height: a shear rate of at most `rate` [1/s], continuous across a
+    /// (m/s), `L` the box height: a shear rate of at most `rate` (1/s), continuous across a
     /// periodic boundary.
     pub fn add_shear(&mut self, rate: f64) {
         let l = self.hi[2] - self.lo[2];
@@ -261,7 +261,7 @@ impl Packing {
         }
     }
 
-    /// Box volume [m^3].
+    /// Box volume (m^3).
     pub fn volume(&self) -> f64 {
         (0..3).map(|a| self.hi[a] - self.lo[a]).product()
     }

@@ -30,11 +30,11 @@ pub const CREEP_LAMMPS_ROLLING_EPSD: u32 = 2;
 pub struct CreepLammpsSettings {
     /// Young's modulus E (Pa).
     pub young_modulus: f64,
-    /// Poisson's ratio nu [-].
+    /// Poisson's ratio nu (-).
     pub poisson_ratio: f64,
-    /// Restitution e [-].
+    /// Restitution e (-).
     pub restitution: f64,
-    /// Friction mu [-].
+    /// Friction mu (-).
     pub friction: f64,
     /// `CREEP_LAMMPS_TIER_*`.
     pub tier: u32,
@@ -42,9 +42,9 @@ pub struct CreepLammpsSettings {
     pub creep: u32,
     /// `CREEP_LAMMPS_ROLLING_*`.
     pub rolling: u32,
-    /// Rolling friction mu_r [-] (rolling types constant and epsd).
+    /// Rolling friction mu_r (-) (rolling types constant and epsd).
     pub rolling_friction: f64,
-    /// Rolling damping ratio eta [-] (epsd).
+    /// Rolling damping ratio eta (-) (epsd).
     pub rolling_damping: f64,
 }
 
@@ -190,7 +190,7 @@ pub unsafe extern "C" fn creep_lammps_compute(
             n,
             contacts,
             history,
-            stride,
+            n.saturating_mul(stride),
             out,
             err,
             err_len,
@@ -202,6 +202,72 @@ pub unsafe extern "C" fn creep_lammps_compute(
                     dt,
                     c,
                     h,
+                    stride,
+                    o,
+                )
+            },
+        )
+    }
+}
+
+/// Steps `n` contacts by `dt` (s) with their histories in place in one store, as
+/// [`creep_lammps_compute`] except that contact `k` reads and rewrites
+/// `history[offsets[k] ..][..stride]` (offsets in doubles), with `history_len` the store's
+/// length in doubles. A host keeps each contact's history once (LAMMPS' plugin: one slot per
+/// neighbour-list entry) and nothing is gathered or scattered. An offset whose row leaves the
+/// store is an error (status 1), not an out-of-bounds access.
+///
+/// # Safety
+/// `models` points to `n` model pointers from [`creep_lammps_model_new`] (null ones are
+/// reported as errors); `contacts` to `n` contacts; `offsets` to `n` offsets; `history` to
+/// `history_len` doubles; `out` to `n` outputs; `err` is null or valid for writes of `err_len`
+/// bytes. The buffers do not overlap. With `n == 0` the pointers are not read.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn creep_lammps_compute_at(
+    models: *const *const CreepLammpsModel,
+    dt: f64,
+    n: usize,
+    contacts: *const Contact,
+    history: *mut f64,
+    history_len: usize,
+    offsets: *const usize,
+    stride: usize,
+    out: *mut ContactOutput,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    if n > 0 && offsets.is_null() {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null buffer") };
+        return 1;
+    }
+    // SAFETY: `offsets` holds `n` values (checked non-null above when n > 0).
+    let offsets: &[usize] = if n == 0 {
+        &[]
+    } else {
+        unsafe { std::slice::from_raw_parts(offsets, n) }
+    };
+    // SAFETY: as this function's contract says; `batch_ffi` sees the whole store.
+    unsafe {
+        batch_ffi(
+            models,
+            n,
+            contacts,
+            history,
+            history_len,
+            out,
+            err,
+            err_len,
+            "pair law",
+            |models, c, h, o| {
+                Model::compute_at_by(
+                    // SAFETY: each pointer is null or a live model, as the contract says.
+                    |k| models[k].as_ref().map(|m| &m.0),
+                    dt,
+                    c,
+                    h,
+                    offsets,
                     stride,
                     o,
                 )
@@ -235,7 +301,7 @@ pub unsafe extern "C" fn creep_lammps_compute_walls(
             n,
             contacts,
             history,
-            stride,
+            n.saturating_mul(stride),
             out,
             err,
             err_len,
@@ -255,18 +321,19 @@ pub unsafe extern "C" fn creep_lammps_compute_walls(
     }
 }
 
-/// The part both batch entry points share: null checks, the slices, the panic guard and the
-/// error message. `batch` runs the law on the slices.
+/// The part the batch entry points share: null checks, the slices, the panic guard and the
+/// error message. `batch` runs the law on the slices; the history store is `history_len`
+/// doubles.
 ///
 /// # Safety
-/// As [`creep_lammps_compute`], with `contacts` pointing to `n` values of `C`.
+/// As [`creep_lammps_compute_at`], with `contacts` pointing to `n` values of `C`.
 #[allow(clippy::too_many_arguments)]
 unsafe fn batch_ffi<C>(
     models: *const *const CreepLammpsModel,
     n: usize,
     contacts: *const C,
     history: *mut f64,
-    stride: usize,
+    history_len: usize,
     out: *mut ContactOutput,
     err: *mut c_char,
     err_len: usize,
@@ -291,7 +358,7 @@ unsafe fn batch_ffi<C>(
         (
             std::slice::from_raw_parts(models, n),
             std::slice::from_raw_parts(contacts, n),
-            std::slice::from_raw_parts_mut(history, n * stride),
+            std::slice::from_raw_parts_mut(history, history_len),
             std::slice::from_raw_parts_mut(out, n),
         )
     };

@@ -36,11 +36,11 @@ impl Tier {
 pub struct Settings {
     /// Young's modulus `E` (Pa) of both spheres; `G = E / (2 (1 + nu))`.
     pub young_modulus: f64,
-    /// Poisson's ratio `nu` [-], in (-1, 0.5].
+    /// Poisson's ratio `nu` (-), in (-1, 0.5].
     pub poisson_ratio: f64,
-    /// Coefficient of restitution `e` [-] that the Tsuji damping reproduces exactly.
+    /// Coefficient of restitution `e` (-) that the Tsuji damping reproduces exactly.
     pub restitution: f64,
-    /// Coulomb friction `mu` [-] (>= 0).
+    /// Coulomb friction `mu` (-) (>= 0).
     pub friction: f64,
     /// Tangential tier.
     pub tier: Tier,
@@ -96,6 +96,28 @@ pub enum ModelError {
     /// A wall normal that is not a unit vector.
     #[error("wall contact {0}: the wall normal must be a unit vector")]
     WallNormal(usize),
+    /// A history offset whose row does not lie inside the history store.
+    #[error(
+        "contact {index}: history offset {offset} + stride {stride} exceeds the store's {len} doubles"
+    )]
+    Offset {
+        /// Index in the batch.
+        index: usize,
+        /// The offset given (doubles).
+        offset: usize,
+        /// Doubles per contact.
+        stride: usize,
+        /// Length of the store (doubles).
+        len: usize,
+    },
+    /// The offsets buffer is shorter than the batch.
+    #[error("offsets buffer holds {got} entries, the batch has {want}")]
+    Offsets {
+        /// Given.
+        got: usize,
+        /// Needed.
+        want: usize,
+    },
     /// The time step is not finite and >= 0.
     #[error("time step must be finite and >= 0 s, got {0}")]
     TimeStep(f64),
@@ -122,9 +144,9 @@ pub struct Model {
 pub struct Body {
     /// Centre (m).
     pub x: [f64; 3],
-    /// Velocity [m/s].
+    /// Velocity (m/s).
     pub v: [f64; 3],
-    /// Angular velocity [rad/s].
+    /// Angular velocity (rad/s).
     pub omega: [f64; 3],
     /// Radius (m).
     pub radius: f64,
@@ -149,9 +171,9 @@ pub struct Contact {
 pub struct WallContact {
     /// A point on the wall plane (m).
     pub point: [f64; 3],
-    /// Unit normal of the wall, pointing into the domain [-].
+    /// Unit normal of the wall, pointing into the domain (-).
     pub normal: [f64; 3],
-    /// Velocity of the wall [m/s] (it does not rotate).
+    /// Velocity of the wall (m/s) (it does not rotate).
     pub wall_velocity: [f64; 3],
     /// The sphere (body q).
     pub sphere: Body,
@@ -163,9 +185,9 @@ pub struct WallContact {
 pub struct ContactOutput {
     /// Force on p (N) (`-force_p` on q).
     pub force_p: [f64; 3],
-    /// Torque on p about its centre [N m].
+    /// Torque on p about its centre (N m).
     pub torque_p: [f64; 3],
-    /// Torque on q about its centre [N m].
+    /// Torque on q about its centre (N m).
     pub torque_q: [f64; 3],
     /// 1 if the spheres overlap (the history is live), 0 if apart (history reset to virgin).
     pub touching: u32,
@@ -333,6 +355,7 @@ impl Model {
             contacts,
             history,
             stride,
+            |k| k * stride,
             out,
             |k, m, c, h| {
                 check_body(k, &c.sphere)?;
@@ -384,6 +407,7 @@ impl Model {
             contacts,
             history,
             stride,
+            |k| k * stride,
             out,
             |k, m, c, h| {
                 check_body(k, &c.p)?;
@@ -394,15 +418,76 @@ impl Model {
         )
     }
 
-    /// The checks and the loop every batch shares: `dt`, the output and history sizes, one
-    /// tier for all models; then `step(k, model, contact, history row)` for each contact in
-    /// order, stopping at the first error.
+    /// [`Model::compute`] with each contact's history in place in a store: contact `k` reads
+    /// and rewrites `history[offsets[k]..][..stride]` (so a host keeps every history once, in
+    /// its own order, and passes where each one is; LAMMPS' plugin passes its per-neighbour
+    /// slots). Offsets are checked against the store (an error, not a panic); two contacts with
+    /// the same offset step the same history one after the other.
+    pub fn compute_at(
+        models: &[&Model],
+        dt: f64,
+        contacts: &[Contact],
+        history: &mut [f64],
+        offsets: &[usize],
+        stride: usize,
+        out: &mut [ContactOutput],
+    ) -> Result<(), ModelError> {
+        Self::compute_at_by(
+            |k| models.get(k).copied(),
+            dt,
+            contacts,
+            history,
+            offsets,
+            stride,
+            out,
+        )
+    }
+
+    /// [`Model::compute_at`] with the model of contact `k` given by `model_of(k)`.
+    pub(crate) fn compute_at_by<'a>(
+        model_of: impl Fn(usize) -> Option<&'a Model>,
+        dt: f64,
+        contacts: &[Contact],
+        history: &mut [f64],
+        offsets: &[usize],
+        stride: usize,
+        out: &mut [ContactOutput],
+    ) -> Result<(), ModelError> {
+        if offsets.len() < contacts.len() {
+            return Err(ModelError::Offsets {
+                got: offsets.len(),
+                want: contacts.len(),
+            });
+        }
+        Self::batch(
+            model_of,
+            dt,
+            contacts,
+            history,
+            stride,
+            |k| offsets[k],
+            out,
+            |k, m, c, h| {
+                check_body(k, &c.p)?;
+                check_body(k, &c.q)?;
+                m.step(c, h, dt)
+                    .map_err(|source| ModelError::History { index: k, source })
+            },
+        )
+    }
+
+    /// The checks and the loop every batch shares: `dt`, the output size, one tier for all
+    /// models, each history row inside the store; then `step(k, model, contact, history row)`
+    /// for each contact in order, stopping at the first error. Contact `k`'s row starts at
+    /// `offset(k)` (doubles).
+    #[allow(clippy::too_many_arguments)]
     fn batch<'a, C>(
         model_of: impl Fn(usize) -> Option<&'a Model>,
         dt: f64,
         contacts: &[C],
         history: &mut [f64],
         stride: usize,
+        offset: impl Fn(usize) -> usize,
         out: &mut [ContactOutput],
         mut step: impl FnMut(usize, &Model, &C, &mut [f64]) -> Result<ContactOutput, ModelError>,
     ) -> Result<(), ModelError> {
@@ -420,15 +505,26 @@ impl Model {
         }
         let first = model_of(0).ok_or(ModelError::MissingModel(0))?;
         let want = first.tier.history_len();
-        if stride != want || history.len() < stride * contacts.len() {
+        if stride != want {
             return Err(ModelError::Stride { got: stride, want });
         }
+        let len = history.len();
         for (k, (c, o)) in contacts.iter().zip(out.iter_mut()).enumerate() {
             let m = model_of(k).ok_or(ModelError::MissingModel(k))?;
             if m.tier != first.tier {
                 return Err(ModelError::MixedTiers);
             }
-            *o = step(k, m, c, &mut history[k * stride..(k + 1) * stride])?;
+            let at = offset(k);
+            let row = at
+                .checked_add(stride)
+                .and_then(|end| history.get_mut(at..end))
+                .ok_or(ModelError::Offset {
+                    index: k,
+                    offset: at,
+                    stride,
+                    len,
+                })?;
+            *o = step(k, m, c, row)?;
         }
         Ok(())
     }

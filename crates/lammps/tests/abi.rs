@@ -4,8 +4,8 @@
 use creep_lammps::driver::{Packing, Sim};
 use creep_lammps::ffi::{
     CREEP_LAMMPS_ROLLING_NONE, CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsModel,
-    CreepLammpsSettings, creep_lammps_compute, creep_lammps_history_len, creep_lammps_model_free,
-    creep_lammps_model_new,
+    CreepLammpsSettings, creep_lammps_compute, creep_lammps_compute_at, creep_lammps_history_len,
+    creep_lammps_model_free, creep_lammps_model_new,
 };
 use creep_lammps::{Body, Contact, ContactOutput, Model, Settings, Tier, WallContact};
 use std::ffi::{CStr, c_char};
@@ -275,4 +275,97 @@ fn sphere_on_a_wall_is_pushed_off_it_with_hertz() {
         &mut out,
     );
     assert!(e.is_err());
+}
+
+#[test]
+fn in_place_batch_equals_the_contiguous_one_and_checks_offsets() {
+    let m = model(CREEP_LAMMPS_TIER_EXACT);
+    let stride = creep_lammps_history_len(CREEP_LAMMPS_TIER_EXACT);
+    let contacts = [
+        Contact {
+            p: sphere([0.0; 3], [0.0; 3], [0.0; 3]),
+            q: sphere([1.998e-3, 0.0, 0.0], [0.0, 0.01, 0.0], [0.0; 3]),
+        },
+        Contact {
+            p: sphere([0.0; 3], [0.0; 3], [0.0, 0.0, 3.0]),
+            q: sphere([0.0, 0.0, 1.999e-3], [0.002, 0.0, 0.0], [0.0; 3]),
+        },
+    ];
+    let models = [m as *const CreepLammpsModel; 2];
+    let mut err = [0 as c_char; 256];
+    // Contiguous: contact k at k * stride.
+    let mut flat = vec![0.0; 2 * stride];
+    let mut out_flat = [ContactOutput::default(); 2];
+    // In place: a store of 4 slots, contact 0 in slot 3, contact 1 in slot 1 (others untouched).
+    let mut store = vec![7.0; 4 * stride];
+    store[3 * stride..].fill(0.0);
+    store[stride..2 * stride].fill(0.0);
+    let offsets = [3 * stride, stride];
+    let mut out_at = [ContactOutput::default(); 2];
+    for _ in 0..3 {
+        // SAFETY: buffers sized for 2 contacts, store of 4 * stride doubles.
+        let (a, b) = unsafe {
+            (
+                creep_lammps_compute(
+                    models.as_ptr(),
+                    1e-6,
+                    2,
+                    contacts.as_ptr(),
+                    flat.as_mut_ptr(),
+                    stride,
+                    out_flat.as_mut_ptr(),
+                    err.as_mut_ptr(),
+                    err.len(),
+                ),
+                creep_lammps_compute_at(
+                    models.as_ptr(),
+                    1e-6,
+                    2,
+                    contacts.as_ptr(),
+                    store.as_mut_ptr(),
+                    store.len(),
+                    offsets.as_ptr(),
+                    stride,
+                    out_at.as_mut_ptr(),
+                    err.as_mut_ptr(),
+                    err.len(),
+                ),
+            )
+        };
+        assert_eq!((a, b), (0, 0));
+    }
+    assert_eq!(out_flat, out_at);
+    assert_eq!(store[3 * stride..], flat[..stride]);
+    assert_eq!(store[stride..2 * stride], flat[stride..]);
+    assert!(
+        store[..stride]
+            .iter()
+            .chain(&store[2 * stride..3 * stride])
+            .all(|&h| h == 7.0)
+    );
+    assert!(flat.iter().any(|&h| h != 0.0), "the histories were written");
+    // A row that leaves the store is an error with the contact named, not an access past it.
+    let bad = [3 * stride + 1, 0];
+    // SAFETY: as above.
+    let rc = unsafe {
+        creep_lammps_compute_at(
+            models.as_ptr(),
+            1e-6,
+            2,
+            contacts.as_ptr(),
+            store.as_mut_ptr(),
+            store.len(),
+            bad.as_ptr(),
+            stride,
+            out_at.as_mut_ptr(),
+            err.as_mut_ptr(),
+            err.len(),
+        )
+    };
+    assert_eq!(rc, 1);
+    // SAFETY: NUL-terminated by the callee.
+    let msg = unsafe { CStr::from_ptr(err.as_ptr()) }.to_string_lossy();
+    assert!(msg.contains("contact 0") && msg.contains("offset"), "{msg}");
+    // SAFETY: created above, freed once.
+    unsafe { creep_lammps_model_free(m) };
 }

@@ -3,11 +3,18 @@
 //! ```text
 //! creep-lammps-ref gen DIR [N]            test packing: N^3 spheres (default 8) -> DIR/packing.data, DIR/params.lmp
 //! creep-lammps-ref shear IN OUT RATE      IN data file + shear v_x += RATE (z - z_mid) -> OUT
-//! creep-lammps-ref run DATA PARAMS STEPS [exact|spring] [creep|nocreep]
-//!                                         prints `step pressure ke contacts` per step (17 digits)
+//! creep-lammps-ref run DATA PARAMS STEPS [OPTIONS]
+//!                                         prints `step pressure ke contacts` per step (17 digits);
+//!                                         OPTIONS as pair_style granular/creep's keywords:
+//!                                         [tier exact|spring] [creep yes|no]
+//!                                         [rolling none|constant MU_R|epsd MU_R ETA]
+//!                                         (also the positional `exact`, `spring`, `nocreep`)
 //! creep-lammps-ref dem DATA PARAMS STEPS [exact|spring]
 //!                                         the same with the creep-dem engine: prints
-//!                                         `step nan ke contacts` (it reports no pair virial)
+//!                                         `step nan ke contacts` (it reports no pair virial);
+//!                                         PARAMS `variable zwalls equal 1`: plane walls at the
+//!                                         z faces, the upper one moving with velocity
+//!                                         (zhi_vx, 0, zhi_vz) m/s if those variables are set
 //! creep-lammps-ref kernel DATA PARAMS STEPS [exact|spring]
 //!                                         the kernel alone on the packing's contacts: prints
 //!                                         `Loop time of S` (S = STEPS batches) and the batch size
@@ -83,12 +90,66 @@ fn shear(input: &str, output: &str, rate: f64) -> Res<()> {
     Ok(())
 }
 
-fn sim(
-    data: &str,
-    params: &str,
+/// The law's options, as `pair_style granular/creep`'s keywords.
+#[derive(Debug, Clone, Copy)]
+struct Opts {
     tier: Tier,
     creep: bool,
-) -> Res<(Sim, creep_lammps::driver::Thermo)> {
+    rolling: Option<creep_law::rolling_torque::RollingModel>,
+}
+
+/// Parses `[tier exact|spring] [creep yes|no] [rolling none|constant MU_R|epsd MU_R ETA]`
+/// (and the positional `exact`, `spring`, `nocreep`).
+fn opts(args: &[String]) -> Res<Opts> {
+    use creep_law::rolling_torque::RollingModel;
+    let mut o = Opts {
+        tier: Tier::Exact,
+        creep: true,
+        rolling: None,
+    };
+    let mut it = args.iter().map(String::as_str);
+    let num = |w: Option<&str>| -> Res<f64> { Ok(w.ok_or("a number is missing")?.parse::<f64>()?) };
+    while let Some(w) = it.next() {
+        match w {
+            "exact" => o.tier = Tier::Exact,
+            "spring" => o.tier = Tier::Spring,
+            "nocreep" => o.creep = false,
+            "tier" => {
+                o.tier = match it.next() {
+                    Some("exact") => Tier::Exact,
+                    Some("spring") => Tier::Spring,
+                    t => return Err(format!("tier must be exact or spring, not {t:?}").into()),
+                }
+            }
+            "creep" => {
+                o.creep = match it.next() {
+                    Some("yes") => true,
+                    Some("no") => false,
+                    c => return Err(format!("creep yes or no, not {c:?}").into()),
+                }
+            }
+            "rolling" => {
+                o.rolling = match it.next() {
+                    Some("none") => None,
+                    Some("constant") => Some(RollingModel::constant_torque(num(it.next())?)?),
+                    Some("epsd") => {
+                        let mu_r = num(it.next())?;
+                        Some(RollingModel::epsd(mu_r, num(it.next())?)?)
+                    }
+                    r => {
+                        return Err(
+                            format!("rolling none|constant MU_R|epsd MU_R ETA, not {r:?}").into(),
+                        );
+                    }
+                }
+            }
+            w => return Err(format!("unknown option {w}").into()),
+        }
+    }
+    Ok(o)
+}
+
+fn sim(data: &str, params: &str, o: Opts) -> Res<(Sim, creep_lammps::driver::Thermo)> {
     let mut p = Packing::read_data(&std::fs::read_to_string(data)?)?;
     let vars = std::fs::read_to_string(params)?;
     // `variable periodic equal 1` in the parameters: LAMMPS runs it with `boundary p p p`.
@@ -99,15 +160,15 @@ fn sim(
         poisson_ratio: v("poisson")?,
         restitution: v("restitution")?,
         friction: v("mu")?,
-        tier,
-        creep,
-        rolling: None,
+        tier: o.tier,
+        creep: o.creep,
+        rolling: o.rolling,
     })?;
     Ok(Sim::new(p, model, v("dt")?)?)
 }
 
-fn run(data: &str, params: &str, steps: u64, tier: Tier, creep: bool) -> Res<()> {
-    let (mut sim, th) = sim(data, params, tier, creep)?;
+fn run(data: &str, params: &str, steps: u64, o: Opts) -> Res<()> {
+    let (mut sim, th) = sim(data, params, o)?;
     println!("step pressure ke contacts");
     let print = |t: &creep_lammps::driver::Thermo| {
         println!(
@@ -153,13 +214,20 @@ fn dem<T: creep_law::pair::TangentialLaw>(data: &str, params: &str, steps: u64) 
     if p.periodic {
         cfg.periodic = std::array::from_fn(|a| (a < 2 || !zwalls).then_some((p.lo[a], p.hi[a])));
     }
+    // The upper wall's velocity (LAMMPS: `fix ... wall/creep ... velocity VX 0 VZ zplane NULL
+    // zhi`): creep-dem moves the plane by `velocity dt` per step.
+    let top = creep_law::Vec3::new(
+        lammps_variable(&vars, "zhi_vx").unwrap_or(0.0),
+        0.0,
+        lammps_variable(&vars, "zhi_vz").unwrap_or(0.0),
+    );
     let walls: Vec<creep_dem::Wall> = if zwalls {
-        [(p.lo[2], 1.0), (p.hi[2], -1.0)]
+        [(p.lo[2], 1.0, creep_law::Vec3::ZERO), (p.hi[2], -1.0, top)]
             .iter()
-            .map(|&(z, side)| creep_dem::Wall {
+            .map(|&(z, side, velocity)| creep_dem::Wall {
                 point: creep_law::Vec3::new(0.0, 0.0, z),
                 normal: creep_law::Vec3::new(0.0, 0.0, side),
-                velocity: creep_law::Vec3::ZERO,
+                velocity,
                 material: 0,
             })
             .collect()
@@ -204,25 +272,12 @@ fn main() -> ExitCode {
             arg(2).ok_or("shear IN OUT RATE")?,
             arg(3).ok_or("shear IN OUT RATE")?.parse()?,
         ),
-        Some("run") => {
-            let tier = match arg(4).unwrap_or("exact") {
-                "exact" => Tier::Exact,
-                "spring" => Tier::Spring,
-                t => return Err(format!("tier must be exact or spring, not {t}").into()),
-            };
-            let creep = match arg(5).unwrap_or("creep") {
-                "creep" => true,
-                "nocreep" => false,
-                c => return Err(format!("creep or nocreep, not {c}").into()),
-            };
-            run(
-                arg(1).ok_or("run DATA PARAMS STEPS")?,
-                arg(2).ok_or("run DATA PARAMS STEPS")?,
-                arg(3).ok_or("run DATA PARAMS STEPS")?.parse()?,
-                tier,
-                creep,
-            )
-        }
+        Some("run") => run(
+            arg(1).ok_or("run DATA PARAMS STEPS")?,
+            arg(2).ok_or("run DATA PARAMS STEPS")?,
+            arg(3).ok_or("run DATA PARAMS STEPS")?.parse()?,
+            opts(a.get(4..).unwrap_or(&[]))?,
+        ),
         Some("dem") => {
             let (data, params) = (arg(1).ok_or("dem DATA PARAMS STEPS")?, arg(2).ok_or("dem DATA PARAMS STEPS")?);
             let steps: u64 = arg(3).ok_or("dem DATA PARAMS STEPS")?.parse()?;
@@ -242,14 +297,13 @@ fn main() -> ExitCode {
             let (mut s, _) = sim(
                 arg(1).ok_or("kernel DATA PARAMS STEPS")?,
                 arg(2).ok_or("kernel DATA PARAMS STEPS")?,
-                tier,
-                true,
+                Opts { tier, creep: true, rolling: None },
             )?;
             let (per, n) = s.time_kernel(steps)?;
             println!("Loop time of {:.6} for {steps} batches of {n} contacts", per * steps as f64);
             Ok(())
         }
-        _ => Err("usage: creep-lammps-ref gen DIR [N] | shear IN OUT RATE | run DATA PARAMS STEPS [exact|spring] [creep|nocreep]".into()),
+        _ => Err("usage: creep-lammps-ref gen DIR [N] | shear IN OUT RATE | run DATA PARAMS STEPS [OPTIONS] | dem DATA PARAMS STEPS [exact|spring] | kernel DATA PARAMS STEPS [exact|spring]".into()),
     }
     })();
     match r {
