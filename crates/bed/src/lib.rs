@@ -82,6 +82,7 @@
 // Loops index several per-grain arrays at once (structure of arrays) on purpose.
 #![allow(clippy::needless_range_loop)]
 
+pub mod cost;
 mod geometry;
 pub mod scene;
 pub mod wheel;
