@@ -10,6 +10,7 @@ mod ref_cmd;
 mod report_cmd;
 mod run_cmd;
 mod triaxial_cmd;
+mod wheel_cmd;
 
 use clap::{Parser, Subcommand};
 

@@ -73,6 +73,9 @@ pub enum RunCommand {
         #[arg(long, default_value_t = 1)]
         substeps: usize,
     },
+    /// A driven rigid wheel (Rapier cylinder) on a granular bed (creep-dem), coupled both ways
+    /// (creep-bed); CSV on stdout: `t,slip,sinkage,drawbar_pull,torque` (s, -, m, N, N m).
+    WheelOnSand(crate::wheel_cmd::WheelArgs),
 }
 
 /// Built-in materials (creep-law's presets).
@@ -252,6 +255,7 @@ pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
                 return Err(e.into());
             }
         }
+        RunCommand::WheelOnSand(a) => crate::wheel_cmd::run(a, out)?,
         RunCommand::CueBall => {
             let r = cue_ball::run(Material::steel(), 2.0, 1.0 / 240.0)?;
             writeln!(out, "cue ball from 2 m/s, mu = 0.3, dt = 1/240 s")?;
