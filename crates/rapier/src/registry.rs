@@ -73,10 +73,13 @@ impl CreepMaterial {
     }
 }
 
-/// Materials keyed by collider handle.
+/// Materials keyed by collider handle, addressed by the handle's index (no hashing on the
+/// hook path): slot `i` holds the material of the live collider with index `i`, with its handle
+/// to check the generation.
 #[derive(Debug, Clone, Default)]
 pub struct MaterialRegistry {
-    map: crate::store::FastMap<ColliderHandle, CreepMaterial>,
+    slots: Vec<Option<(ColliderHandle, CreepMaterial)>>,
+    len: usize,
 }
 
 impl MaterialRegistry {
@@ -84,33 +87,57 @@ impl MaterialRegistry {
     pub fn new() -> Self {
         Self::default()
     }
-    /// Registers (or replaces) a collider's material.
+    /// Registers (or replaces) a collider's material. A material left under the same index by
+    /// an older generation (a collider Rapier removed) is replaced.
     pub fn insert(&mut self, collider: ColliderHandle, material: CreepMaterial) {
-        self.map.insert(collider, material);
+        let i = collider.into_raw_parts().0 as usize;
+        if i >= self.slots.len() {
+            self.slots.resize(i + 1, None);
+        }
+        if self.slots[i].replace((collider, material)).is_none() {
+            self.len += 1;
+        }
     }
     /// Forgets a collider (call when removing it; unknown colliders fall back to Coulomb).
     pub fn remove(&mut self, collider: ColliderHandle) -> Option<CreepMaterial> {
-        self.map.remove(&collider)
+        let slot = self.slots.get_mut(collider.into_raw_parts().0 as usize)?;
+        if slot.is_some_and(|(h, _)| h == collider) {
+            self.len -= 1;
+            slot.take().map(|(_, m)| m)
+        } else {
+            None
+        }
     }
     /// The material of a collider, if registered.
+    #[inline]
     pub fn get(&self, collider: ColliderHandle) -> Option<&CreepMaterial> {
-        self.map.get(&collider)
+        match self.slots.get(collider.into_raw_parts().0 as usize) {
+            Some(Some((h, m))) if *h == collider => Some(m),
+            _ => None,
+        }
     }
     /// Number of registered colliders.
     pub fn len(&self) -> usize {
-        self.map.len()
+        self.len
     }
-    /// Iterates over the registered colliders.
+    /// Iterates over the registered colliders, in the order of their handles' indices.
     pub fn iter(&self) -> impl Iterator<Item = (&ColliderHandle, &CreepMaterial)> {
-        self.map.iter()
+        self.slots
+            .iter()
+            .filter_map(|s| s.as_ref().map(|(h, m)| (h, m)))
     }
     /// Keeps only the colliders for which `keep` is true (no allocation).
     pub fn retain(&mut self, mut keep: impl FnMut(ColliderHandle, &CreepMaterial) -> bool) {
-        self.map.retain(|h, m| keep(*h, m));
+        for slot in &mut self.slots {
+            if slot.is_some_and(|(h, m)| !keep(h, &m)) {
+                *slot = None;
+                self.len -= 1;
+            }
+        }
     }
     /// Whether no collider is registered.
     pub fn is_empty(&self) -> bool {
-        self.map.is_empty()
+        self.len == 0
     }
 }
 

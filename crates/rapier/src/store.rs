@@ -117,3 +117,158 @@ impl ContactStore {
         self.records.iter()
     }
 }
+
+/// Solver contacts of one manifold (rapier3d 0.36, 3-D: `MAX_MANIFOLD_POINTS`).
+pub(crate) const MAX_POINTS: usize = 4;
+
+/// Per-pair constants of a manifold, computed once per pair and kept while the inputs they come
+/// from (the two materials, the two surfaces, the combined friction) are unchanged.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PairCache {
+    pub(crate) key: (
+        creep_law::Material,
+        creep_law::Material,
+        Surface,
+        Surface,
+        f64,
+    ),
+    pub(crate) pair: creep_law::PairMaterial,
+    pub(crate) law: creep_law::steady_law::SteadyLaw,
+}
+
+/// The rigid regime's state of one contact manifold: its collider pair, the records of its
+/// solver contacts (with their features, the contacts' identity across steps), the per-pair
+/// constants, and what it added to the step's counts.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ManifoldSlot {
+    /// The collider pair that owns the slot (`None`: free).
+    pub(crate) owner: Option<(ColliderHandle, ColliderHandle)>,
+    /// Step in which the slot was last touched.
+    pub(crate) seen: u64,
+    /// Number of live records.
+    pub(crate) n: usize,
+    /// Features and records of the live contacts.
+    pub(crate) contacts: [(u32, u32, ContactRecord); MAX_POINTS],
+    /// Per-pair constants.
+    pub(crate) cache: Option<PairCache>,
+    /// Creep power of this manifold in the step it was last touched \[W\].
+    pub(crate) creep_power: f64,
+    /// Largest loop gain of this manifold in that step.
+    pub(crate) max_loop_gain: f64,
+}
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use creep_law::Surface;
+
+/// Manifold records addressed by the manifold's `user_data` (slot index + 1), without hashing
+/// and without a global lock: each slot has its own `Mutex`, which only the thread processing
+/// that manifold takes (Rapier processes a pair once per step), so it is never contended. A
+/// manifold the hook has not seen takes a free slot (an atomic cursor into the free list built
+/// at the end of the previous step; past its end, an overflow list behind a lock, merged at
+/// the end of the step). A slot is checked against its collider pair and the step that last
+/// touched it, so a stale `user_data` never reads another manifold's records.
+#[derive(Debug, Default)]
+pub(crate) struct ManifoldSlab {
+    pub(crate) slots: Vec<Mutex<ManifoldSlot>>,
+    free: Vec<u32>,
+    cursor: AtomicUsize,
+    overflow: Mutex<Vec<ManifoldSlot>>,
+    pub(crate) generation: u64,
+}
+
+/// Free slots kept ready at the start of a step, at least.
+const MIN_FREE: usize = 256;
+
+impl ManifoldSlab {
+    /// Starts a step.
+    pub(crate) fn begin_step(&mut self) {
+        self.generation += 1;
+        *self.cursor.get_mut() = 0;
+    }
+
+    /// The slot of a manifold with `user_data`, validated or newly taken; `f` runs on it with
+    /// the value `user_data` must hold afterwards.
+    pub(crate) fn with_slot<R>(
+        &self,
+        user_data: u32,
+        owner: (ColliderHandle, ColliderHandle),
+        f: impl FnOnce(&mut ManifoldSlot, bool) -> R,
+    ) -> (R, u32) {
+        let g = self.generation;
+        if let Some(m) = (user_data as usize)
+            .checked_sub(1)
+            .and_then(|i| self.slots.get(i))
+        {
+            let mut s = m.lock().unwrap_or_else(|e| e.into_inner());
+            if s.owner == Some(owner) && s.seen != g {
+                s.seen = g;
+                return (f(&mut s, false), user_data);
+            }
+        }
+        let k = self.cursor.fetch_add(1, Ordering::Relaxed);
+        if let Some(&i) = self.free.get(k) {
+            let mut s = self.slots[i as usize]
+                .lock()
+                .unwrap_or_else(|e| e.into_inner());
+            *s = ManifoldSlot {
+                owner: Some(owner),
+                seen: g,
+                ..ManifoldSlot::default()
+            };
+            return (f(&mut s, true), i + 1);
+        }
+        let mut over = self.overflow.lock().unwrap_or_else(|e| e.into_inner());
+        over.push(ManifoldSlot {
+            owner: Some(owner),
+            seen: g,
+            ..ManifoldSlot::default()
+        });
+        let i = self.slots.len() + over.len() - 1;
+        let last = over.len() - 1;
+        (f(&mut over[last], true), i as u32 + 1)
+    }
+
+    /// Ends a step: merges the overflow, frees the slots not touched in the step (their
+    /// contacts ended, or their pair was not processed with the hook), rebuilds the free list
+    /// and keeps at least as many free slots as the step took plus a margin.
+    pub(crate) fn end_step(&mut self) {
+        let taken = *self.cursor.get_mut();
+        let over = std::mem::take(self.overflow.get_mut().unwrap_or_else(|e| e.into_inner()));
+        self.slots.extend(over.into_iter().map(Mutex::new));
+        let g = self.generation;
+        self.free.clear();
+        for (i, m) in self.slots.iter_mut().enumerate() {
+            let s = m.get_mut().unwrap_or_else(|e| e.into_inner());
+            if s.owner.is_some() && s.seen != g {
+                *s = ManifoldSlot::default();
+            }
+            if s.owner.is_none() {
+                self.free.push(i as u32);
+            }
+        }
+        let want = (2 * taken).max(MIN_FREE).max(self.slots.len() / 8);
+        while self.free.len() < want {
+            self.free.push(self.slots.len() as u32);
+            self.slots.push(Mutex::new(ManifoldSlot::default()));
+        }
+        *self.cursor.get_mut() = 0;
+    }
+
+    /// The live slots (after `end_step`, those of the last step).
+    pub(crate) fn live(&self) -> impl Iterator<Item = std::sync::MutexGuard<'_, ManifoldSlot>> {
+        self.slots
+            .iter()
+            .map(|m| m.lock().unwrap_or_else(|e| e.into_inner()))
+            .filter(|s| s.owner.is_some())
+    }
+
+    /// Mutable access to the live slots.
+    pub(crate) fn live_mut(&mut self) -> impl Iterator<Item = &mut ManifoldSlot> {
+        self.slots
+            .iter_mut()
+            .map(|m| m.get_mut().unwrap_or_else(|e| e.into_inner()))
+            .filter(|s| s.owner.is_some())
+    }
+}
