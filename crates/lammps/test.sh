@@ -151,6 +151,12 @@ lmp_run 1 "$R/grow2.log" -var data "$R/pack/packing.data" -var steps 100 -var pa
 check "with maxradius 1.05e-3 the growing packing runs and its pair pressure rises more than tenfold" \
   "$PY" -c 'import sys; sys.path.insert(0, sys.argv[1]); import compare as c; t = c.lammps_thermo(sys.argv[2]); s = sorted(t); sys.exit(0 if len(s) == 11 and t[s[-1]][0] > 10 * t[s[0]][0] > 0 else 1)' "$T" "$R/grow2.log"
 
+# No atoms at init: fix pour's radius sizes the cut-off; the poured spheres must all be in and
+# touching (pair pressure > 0 at the end).
+lmp_run 1 "$R/pour.log" -in "$T/in.pour"
+check "spheres poured into an empty box (cut-off from fix pour): 100 atoms in, touching at the end" \
+  bash -c 'tail -n 30 "$0" | awk '"'"'$1 == 20000 && $2 == 100 && $3 > 0 { ok = 1 } END { exit !ok }'"'"'' "$R/pour.log"
+
 echo "== 5. Restart: write at step $((STEPS / 2)), read back, continue: bit-identical"
 lmp_run 1 "$R/a.log" -var data "$R/shear.data" -var steps "$STEPS" -var restart_at $((STEPS / 2)) \
   -var restart_file "$R/half.restart" -var dumpfile "$R/a.dump" -in "$T/in.creep"

@@ -2,7 +2,9 @@
 //
 // pair_style granular/creep [tier exact|spring] [creep yes|no] [maxpartners N]
 //                           [rolling none | rolling constant MU_R | rolling epsd MU_R ETA]
-// pair_coeff I J E e nu mu          (Young's modulus [Pa], restitution, Poisson ratio, friction)
+//                           [maxradius R]   (m: the cut-off is 2 x the largest of R, the atoms'
+//                                            radii at init and fix pour/deposit's radii)
+// pair_coeff I J E e nu mu          (Young's modulus (Pa), restitution, Poisson ratio, friction)
 //
 // Requirements (checked in init_style): atom_style sphere, comm_modify vel yes, newton off
 // (for pairs: each rank then computes every owned-ghost pair itself and keeps its history
@@ -10,6 +12,11 @@
 //
 // Contact orientation: body p is the atom with the lower tag, so the two ranks that compute an
 // owned-ghost pair (newton off) evaluate it identically and keep the same history.
+//
+// History storage: each contact's history once, in a pool with one slot per neighbour entry,
+// stepped in place by creep_lammps_compute_at; fix creep/history's per-atom rows are written
+// from the pool only before exchange / at run end / for restarts (sync_history_rows) and read
+// back after each neighbour-list build (rebuild_slots), as LAMMPS' fix neigh/history does.
 #include "pair_granular_creep.h"
 
 #include "atom.h"
