@@ -12,6 +12,8 @@ use creep_law::{PairMaterial, Surface, hertz};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use crate::output::{self, CsvWriter, create_dir};
+
 use creep_dem::{Cheap, Exact};
 use creep_scenes::triaxial::{
     Specimen, TriaxialParams, compact, dem_engine_tiled, time_compliant_steps, time_dem_steps,
@@ -59,9 +61,18 @@ pub enum BenchCommand {
     Pile(crate::bench_pile::PileArgs),
 }
 
+/// The columns of the speed tables (`creep bench dem`, and the first of its `--scale` table).
+const SPEED_COLUMNS: [&str; 5] = [
+    "engine",
+    "threads",
+    "particles",
+    "steps",
+    "particle_steps_per_s",
+];
+
+/// The median of `v` (creep_scenes::stats::median); NaN when empty (a variant not run).
 fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+    creep_scenes::stats::median(&mut v).unwrap_or(f64::NAN)
 }
 
 fn mean(v: &[f64]) -> f64 {
@@ -93,9 +104,7 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
             }
             if let Some(dir) = export {
                 // Fail before the minute of compaction, not after it.
-                std::fs::create_dir_all(dir).map_err(|e| {
-                    format!("--export: cannot create directory {}: {e}", dir.display())
-                })?;
+                create_dir(dir).map_err(|e| format!("--export: {e}"))?;
             }
             let params = TriaxialParams {
                 n_per_side: *n,
@@ -188,7 +197,6 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
                 }
             }
             let med: Vec<f64> = all.into_iter().map(median).collect();
-            writeln!(out, "engine,threads,particles,steps,particle_steps_per_s")?;
             let total = *steps * *rounds;
             let mut rows = vec![("dem-cheap", 1, med[3]), ("dem-exact", 1, med[4])];
             if two {
@@ -198,13 +206,15 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
             rows.push(("rapier-compliant", 1, med[1]));
             rows.push(("rapier-compliant-cm", 1, med[0]));
             rows.push(("rapier-plain", 1, med[2]));
+            let mut csv = CsvWriter::new(out, &SPEED_COLUMNS)?;
             for (name, threads, m) in rows {
-                writeln!(
-                    out,
-                    "{name},{threads},{},{total},{:.4e}",
-                    n.pow(3),
-                    count / m
-                )?;
+                csv.row(&[
+                    &name,
+                    &threads,
+                    &n.pow(3),
+                    &total,
+                    &format_args!("{:.4e}", count / m),
+                ])?;
             }
             Ok(())
         }
@@ -215,10 +225,11 @@ pub fn run(cmd: &BenchCommand, out: &mut dyn Write) -> Res {
 /// `k^3` times for each `k`, particle-step cost relative to the first; and the engine's memory
 /// per particle (both tiers, arrays + neighbour list + histories).
 fn scale_table(s: &Specimen, tiles: &[usize], steps: usize, out: &mut dyn Write) -> Res {
-    writeln!(
-        out,
-        "engine,threads,particles,steps,particle_steps_per_s,cost_vs_first,bytes_per_particle"
-    )?;
+    let columns: Vec<&str> = SPEED_COLUMNS
+        .into_iter()
+        .chain(["cost_vs_first", "bytes_per_particle"])
+        .collect();
+    let mut csv = CsvWriter::new(out, &columns)?;
     let mut first = None;
     for &k in tiles {
         let mut d = dem_engine_tiled::<Cheap>(s, true, false, k)?;
@@ -232,19 +243,20 @@ fn scale_table(s: &Specimen, tiles: &[usize], steps: usize, out: &mut dyn Write)
         let per = median(times) / n as f64;
         let f = *first.get_or_insert(per);
         let exact = dem_engine_tiled::<Exact>(s, true, false, k)?;
-        writeln!(
-            out,
-            "dem-cheap,1,{n},{steps},{:.4e},{:.3},{:.0}",
-            1.0 / per,
-            per / f,
-            d.bytes_per_particle()
-        )?;
-        writeln!(
-            out,
-            "# dem-exact memory at {n} particles: {:.0} bytes per particle",
+        csv.row(&[
+            &"dem-cheap",
+            &1,
+            &n,
+            &steps,
+            &format_args!("{:.4e}", 1.0 / per),
+            &format_args!("{:.3}", per / f),
+            &format_args!("{:.0}", d.bytes_per_particle()),
+        ])?;
+        csv.comment(&format!(
+            "dem-exact memory at {n} particles: {:.0} bytes per particle",
             exact.bytes_per_particle()
-        )?;
-        out.flush()?;
+        ))?;
+        csv.flush()?;
     }
     Ok(())
 }
@@ -279,6 +291,32 @@ struct Face {
     side: f64,
     /// Position of the inner face along `axis` [m].
     at: f64,
+}
+
+/// `packing.json`: the number of spheres, the variables of `params.lmp` (name: value), then the
+/// packing's figures (SI units, as in `params.lmp`).
+#[derive(serde::Serialize)]
+struct PackingJson<'a> {
+    spheres: usize,
+    #[serde(flatten)]
+    vars: Vars<'a>,
+    /// dt / Rayleigh time of the smallest radius [-].
+    dt_over_rayleigh: f64,
+    /// Sphere volume / box volume [-].
+    solid_fraction: f64,
+    /// Normal stress of each wall [Pa] (-x, +x, -y, +y, -z, +z).
+    wall_stress: [f64; 6],
+    ball_ball_contacts: usize,
+    ball_wall_contacts: usize,
+}
+
+/// `params.lmp`'s variables (name, value, comment) as a JSON map of name to value, in order.
+struct Vars<'a>(&'a [(&'a str, f64, &'a str)]);
+
+impl serde::Serialize for Vars<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_map(self.0.iter().map(|(name, value, _)| (name, value)))
+    }
 }
 
 /// Writes the compacted packing to `dir` (see `--export`).
@@ -427,9 +465,7 @@ fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::err
     let d_mean = atoms.iter().map(|a| 2.0 * f64::from(a.0)).sum::<f64>() / atoms.len() as f64;
 
     let write = |name: &str, text: String| {
-        let path = dir.join(name);
-        std::fs::write(&path, text)
-            .map_err(|e| format!("--export: cannot write {}: {e}", path.display()))
+        output::write(&dir.join(name), &text).map_err(|e| format!("--export: {e}"))
     };
 
     // LAMMPS data file (atom_style sphere; LIGGGHTS' atom_style granular reads the same):
@@ -528,23 +564,16 @@ fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::err
     }
     write("params.lmp", lmp)?;
 
-    let mut json = String::from("{\n");
-    json.push_str(&format!("  \"spheres\": {},\n", atoms.len()));
-    for (name, value, _) in &vars {
-        json.push_str(&format!("  \"{name}\": {value:.9e},\n"));
-    }
-    json.push_str(&format!("  \"dt_over_rayleigh\": {:.6},\n", dt / t_r));
-    json.push_str(&format!("  \"solid_fraction\": {:.6},\n", solids / volume));
-    json.push_str(&format!(
-        "  \"wall_stress\": [{}],\n",
-        wall_stress
-            .iter()
-            .map(|w| format!("{w:.6e}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    ));
-    json.push_str(&format!("  \"ball_ball_contacts\": {ball_ball},\n"));
-    json.push_str(&format!("  \"ball_wall_contacts\": {ball_wall}\n}}\n"));
+    let json = PackingJson {
+        spheres: atoms.len(),
+        vars: Vars(&vars),
+        dt_over_rayleigh: dt / t_r,
+        solid_fraction: solids / volume,
+        wall_stress,
+        ball_ball_contacts: ball_ball,
+        ball_wall_contacts: ball_wall,
+    };
+    let json = serde_json::to_string_pretty(&json)? + "\n";
     write("packing.json", json)?;
 
     Ok(Exported {
@@ -596,7 +625,14 @@ mod tests {
         }
         assert!(params_lmp.contains("variable young equal 6.960000000e7"));
         let json = std::fs::read_to_string(dir.join("packing.json")).expect("json");
-        assert!(json.contains("\"dt_over_rayleigh\": 0.2"), "{json}");
+        let v: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
+        // 0.2 to the six decimals the file used to print.
+        let ratio = v["dt_over_rayleigh"].as_f64().expect("dt_over_rayleigh");
+        assert!((ratio - 0.2).abs() < 5e-7, "{json}");
+        assert_eq!(v["spheres"].as_u64(), Some(8), "{json}");
+        let young = v["young"].as_f64().expect("young");
+        assert!((young / 6.96e7 - 1.0).abs() < 1e-12, "{json}");
+        assert_eq!(v["wall_stress"].as_array().map(Vec::len), Some(6), "{json}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 

@@ -2,6 +2,8 @@
 
 use std::io::Write;
 
+use crate::output::CsvWriter;
+
 use clap::{Subcommand, ValueEnum};
 use creep_law::{
     CreepInput, CreepLaw, CreepModel, CreepState, Material, MindlinState, PairMaterial, SteadyLaw,
@@ -114,11 +116,11 @@ pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
             if let Some(bad) = q_ratio.iter().find(|r| !(**r >= 0.0 && **r <= 1.0)) {
                 return Err(format!("--q-ratio values must be in [0, 1], got {bad}").into());
             }
-            writeln!(out, "q_over_mu_p,creepage_n")?;
+            let mut w = CsvWriter::new(out, &["q_over_mu_p", "creepage_n"])?;
             let law = SteadyLaw::new(model.creep_model(), *nu);
             for &s in q_ratio {
                 let x = law.creepage_n(s);
-                writeln!(out, "{s},{x:.10e}")?;
+                w.row(&[&s, &format_args!("{x:.10e}")])?;
             }
             Ok(())
         }
@@ -138,8 +140,15 @@ pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
             let l = law.loads_kalker(*xi, *eta, *phi);
             // `+ 0.0` turns a negative zero into 0 for printing.
             let (fx, fy, mz) = (l.fx + 0.0, l.fy + 0.0, l.mz + 0.0);
-            writeln!(out, "xi_n,eta_n,phi_n,fx_n,fy_n,mz_n")?;
-            writeln!(out, "{xi},{eta},{phi},{:.10},{:.10},{:.10}", fx, fy, mz)?;
+            let mut w = CsvWriter::new(out, &["xi_n", "eta_n", "phi_n", "fx_n", "fy_n", "mz_n"])?;
+            w.row(&[
+                xi,
+                eta,
+                phi,
+                &format_args!("{fx:.10}"),
+                &format_args!("{fy:.10}"),
+                &format_args!("{mz:.10}"),
+            ])?;
             Ok(())
         }
         LawCommand::Mindlin {
@@ -158,9 +167,14 @@ pub fn run(cmd: &LawCommand, out: &mut dyn Write) -> Res {
             }
             let m = Material::new(*g, *nu, *mu, 7850.0)?;
             let pair = PairMaterial::new(&m, &m, Surface::Sphere(*radius), Surface::Plane)?;
-            writeln!(out, "step,delta_m,q_n,q_over_mu_p")?;
+            let mut w = CsvWriter::new(out, &["step", "delta_m", "q_n", "q_over_mu_p"])?;
             for (i, (d, q)) in mindlin_cycle(&pair, *p, *steps).iter().enumerate() {
-                writeln!(out, "{i},{d:.10e},{q:.10e},{:.10}", q / (pair.mu * p))?;
+                w.row(&[
+                    &i,
+                    &format_args!("{d:.10e}"),
+                    &format_args!("{q:.10e}"),
+                    &format_args!("{:.10}", q / (pair.mu * p)),
+                ])?;
             }
             Ok(())
         }

@@ -59,25 +59,77 @@ impl Csv {
     }
 
     fn push(&mut self, fields: &[&dyn std::fmt::Display]) {
-        for (i, f) in fields.iter().enumerate() {
-            if i > 0 {
-                self.text.push(',');
-            }
-            let v = f.to_string();
-            if v.contains([',', '"', '\n', '\r']) {
-                self.text.push('"');
-                self.text.push_str(&v.replace('"', "\"\""));
-                self.text.push('"');
-            } else {
-                self.text.push_str(&v);
-            }
-        }
-        self.text.push('\n');
+        push_row(&mut self.text, fields);
     }
 
     /// Writes the table to `path`.
     pub fn write(&self, path: &Path) -> Result<(), OutputError> {
         write(path, &self.text)
+    }
+}
+
+/// One CSV row (RFC 4180 quoting, see [`Csv`]) appended to `text`, with its line break.
+fn push_row(text: &mut String, fields: &[&dyn std::fmt::Display]) {
+    use std::fmt::Write as _;
+    for (i, f) in fields.iter().enumerate() {
+        if i > 0 {
+            text.push(',');
+        }
+        let start = text.len();
+        // Writing into a String cannot fail.
+        let _ = write!(text, "{f}");
+        if text[start..].contains([',', '"', '\n', '\r']) {
+            let quoted = format!("\"{}\"", text[start..].replace('"', "\"\""));
+            text.truncate(start);
+            text.push_str(&quoted);
+        }
+    }
+    text.push('\n');
+}
+
+/// The same CSV rows as [`Csv`], streamed to a writer (the commands that print CSV on stdout
+/// row by row as they compute): the header on creation, then one row a call.
+pub struct CsvWriter<'a> {
+    out: &'a mut dyn std::io::Write,
+    columns: usize,
+    line: String,
+}
+
+impl<'a> CsvWriter<'a> {
+    /// Writes the header `header` to `out`.
+    pub fn new(out: &'a mut dyn std::io::Write, header: &[&str]) -> std::io::Result<Self> {
+        let mut w = Self {
+            out,
+            columns: header.len(),
+            line: String::new(),
+        };
+        let fields: Vec<&dyn std::fmt::Display> =
+            header.iter().map(|h| h as &dyn std::fmt::Display).collect();
+        w.emit(&fields)?;
+        Ok(w)
+    }
+
+    /// Writes one row; it must have as many fields as the header (a programming error
+    /// otherwise, caught in debug builds).
+    pub fn row(&mut self, fields: &[&dyn std::fmt::Display]) -> std::io::Result<()> {
+        debug_assert_eq!(fields.len(), self.columns, "CSV row width");
+        self.emit(fields)
+    }
+
+    /// A line that is not a row (a `#` comment), passed through as it is.
+    pub fn comment(&mut self, text: &str) -> std::io::Result<()> {
+        writeln!(self.out, "# {text}")
+    }
+
+    /// Flushes the writer (rows printed so far become visible).
+    pub fn flush(&mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
+
+    fn emit(&mut self, fields: &[&dyn std::fmt::Display]) -> std::io::Result<()> {
+        self.line.clear();
+        push_row(&mut self.line, fields);
+        self.out.write_all(self.line.as_bytes())
     }
 }
 
@@ -111,5 +163,11 @@ mod tests {
             t.text,
             "name,value\nplain,1.235\n\"a, b\",\"say \"\"hi\"\"\"\n"
         );
+        // The streamed writer gives the same bytes.
+        let mut buf = Vec::new();
+        let mut w = CsvWriter::new(&mut buf, &["name", "value"]).unwrap();
+        w.row(&[&"plain", &format_args!("{:.3}", 1.23456)]).unwrap();
+        w.row(&[&"a, b", &"say \"hi\""]).unwrap();
+        assert_eq!(String::from_utf8(buf).unwrap(), t.text);
     }
 }

@@ -17,6 +17,8 @@ use creep_reference::fastsim::{FastsimOptions, fastsim};
 use creep_reference::mindlin::Mindlin;
 use std::io::Write;
 
+use crate::output::CsvWriter;
+
 /// Reference solutions (closed forms, FASTSIM, boundary elements), printed as CSV.
 #[derive(Debug, Subcommand)]
 pub enum RefCommand {
@@ -239,11 +241,20 @@ fn run_steady(args: &SteadyArgs, out: &mut dyn Write) -> Result<(), Box<dyn std:
         )?),
         SteadyMethod::Fastsim => None,
     };
-    if extra {
-        writeln!(out, "creepage,fx,fx_over_mu_p,lateral,spin,fy,mz")?;
+    let header: &[&str] = if extra {
+        &[
+            "creepage",
+            "fx",
+            "fx_over_mu_p",
+            "lateral",
+            "spin",
+            "fy",
+            "mz",
+        ]
     } else {
-        writeln!(out, "creepage,fx,fx_over_mu_p")?;
-    }
+        &["creepage", "fx", "fx_over_mu_p"]
+    };
+    let mut w = CsvWriter::new(out, header)?;
     for (i, &xi) in args.creepage.iter().enumerate() {
         let c = Creepage {
             longitudinal: xi,
@@ -262,9 +273,9 @@ fn run_steady(args: &SteadyArgs, out: &mut dyn Write) -> Result<(), Box<dyn std:
         };
         let ratio = fx / contact.mu_p();
         if extra {
-            writeln!(out, "{xi},{fx},{ratio},{},{},{fy},{mz}", c.lateral, c.spin)?;
+            w.row(&[&xi, &fx, &ratio, &c.lateral, &c.spin, &fy, &mz])?;
         } else {
-            writeln!(out, "{xi},{fx},{ratio}")?;
+            w.row(&[&xi, &fx, &ratio])?;
         }
     }
     Ok(())
@@ -285,13 +296,9 @@ fn run_transient(
         (None, Some(x)) => transient_hold_creepage(&input, Creepage::longitudinal(x))?,
         _ => return Err("give exactly one of --hold-force RATIO or --hold-creepage X".into()),
     };
-    writeln!(out, "step,rolled,creepage,fx_over_mu_p")?;
+    let mut w = CsvWriter::new(out, &["step", "rolled", "creepage", "fx_over_mu_p"])?;
     for r in records {
-        writeln!(
-            out,
-            "{},{},{},{}",
-            r.step, r.rolled, r.creepage, r.fx_over_mu_p
-        )?;
+        w.row(&[&r.step, &r.rolled, &r.creepage, &r.fx_over_mu_p])?;
     }
     Ok(())
 }
@@ -308,37 +315,27 @@ fn run_mindlin(args: &MindlinArgs, out: &mut dyn Write) -> Result<(), Box<dyn st
     }
     let qs = args.amplitude * c.mu_p();
     let k = args.points as f64;
-    writeln!(out, "branch,q_over_mu_p,shift")?;
+    let mut w = CsvWriter::new(out, &["branch", "q_over_mu_p", "shift"])?;
     for i in 0..=args.points {
         let q = qs * i as f64 / k;
-        writeln!(out, "loading,{},{}", q / c.mu_p(), m.loading_shift(q)?)?;
+        w.row(&[&"loading", &(q / c.mu_p()), &m.loading_shift(q)?])?;
     }
     for i in 1..=args.points {
         let q = qs - 2.0 * qs * i as f64 / k;
-        writeln!(
-            out,
-            "unloading,{},{}",
-            q / c.mu_p(),
-            m.unloading_shift(qs, q)?
-        )?;
+        w.row(&[&"unloading", &(q / c.mu_p()), &m.unloading_shift(qs, q)?])?;
     }
     for i in 1..=args.points {
         let q = -qs + 2.0 * qs * i as f64 / k;
-        writeln!(
-            out,
-            "reloading,{},{}",
-            q / c.mu_p(),
-            m.reloading_shift(qs, q)?
-        )?;
+        w.row(&[&"reloading", &(q / c.mu_p()), &m.reloading_shift(qs, q)?])?;
     }
     Ok(())
 }
 
 fn run_carter(args: &CarterArgs, out: &mut dyn Write) -> Result<(), Box<dyn std::error::Error>> {
     let c = Carter::new(args.a, args.r, args.mu)?;
-    writeln!(out, "q_over_mu_p,creepage,stick_half_width_over_a")?;
+    let mut w = CsvWriter::new(out, &["q_over_mu_p", "creepage", "stick_half_width_over_a"])?;
     for &s in &args.ratios {
-        writeln!(out, "{s},{},{}", c.creepage(s)?, Carter::stick_ratio(s)?)?;
+        w.row(&[&s, &c.creepage(s)?, &Carter::stick_ratio(s)?])?;
     }
     Ok(())
 }
@@ -388,7 +385,7 @@ fn write_to(
     out: &mut dyn Write,
 ) -> Result<(), Box<dyn std::error::Error>> {
     match path {
-        Some(p) => std::fs::write(p, text)?,
+        Some(p) => crate::output::write(p, text)?,
         None => out.write_all(text.as_bytes())?,
     }
     Ok(())
@@ -424,7 +421,7 @@ fn run_fit_steady(
                 fit::steady_csv(&flat)
             );
             if let Some(p) = &args.data {
-                std::fs::write(p, &csv)?;
+                crate::output::write(p, &csv)?;
             }
             (
                 flat,

@@ -157,7 +157,7 @@ pub fn run(args: &ReportArgs, out: &mut dyn Write) -> Result<(), Box<dyn std::er
         "\nReport written in {:.1} s.",
         started.elapsed().as_secs_f64()
     );
-    write_file(&dir.join("REPORT.md"), &md)?;
+    crate::output::write(&dir.join("REPORT.md"), &md)?;
     writeln!(out, "{}", dir.join("REPORT.md").display())?;
     for f in files {
         writeln!(out, "{}", dir.join(f).display())?;
@@ -168,9 +168,4 @@ pub fn run(args: &ReportArgs, out: &mut dyn Write) -> Result<(), Box<dyn std::er
 /// A progress bar for one section; its length is set by the section.
 fn progress_bar(section: &str) -> ProgressBar {
     crate::progress::bar(1, &format!("report: {section}"))
-}
-
-/// Writes one of the report's files (the sections' CSVs and REPORT.md).
-pub(crate) fn write_file(path: &Path, text: &str) -> Result<(), OutputError> {
-    crate::output::write(path, text)
 }

@@ -2,6 +2,8 @@
 
 use std::io::Write;
 
+use crate::output::CsvWriter;
+
 use clap::Subcommand;
 use creep_law::Material;
 use creep_scenes::{cue_ball, free_rolling, friction_drive, incline};
@@ -159,25 +161,34 @@ pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
             let torques: Vec<f64> = ratios.iter().map(|r| r * slip_torque).collect();
             let rows = friction_drive::run(&p, &torques)?;
             if *csv {
-                writeln!(
+                let mut w = CsvWriter::new(
                     out,
-                    "brake_torque,p,q,q_over_mu_p,contact_radius,g,nu,mu,creepage_measured,creepage_expected"
+                    &[
+                        "brake_torque",
+                        "p",
+                        "q",
+                        "q_over_mu_p",
+                        "contact_radius",
+                        "g",
+                        "nu",
+                        "mu",
+                        "creepage_measured",
+                        "creepage_expected",
+                    ],
                 )?;
                 for r in rows {
-                    writeln!(
-                        out,
-                        "{},{},{},{},{},{},{},{},{},{}",
-                        r.brake_torque,
-                        r.p,
-                        r.q,
-                        r.q_over_mu_p,
-                        r.contact_radius,
-                        r.g,
-                        r.nu,
-                        r.mu,
-                        r.creepage_measured,
-                        r.creepage_expected
-                    )?;
+                    w.row(&[
+                        &r.brake_torque,
+                        &r.p,
+                        &r.q,
+                        &r.q_over_mu_p,
+                        &r.contact_radius,
+                        &r.g,
+                        &r.nu,
+                        &r.mu,
+                        &r.creepage_measured,
+                        &r.creepage_expected,
+                    ])?;
                 }
             } else {
                 writeln!(
@@ -229,24 +240,30 @@ pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
                 steps: *steps,
                 substeps: *substeps,
             };
-            writeln!(
+            let mut w = CsvWriter::new(
                 out,
-                "t,x,height,speed,omega_r,kinetic_energy,potential_energy"
+                &[
+                    "t",
+                    "x",
+                    "height",
+                    "speed",
+                    "omega_r",
+                    "kinetic_energy",
+                    "potential_energy",
+                ],
             )?;
             let mut failed = None;
             ball.run(|s| {
                 if failed.is_none()
-                    && let Err(e) = writeln!(
-                        out,
-                        "{},{},{},{},{},{},{}",
-                        s.t,
-                        s.x,
-                        s.height,
-                        s.speed,
-                        s.omega_r,
-                        s.kinetic_energy,
-                        s.potential_energy
-                    )
+                    && let Err(e) = w.row(&[
+                        &s.t,
+                        &s.x,
+                        &s.height,
+                        &s.speed,
+                        &s.omega_r,
+                        &s.kinetic_energy,
+                        &s.potential_energy,
+                    ])
                 {
                     failed = Some(e);
                 }

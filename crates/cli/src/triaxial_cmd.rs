@@ -1,23 +1,25 @@
 //! `creep triaxial [--quick] [--out DIR] [--config FILE]`: the talk's drained triaxial test
 //! (creep-scenes `triaxial`), sheared with Coulomb-Mindlin and with creep-friction from the same
-//! packing; writes CSVs, plots and a summary.
+//! packing; writes CSVs, plots, a summary and the parameters it ran with (`params.toml`, which
+//! `--config` reads back to repeat the run).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use creep_scenes::triaxial::{
-    CSV_HEADER, CompactionSummary, DemSpecimen, ShearRun, ShearSummary, Specimen, TriaxialEngine,
-    TriaxialParams, compact, compact_dem, shear, shear_dem,
+    CSV_HEADER, CompactionSummary, DemSpecimen, GENERATOR, ShearRun, ShearSummary, Specimen,
+    TriaxialConfig, TriaxialEngine, TriaxialParams, compact, compact_dem, shear, shear_dem,
 };
-use indicatif::{ProgressBar, ProgressStyle};
 
+use crate::output::{self, Csv, create_dir};
 use crate::plot::{LineChart, Series};
+use crate::progress::bar;
 
 type Res = Result<(), Box<dyn std::error::Error>>;
 
-/// The built-in defaults (the repository's `crates/cli/assets/triaxial.conf`).
-const DEFAULTS: &str = include_str!("../assets/triaxial.conf");
+/// The built-in defaults (the repository's `crates/cli/assets/triaxial.toml`).
+const DEFAULTS: &str = include_str!("../assets/triaxial.toml");
 
 /// Arguments of `creep triaxial`.
 #[derive(Debug, clap::Args)]
@@ -25,11 +27,12 @@ pub struct TriaxialArgs {
     /// Smoke-test size: 343 spheres, 10 % strain at I = 5e-3 (seconds; not quasi-static).
     #[arg(long)]
     quick: bool,
-    /// Output directory (CSVs, SVG/PNG plots, SUMMARY.md).
+    /// Output directory (CSVs, SVG/PNG plots, SUMMARY.md, params.toml: the parameters used).
     #[arg(long, default_value = "triaxial")]
     out: PathBuf,
-    /// Parameters file (`key = value` lines, the form of crates/cli/assets/triaxial.conf); default: the
-    /// built-in copy of crates/cli/assets/triaxial.conf.
+    /// Parameters file (TOML, the form of crates/cli/assets/triaxial.toml; keys not given keep
+    /// its values, an unknown key is an error); default: the built-in copy of
+    /// crates/cli/assets/triaxial.toml. A run's params.toml repeats that run.
     #[arg(long)]
     config: Option<PathBuf>,
     /// Engine: `rapier` (the compliant regime; the default) or `dem` (creep-dem, f64);
@@ -76,46 +79,56 @@ impl Compacted {
     }
 }
 
-fn bar(len: u64, what: &str) -> ProgressBar {
-    let pb = ProgressBar::new(len);
-    pb.set_style(
-        ProgressStyle::with_template(
-            "{msg:>26} [{elapsed_precise}] {wide_bar} {percent:>3}% ({eta})",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    pb.set_message(what.to_string());
-    pb
-}
-
-/// Runs the test.
-pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
+/// The configuration a run uses: the file (or the built-in defaults), then the flags
+/// (`--engine` replaces the file's engine, `--quick` its size, rate, strain and rows).
+fn config(args: &TriaxialArgs) -> Result<TriaxialConfig, Box<dyn std::error::Error>> {
     let text = match &args.config {
         Some(path) => {
             std::fs::read_to_string(path).map_err(|e| format!("reading {}: {e}", path.display()))?
         }
         None => DEFAULTS.to_string(),
     };
-    let mut params = TriaxialParams::from_conf(&text)?;
-    let engine = match &args.engine {
-        Some(e) => e.parse::<TriaxialEngine>()?,
-        None => TriaxialEngine::from_conf(&text)?,
-    };
+    let mut cfg = TriaxialConfig::from_toml(&text).map_err(|e| match &args.config {
+        Some(path) => format!("{}: {e}", path.display()),
+        None => e.to_string(),
+    })?;
+    if let Some(e) = &args.engine {
+        cfg.engine = e.parse::<TriaxialEngine>()?;
+    }
     if args.quick {
         let q = TriaxialParams::quick();
-        params.n_per_side = q.n_per_side;
-        params.inertial_number = q.inertial_number;
-        params.axial_strain = q.axial_strain;
-        params.rows_per_percent = q.rows_per_percent;
+        let p = &mut cfg.params;
+        p.n_per_side = q.n_per_side;
+        p.inertial_number = q.inertial_number;
+        p.axial_strain = q.axial_strain;
+        p.rows_per_percent = q.rows_per_percent;
     }
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("creating {}: {e}", args.out.display()))?;
+    Ok(cfg)
+}
+
+/// `params.toml` of a run: the configuration it used, with the packing's generator named.
+fn params_file(cfg: &TriaxialConfig) -> Result<String, Box<dyn std::error::Error>> {
+    Ok(format!(
+        "# The parameters of a `creep triaxial` run (SI units; --config reads this file to repeat\n\
+         # the run). The packing's generator: {GENERATOR}, seeded with `seed`.\n\n{}",
+        cfg.to_toml()?
+    ))
+}
+
+/// Runs the test.
+pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
+    let cfg = config(args)?;
+    let (engine, params) = (cfg.engine, cfg.params);
+    create_dir(&args.out)?;
+    // The parameters first: a run stopped half-way can still be repeated.
+    output::write(&args.out.join("params.toml"), &params_file(&cfg)?)?;
     let n = params.n_per_side.pow(3);
     let m = params.material;
     let header = format!(
         "Drained triaxial compression, engine {} ({}), Coulomb-Mindlin vs creep-friction\n\
          {n} spheres, radius uniform in [{:.3e}, {:.3e}] m; G = {:.3e} Pa, nu = {}, rho = {} kg/m^3, mu = {}, e = {}\n\
-         confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R)",
+         confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R)\n\
+         packing generator {GENERATOR}, seed {}",
         engine.name(),
         match engine {
             TriaxialEngine::Dem => "creep-dem, f64",
@@ -134,6 +147,7 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         params.axial_strain * 100.0,
         params.time_step(),
         params.rayleigh_fraction,
+        params.seed,
     );
     writeln!(out, "{header}")?;
     if args.quick {
@@ -176,7 +190,7 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         pb.finish();
         let secs = t.elapsed().as_secs_f64();
         let name = if creep { "creep" } else { "coulomb" };
-        write_csv(&args.out.join(format!("triaxial_{name}.csv")), &run)?;
+        write_csv(&args.out.join(format!("triaxial_{name}.csv")), &run.rows)?;
         runs.push((run, secs));
     }
 
@@ -242,24 +256,29 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     for l in &lines[lines.len() - 16..] {
         writeln!(out, "{l}")?;
     }
-    std::fs::write(args.out.join("SUMMARY.md"), lines.join("\n") + "\n")?;
+    output::write(&args.out.join("SUMMARY.md"), &(lines.join("\n") + "\n"))?;
     plots(&args.out, &runs)?;
     writeln!(
         out,
-        "wrote {}/{{triaxial_coulomb.csv, triaxial_creep.csv, SUMMARY.md, triaxial_q_over_p.*, triaxial_volumetric.*, triaxial_contacts.*}}",
+        "wrote {}/{{triaxial_coulomb.csv, triaxial_creep.csv, SUMMARY.md, params.toml, triaxial_q_over_p.*, triaxial_volumetric.*, triaxial_contacts.*}}",
         args.out.display()
     )?;
     Ok(())
 }
 
-fn write_csv(path: &Path, run: &ShearRun) -> Res {
-    let mut text = String::from(CSV_HEADER);
-    text.push('\n');
-    for r in &run.rows {
-        text.push_str(&r.csv());
-        text.push('\n');
+/// A shear's rows as CSV: the scene's columns ([`CSV_HEADER`]) and number formats
+/// (`TriaxialRow::csv`, numbers only), through the CLI's one CSV writer.
+fn write_csv(path: &Path, rows: &[creep_scenes::triaxial::TriaxialRow]) -> Res {
+    let header: Vec<&str> = CSV_HEADER.split(',').collect();
+    let mut csv = Csv::new(&header);
+    for r in rows {
+        let line = r.csv();
+        let parts: Vec<&str> = line.split(',').collect();
+        let fields: Vec<&dyn std::fmt::Display> =
+            parts.iter().map(|f| f as &dyn std::fmt::Display).collect();
+        csv.row(&fields);
     }
-    std::fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()))?;
+    csv.write(path)?;
     Ok(())
 }
 
@@ -340,4 +359,67 @@ fn plots(dir: &Path, runs: &[(ShearRun, f64)]) -> Res {
     v.write(&dir.join("triaxial_volumetric"))?;
     c.write(&dir.join("triaxial_contacts"))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(config: Option<PathBuf>, quick: bool, engine: Option<&str>) -> TriaxialArgs {
+        TriaxialArgs {
+            quick,
+            out: PathBuf::from("unused"),
+            config,
+            engine: engine.map(String::from),
+        }
+    }
+
+    /// The flags override the file, and the params.toml a run writes reads back (through
+    /// `--config`) to the same configuration, so the run can be repeated.
+    #[test]
+    fn params_toml_repeats_the_run() {
+        let cfg = config(&args(None, true, Some("dem"))).unwrap();
+        assert_eq!(cfg.engine, TriaxialEngine::Dem);
+        assert_eq!(cfg.params.n_per_side, TriaxialParams::quick().n_per_side);
+        assert_eq!(cfg.params.seed, TriaxialParams::default().seed);
+        let text = params_file(&cfg).unwrap();
+        assert!(text.contains(GENERATOR), "{text}");
+        assert!(text.contains("seed = 2011"), "{text}");
+
+        let dir =
+            std::env::temp_dir().join(format!("creep-triaxial-params-{}", std::process::id()));
+        create_dir(&dir).unwrap();
+        let path = dir.join("params.toml");
+        output::write(&path, &text).unwrap();
+        assert_eq!(config(&args(Some(path.clone()), false, None)).unwrap(), cfg);
+        // Without the flags the defaults file gives the defaults (and the rapier engine).
+        let plain = config(&args(None, false, None)).unwrap();
+        assert_eq!(plain, TriaxialConfig::default());
+
+        // An unknown key in a file is an error naming the key and the file.
+        output::write(&path, "colour = \"blue\"\n").unwrap();
+        let e = config(&args(Some(path.clone()), false, None)).unwrap_err();
+        assert!(e.to_string().contains("colour"), "{e}");
+        assert!(e.to_string().contains("params.toml"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The shear CSV keeps the scene's header and row format through the CSV writer.
+    #[test]
+    fn shear_csv_is_the_scenes_header_and_rows() {
+        let row = creep_scenes::triaxial::TriaxialRow {
+            axial_strain: 0.01,
+            q_over_p: 0.5,
+            contacts: 12,
+            ..Default::default()
+        };
+        let dir = std::env::temp_dir().join(format!("creep-triaxial-csv-{}", std::process::id()));
+        create_dir(&dir).unwrap();
+        let path = dir.join("run.csv");
+        write_csv(&path, &[row, row]).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let expected = format!("{CSV_HEADER}\n{}\n{}\n", row.csv(), row.csv());
+        assert_eq!(text, expected);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

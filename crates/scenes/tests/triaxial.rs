@@ -3,14 +3,14 @@
 //! reaches the confining pressure, the shear is quasi-static).
 
 use creep_scenes::SceneError;
-use creep_scenes::triaxial::{Specimen, TriaxialParams, compact, shear};
+use creep_scenes::triaxial::{Specimen, TriaxialConfig, TriaxialParams, compact, shear};
 
-const CONF: &str = include_str!("../../cli/assets/triaxial.conf");
+const CONF: &str = include_str!("../../cli/assets/triaxial.toml");
 
 #[test]
 fn the_defaults_file_is_the_default() {
     assert_eq!(
-        TriaxialParams::from_conf(CONF).unwrap(),
+        TriaxialConfig::from_toml(CONF).unwrap().params,
         TriaxialParams::default()
     );
 }
@@ -22,11 +22,12 @@ fn bad_parameters_are_typed_errors() {
         "radius = -1",
         "mu = abc",
         "colour = blue",
+        "colour = \"blue\"",
         "inertial_number = 0",
         "shear_modulus = 0",
         "just a line",
     ] {
-        match TriaxialParams::from_conf(text) {
+        match TriaxialConfig::from_toml(text) {
             Err(SceneError::Parameter(_)) | Err(SceneError::Law(_)) => {}
             other => panic!("`{text}` gave {other:?}"),
         }
@@ -121,20 +122,15 @@ fn the_engine_key_and_flag_parse() {
     use creep_scenes::triaxial::TriaxialEngine;
     // The shipped defaults stay on the Rapier compliant regime until a full creep-dem run
     // reproduces the published results (issue #15).
+    let engine = |text: &str| TriaxialConfig::from_toml(text).map(|c| c.engine);
+    assert_eq!(engine(CONF).unwrap(), TriaxialEngine::Rapier);
+    assert_eq!(engine("engine = \"dem\"").unwrap(), TriaxialEngine::Dem);
     assert_eq!(
-        TriaxialEngine::from_conf(CONF).unwrap(),
+        engine("engine = \"rapier\"").unwrap(),
         TriaxialEngine::Rapier
     );
-    assert_eq!(
-        TriaxialEngine::from_conf("engine = dem").unwrap(),
-        TriaxialEngine::Dem
-    );
-    assert_eq!(
-        TriaxialEngine::from_conf("engine = rapier").unwrap(),
-        TriaxialEngine::Rapier
-    );
-    assert!(TriaxialEngine::from_conf("engine = lammps").is_err());
-    assert!(TriaxialParams::from_conf("engine = lammps").is_err());
+    assert!(engine("engine = \"lammps\"").is_err());
+    assert!("lammps".parse::<TriaxialEngine>().is_err());
 }
 
 /// The same protocol and checks as `a_small_packing_compacts_and_shears_quasi_statically`, on

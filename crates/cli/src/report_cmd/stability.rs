@@ -9,7 +9,8 @@ use std::path::Path;
 use creep_scenes::hard_cases::{self, Bound, HardCase, Outcome, Verdict, fast_rolling};
 use indicatif::ProgressBar;
 
-use super::{Config, ReportError, Section, write_file};
+use super::{Config, ReportError, Section};
+use crate::output::Csv;
 
 /// A verdict's value, short.
 fn short(v: f64) -> String {
@@ -60,7 +61,9 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
         rows.push((case, case.run()?));
         pb.inc(1);
     }
-    let mut csv = String::from("case,dt_s,verdict,value,bound,limit,passed,margin\n");
+    let mut csv = Csv::new(&[
+        "case", "dt_s", "verdict", "value", "bound", "limit", "passed", "margin",
+    ]);
     for (case, o) in &rows {
         for v in &o.verdicts {
             let (kind, limit) = match v.bound {
@@ -75,19 +78,21 @@ pub fn section(cfg: &Config, dir: &Path, pb: &ProgressBar) -> Result<Section, Re
                     }
                 }
             };
-            let _ = writeln!(
-                csv,
-                "{},{:.6e},{},{:.6e},{kind},{limit:e},{},{:.6e}",
-                case.label(),
-                case.dt(),
-                v.name.replace(',', ";"),
-                v.value,
-                v.passed(),
-                v.margin()
-            );
+            // Commas in a verdict's name become `;` (as before the CSV writer, which would
+            // quote them): scripts split the file on commas.
+            csv.row(&[
+                &case.label(),
+                &format_args!("{:.6e}", case.dt()),
+                &v.name.replace(',', ";"),
+                &format_args!("{:.6e}", v.value),
+                &kind,
+                &format_args!("{limit:e}"),
+                &v.passed(),
+                &format_args!("{:.6e}", v.margin()),
+            ]);
         }
     }
-    write_file(&dir.join("stability.csv"), &csv)?;
+    csv.write(&dir.join("stability.csv"))?;
 
     let mut md = String::from("## Stability: the hard-case matrix of the rigid regime\n\n");
     let _ = writeln!(
@@ -182,9 +187,19 @@ fn fast_rolling_table(
     dir: &Path,
     pb: &ProgressBar,
 ) -> Result<String, ReportError> {
-    let mut csv = String::from(
-        "material,speed_m_s,dt_s,ground,substeps,run,max_gain,loss,max_rise_m,max_sink_m,passed\n",
-    );
+    let mut csv = Csv::new(&[
+        "material",
+        "speed_m_s",
+        "dt_s",
+        "ground",
+        "substeps",
+        "run",
+        "max_gain",
+        "loss",
+        "max_rise_m",
+        "max_sink_m",
+        "passed",
+    ]);
     let mut md = String::from("### Fast rolling: a free ball at game steps\n\n");
     let _ = writeln!(
         md,
@@ -222,19 +237,19 @@ fn fast_rolling_table(
             (d.substeps, "plugin", &d.plugin),
             (d.substeps, "plain", &d.plain),
         ] {
-            let _ = writeln!(
-                csv,
-                "{},{},{:.6e},{},{sub},{run},{:.6e},{:.6e},{:.6e},{:.6e},{}",
-                case.material,
-                case.speed,
-                case.dt,
-                case.ground.label(),
-                s.max_gain,
-                s.loss,
-                s.max_rise,
-                s.max_sink,
-                fast_rolling::bounds_met(s)
-            );
+            csv.row(&[
+                &case.material,
+                &case.speed,
+                &format_args!("{:.6e}", case.dt),
+                &case.ground.label(),
+                &sub,
+                &run,
+                &format_args!("{:.6e}", s.max_gain),
+                &format_args!("{:.6e}", s.loss),
+                &format_args!("{:.6e}", s.max_rise),
+                &format_args!("{:.6e}", s.max_sink),
+                &fast_rolling::bounds_met(s),
+            ]);
         }
         total += 1;
         passed += usize::from(o.passed());
@@ -251,6 +266,6 @@ fn fast_rolling_table(
         pb.inc(1);
     }
     let _ = writeln!(md, "\n{passed} of {total} cases pass.\n");
-    write_file(&dir.join("fast_rolling.csv"), &csv)?;
+    csv.write(&dir.join("fast_rolling.csv"))?;
     Ok(md)
 }

@@ -51,11 +51,11 @@ mod specimen;
 mod stress;
 
 pub use dem::{DemSpecimen, compact_dem, shear_dem};
-pub use params::{TriaxialEngine, TriaxialParams};
+pub use params::{TriaxialConfig, TriaxialEngine, TriaxialParams};
 pub use protocol::{CompactionSummary, ShearRun, compact, compact_observed, shear, shear_observed};
 pub use report::{
     CSV_HEADER, ShearSummary, TriaxialRow, time_compliant_steps, time_dem_steps,
     time_plain_rapier_steps,
 };
-pub use specimen::{Specimen, dem_engine, dem_engine_tiled};
+pub use specimen::{GENERATOR, Specimen, dem_engine, dem_engine_tiled};
 pub use stress::CREEPING;

@@ -1,6 +1,8 @@
-//! The test's parameters, their ranges and the `key = value` config file.
+//! The test's parameters, their ranges and the TOML file they are read from and written back
+//! to (`crates/cli/assets/triaxial.toml`; a run's `params.toml`).
 
 use creep_law::Material;
+use serde::{Deserialize, Serialize};
 
 use crate::SceneError;
 
@@ -27,7 +29,8 @@ pub struct TriaxialParams {
     pub axial_strain: f64,
     /// Time step as a fraction of the smallest Rayleigh time, in `(0, 0.3]`.
     pub rayleigh_fraction: f64,
-    /// Seed of the packing's generator.
+    /// Seed of the packing's generator ([`super::GENERATOR`]), in `[0, 2^63 - 1]` (TOML's
+    /// integers are signed 64-bit).
     pub seed: u64,
     /// Rows recorded per 1 % of axial strain (>= 1).
     pub rows_per_percent: usize,
@@ -36,7 +39,7 @@ pub struct TriaxialParams {
 impl Default for TriaxialParams {
     /// The default test: 4,096 softened-glass spheres of mean radius 1 mm (radii +-20 %),
     /// G = 29 MPa, nu = 0.2, rho = 2,500 kg/m^3, mu = 0.5, e = 0.5, p0 = 100 kPa, I = 8e-4,
-    /// 20 % axial strain, dt = 0.2 T_R (the repository's `assets/triaxial.conf`).
+    /// 20 % axial strain, dt = 0.2 T_R (the repository's `crates/cli/assets/triaxial.toml`).
     fn default() -> Self {
         Self {
             n_per_side: 16,
@@ -103,57 +106,13 @@ impl TriaxialParams {
             1e3,
             false,
         )?;
-        Ok(())
-    }
-
-    /// Parameters from a `key = value` text (the form of the repository's
-    /// `assets/triaxial.conf`; `#` starts a comment); keys not given keep their defaults.
-    pub fn from_conf(text: &str) -> Result<Self, SceneError> {
-        let mut p = Self::default();
-        let (mut g, mut nu, mut rho) = (
-            p.material.shear_modulus(),
-            p.material.poisson_ratio(),
-            p.material.density(),
-        );
-        for (i, line) in text.lines().enumerate() {
-            let line = line.split('#').next().unwrap_or("").trim();
-            if line.is_empty() {
-                continue;
-            }
-            let bad = |why: &str| {
-                SceneError::Parameter(format!("triaxial config line {}: {why}: `{line}`", i + 1))
-            };
-            let (key, value) = line
-                .split_once('=')
-                .ok_or_else(|| bad("expected key = value"))?;
-            let (key, value) = (key.trim(), value.trim());
-            let num = || value.parse::<f64>().map_err(|_| bad("not a number"));
-            let int = || value.parse::<u64>().map_err(|_| bad("not a whole number"));
-            match key {
-                "n_per_side" => p.n_per_side = int()? as usize,
-                "radius" => p.radius = num()?,
-                "radius_spread" => p.radius_spread = num()?,
-                "shear_modulus" => g = num()?,
-                "poisson_ratio" => nu = num()?,
-                "density" => rho = num()?,
-                "mu" => p.mu = num()?,
-                "restitution" => p.restitution = num()?,
-                "confining_pressure" => p.confining_pressure = num()?,
-                "inertial_number" => p.inertial_number = num()?,
-                "axial_strain" => p.axial_strain = num()?,
-                "rayleigh_fraction" => p.rayleigh_fraction = num()?,
-                "seed" => p.seed = int()?,
-                "rows_per_percent" => p.rows_per_percent = int()? as usize,
-                // The engine is the runner's choice ([`TriaxialEngine::from_conf`]); checked here.
-                "engine" => {
-                    value.parse::<TriaxialEngine>()?;
-                }
-                _ => return Err(bad("unknown key")),
-            }
+        if i64::try_from(self.seed).is_err() {
+            return Err(SceneError::Parameter(format!(
+                "triaxial: seed = {} must be in [0, 2^63 - 1]",
+                self.seed
+            )));
         }
-        p.material = Material::new(g, nu, p.mu, rho)?;
-        p.validate()?;
-        Ok(p)
+        Ok(())
     }
 
     /// Mean diameter \[m\].
@@ -174,8 +133,9 @@ impl TriaxialParams {
     }
 }
 
-/// The engine a triaxial test runs on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// The engine a triaxial test runs on (`engine = "dem"` or `"rapier"` in the TOML file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum TriaxialEngine {
     /// creep-dem ([`super::DemSpecimen`]): f64, neighbour lists, the exact tangential tier.
     Dem,
@@ -199,26 +159,192 @@ impl std::str::FromStr for TriaxialEngine {
 }
 
 impl TriaxialEngine {
-    /// The `engine = dem|rapier` key of a config text (the form of
-    /// [`TriaxialParams::from_conf`]); the default ([`TriaxialEngine::Dem`]) when absent.
-    pub fn from_conf(text: &str) -> Result<Self, SceneError> {
-        let mut engine = Self::default();
-        for line in text.lines() {
-            let line = line.split('#').next().unwrap_or("").trim();
-            if let Some((key, value)) = line.split_once('=')
-                && key.trim() == "engine"
-            {
-                engine = value.parse()?;
-            }
-        }
-        Ok(engine)
-    }
-
     /// `dem` or `rapier`.
     pub fn name(self) -> &'static str {
         match self {
             Self::Dem => "dem",
             Self::Rapier => "rapier",
         }
+    }
+}
+
+/// A triaxial parameters file (`crates/cli/assets/triaxial.toml`, a run's `params.toml`): the
+/// engine and the test's parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TriaxialConfig {
+    /// The engine the test runs on.
+    pub engine: TriaxialEngine,
+    /// The test's parameters (validated).
+    pub params: TriaxialParams,
+}
+
+impl TriaxialConfig {
+    /// Reads a TOML text: keys not given keep their defaults ([`TriaxialConfig::default`]);
+    /// an unknown key, a wrong type or a value out of range is a [`SceneError::Parameter`]
+    /// naming the key.
+    pub fn from_toml(text: &str) -> Result<Self, SceneError> {
+        let file: ConfigFile = toml::from_str(text)
+            .map_err(|e| SceneError::Parameter(format!("triaxial parameters: {e}")))?;
+        file.config()
+    }
+
+    /// The TOML text of these parameters (every key; [`TriaxialConfig::from_toml`] reads it
+    /// back to the same values: floats are written with Rust's shortest round-trip form).
+    pub fn to_toml(&self) -> Result<String, SceneError> {
+        self.params.validate()?;
+        toml::to_string(&ConfigFile::from(*self))
+            .map_err(|e| SceneError::Parameter(format!("triaxial parameters: {e}")))
+    }
+}
+
+/// The file's flat form: the material's constants are keys of their own.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct ConfigFile {
+    engine: TriaxialEngine,
+    n_per_side: usize,
+    radius: f64,
+    radius_spread: f64,
+    shear_modulus: f64,
+    poisson_ratio: f64,
+    density: f64,
+    mu: f64,
+    restitution: f64,
+    confining_pressure: f64,
+    inertial_number: f64,
+    axial_strain: f64,
+    rayleigh_fraction: f64,
+    seed: u64,
+    rows_per_percent: usize,
+}
+
+impl Default for ConfigFile {
+    fn default() -> Self {
+        Self::from(TriaxialConfig::default())
+    }
+}
+
+impl From<TriaxialConfig> for ConfigFile {
+    fn from(c: TriaxialConfig) -> Self {
+        let p = c.params;
+        Self {
+            engine: c.engine,
+            n_per_side: p.n_per_side,
+            radius: p.radius,
+            radius_spread: p.radius_spread,
+            shear_modulus: p.material.shear_modulus(),
+            poisson_ratio: p.material.poisson_ratio(),
+            density: p.material.density(),
+            mu: p.mu,
+            restitution: p.restitution,
+            confining_pressure: p.confining_pressure,
+            inertial_number: p.inertial_number,
+            axial_strain: p.axial_strain,
+            rayleigh_fraction: p.rayleigh_fraction,
+            seed: p.seed,
+            rows_per_percent: p.rows_per_percent,
+        }
+    }
+}
+
+impl ConfigFile {
+    /// The validated configuration (the material's checks, then every range).
+    fn config(self) -> Result<TriaxialConfig, SceneError> {
+        let params = TriaxialParams {
+            n_per_side: self.n_per_side,
+            radius: self.radius,
+            radius_spread: self.radius_spread,
+            material: Material::new(
+                self.shear_modulus,
+                self.poisson_ratio,
+                self.mu,
+                self.density,
+            )?,
+            mu: self.mu,
+            restitution: self.restitution,
+            confining_pressure: self.confining_pressure,
+            inertial_number: self.inertial_number,
+            axial_strain: self.axial_strain,
+            rayleigh_fraction: self.rayleigh_fraction,
+            seed: self.seed,
+            rows_per_percent: self.rows_per_percent,
+        };
+        params.validate()?;
+        Ok(TriaxialConfig {
+            engine: self.engine,
+            params,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_unknown_key_is_an_error_naming_it() {
+        let e = TriaxialConfig::from_toml("mu = 0.4\ncolour = \"blue\"\n").unwrap_err();
+        assert!(matches!(e, SceneError::Parameter(_)), "{e:?}");
+        assert!(e.to_string().contains("colour"), "{e}");
+    }
+
+    #[test]
+    fn keys_not_given_keep_the_defaults() {
+        let c = TriaxialConfig::from_toml("mu = 0.4\nengine = \"dem\"\nseed = 7").unwrap();
+        assert_eq!(c.engine, TriaxialEngine::Dem);
+        assert_eq!(c.params.mu, 0.4);
+        assert_eq!(c.params.seed, 7);
+        assert_eq!(c.params.radius, TriaxialParams::default().radius);
+        assert_eq!(
+            TriaxialConfig::from_toml("").unwrap(),
+            TriaxialConfig::default()
+        );
+    }
+
+    #[test]
+    fn written_parameters_read_back_the_same() {
+        let c = TriaxialConfig {
+            engine: TriaxialEngine::Dem,
+            params: TriaxialParams {
+                radius: 1.234_567_890_123e-3,
+                inertial_number: 0.01 + 0.02,
+                seed: i64::MAX as u64,
+                ..TriaxialParams::quick()
+            },
+        };
+        let text = c.to_toml().unwrap();
+        assert_eq!(TriaxialConfig::from_toml(&text).unwrap(), c, "{text}");
+        // Every key is written.
+        for key in [
+            "engine",
+            "shear_modulus",
+            "density",
+            "seed",
+            "rows_per_percent",
+        ] {
+            assert!(text.contains(&format!("{key} = ")), "{key}: {text}");
+        }
+    }
+
+    #[test]
+    fn wrong_types_and_out_of_range_values_are_errors() {
+        for text in [
+            "seed = -1",
+            "n_per_side = 2.5",
+            "engine = \"lammps\"",
+            "mu = \"high\"",
+            "radius_spread = 0.9",
+        ] {
+            assert!(TriaxialConfig::from_toml(text).is_err(), "{text}");
+        }
+        assert!(TriaxialConfig::from_toml("seed = 1").is_ok());
+        let big = TriaxialConfig {
+            params: TriaxialParams {
+                seed: u64::MAX,
+                ..TriaxialParams::default()
+            },
+            ..TriaxialConfig::default()
+        };
+        assert!(big.to_toml().is_err());
     }
 }

@@ -4,6 +4,8 @@ use creep_rapier::{
     CompliantRegime, CompliantSettings, CreepHooks, CreepMaterial, CreepSettings, CreepWorld,
     Fidelity, RayleighCheck, clone_physics,
 };
+use rand_xoshiro::SplitMix64;
+use rand_xoshiro::rand_core::{Rng, SeedableRng};
 use rapier3d::prelude::*;
 
 use super::TriaxialParams;
@@ -56,17 +58,17 @@ impl Specimen {
         let r_max = r * (1.0 + params.radius_spread);
         let spacing = 2.0 * r_max * 1.05;
         let side = n as f64 * spacing;
-        let mut rng = SplitMix64(params.seed);
+        let mut rng = SplitMix64::seed_from_u64(params.seed);
         let mut balls = Vec::with_capacity(n * n * n);
         for i in 0..n {
             for j in 0..n {
                 for k in 0..n {
-                    let ri = r * (1.0 + params.radius_spread * (2.0 * rng.unit() - 1.0));
+                    let ri = r * (1.0 + params.radius_spread * (2.0 * unit(&mut rng) - 1.0));
                     let slack = (spacing / 2.0 - ri).max(0.0);
                     let mut x = [0.0; 3];
                     for (d, idx) in x.iter_mut().zip([i, j, k]) {
                         *d = (idx as f64 + 0.5) * spacing - side / 2.0
-                            + slack * (2.0 * rng.unit() - 1.0) * 0.9;
+                            + slack * (2.0 * unit(&mut rng) - 1.0) * 0.9;
                     }
                     let body = RigidBodyBuilder::dynamic()
                         .translation(Vector::new(x[0] as f32, x[1] as f32, x[2] as f32))
@@ -183,23 +185,14 @@ impl Specimen {
     }
 }
 
-/// A deterministic generator (SplitMix64, Steele, Lea & Flood 2014), so a seed gives the same
-/// packing on every machine.
-#[derive(Debug, Clone, Copy)]
-struct SplitMix64(u64);
+/// The packing's generator, named in a run's outputs: SplitMix64 (Steele, Lea & Flood 2014),
+/// `rand_xoshiro::SplitMix64` seeded with [`TriaxialParams::seed`] by `seed_from_u64` (the
+/// seed is the initial state), so a seed gives the same packing on every machine.
+pub const GENERATOR: &str = "SplitMix64 (Steele, Lea & Flood 2014; rand_xoshiro 0.8)";
 
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
+/// A uniform draw in `[0, 1)`: the top 53 bits of the next 64-bit output over `2^53`.
+fn unit(rng: &mut SplitMix64) -> f64 {
+    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
 impl Specimen {
@@ -376,4 +369,72 @@ pub fn dem_engine_tiled<T: creep_dem::TangentialLaw>(
         ..DemConfig::default()
     };
     Dem::new(cfg, table, &particles, &walls).map_err(err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The packing of `TriaxialParams::quick()` (seed 2011) is the one the hand-written
+    /// SplitMix64 this generator replaced gave: positions and radii recorded from that code
+    /// before the change (bit for bit, f32 as Rapier holds them).
+    #[test]
+    fn the_packing_is_the_former_generators() {
+        let s = Specimen::generate(TriaxialParams::quick()).unwrap();
+        let expected: [(usize, [f32; 3], f32); 4] = [
+            (
+                0,
+                [-0.007_363_186_7, -0.007_548_337, -0.007_561_216_6],
+                0.000_808_586_37,
+            ),
+            (
+                1,
+                [-0.007_749_378_7, -0.007_823_195, -0.004_988_527],
+                0.000_825_407_57,
+            ),
+            (
+                2,
+                [-0.007_439_138, -0.007_723_349, -0.002_719_267_3],
+                0.001_036_759_3,
+            ),
+            (
+                342,
+                [0.007_778_702, 0.007_553_211_4, 0.007_780_981_7],
+                0.000_977_356,
+            ),
+        ];
+        for (i, x, r) in expected {
+            let (b, c) = s.balls[i];
+            let t = s.world.physics.bodies[b].translation();
+            assert_eq!([t.x, t.y, t.z], x, "ball {i}");
+            let radius = s.world.physics.colliders[c]
+                .shape()
+                .as_ball()
+                .unwrap()
+                .radius;
+            assert_eq!(radius, r, "ball {i}");
+        }
+        // The generator's own first outputs for that seed (SplitMix64's reference algorithm).
+        let mut g = SplitMix64::seed_from_u64(2011);
+        assert_eq!(
+            [g.next_u64(), g.next_u64(), g.next_u64()],
+            [
+                0x057e_cade_6a7c_2132,
+                0xbe02_0c31_9a78_d0d8,
+                0x83ac_adce_c37d_6309
+            ]
+        );
+    }
+
+    #[test]
+    fn another_seed_gives_another_packing() {
+        let a = Specimen::generate(TriaxialParams::quick()).unwrap();
+        let b = Specimen::generate(TriaxialParams {
+            seed: 2012,
+            ..TriaxialParams::quick()
+        })
+        .unwrap();
+        let x = |s: &Specimen| s.world.physics.bodies[s.balls[0].0].translation();
+        assert_ne!(x(&a), x(&b));
+    }
 }
