@@ -2,7 +2,7 @@
 //! (Kalker's closed form, `creep_law::kalker`), each timed over the same batch of 64 inputs per
 //! iteration (so the reported time is per 64 evaluations).
 //!
-//! Run: `cargo bench -p creep-law --bench steady3d`
+//! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md).
 
 use std::hint::black_box;
 
@@ -27,6 +27,8 @@ fn bench_steady3d(c: &mut Criterion) {
         c11: kalker::c11(nu),
     };
     let law = Steady3d::new(0.5, nu).unwrap();
+    // Between the fitted nodes the spin force blends four nodes' shapes.
+    let between = Steady3d::new(0.35, 0.125).unwrap();
     let x = inputs();
     let ratios: Vec<f64> = x.iter().map(|v| v[0].abs().min(0.99)).collect();
     let mut g = c.benchmark_group("steady3d");
@@ -63,6 +65,16 @@ fn bench_steady3d(c: &mut Criterion) {
             let mut acc = 0.0;
             for v in black_box(&x) {
                 let l = law.loads(v[0], v[1], v[2]);
+                acc += l.fx + l.fy + l.mz;
+            }
+            acc
+        })
+    });
+    g.bench_function("steady3d_with_spin_between_nodes_x64", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for v in black_box(&x) {
+                let l = between.loads(v[0], v[1], v[2]);
                 acc += l.fx + l.fy + l.mz;
             }
             acc

@@ -3,27 +3,29 @@
 //! `2 C(N) - C(N/2)` of the last two grids (the grid error is O(h)).
 //!
 //! `cargo run --release -p creep-reference --example elliptic_coefficients -- 16 32 [AB ...]`
+//!
+//! An argument is an axis ratio `a/b` if it is below 4 or contains a decimal point (`5.0`),
+//! otherwise a grid.
 use creep_reference::bem::{SolverOptions, elliptic_creep_coefficients};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|s| s.parse::<f64>())
-        .collect::<Result<_, _>>()?;
-    let grids: Vec<usize> = args
-        .iter()
-        .filter(|&&v| v >= 4.0)
-        .map(|&v| v as usize)
-        .collect();
-    let mut abs: Vec<f64> = args.iter().copied().filter(|&v| v < 4.0).collect();
+    let raw: Vec<String> = std::env::args().skip(1).collect();
+    let mut grids: Vec<usize> = Vec::new();
+    let mut abs: Vec<f64> = Vec::new();
+    for s in &raw {
+        let v = s.parse::<f64>()?;
+        if v < 4.0 || s.contains('.') {
+            abs.push(v);
+        } else {
+            grids.push(v as usize);
+        }
+    }
     if abs.is_empty() {
         abs = vec![1.0, 0.5, 0.2];
     }
-    let grids = if grids.is_empty() {
-        vec![16, 32]
-    } else {
-        grids
-    };
+    if grids.is_empty() {
+        grids = vec![16, 32];
+    }
     println!("ab,nu,grid,c11,c22,c23,c32,c33");
     for &ab in &abs {
         for nu in [0.0, 0.25, 0.5] {

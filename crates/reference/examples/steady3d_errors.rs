@@ -1,14 +1,31 @@
 //! The error table of creep-law's fast 3-D steady law (`creep_law::steady3d`) against the
-//! boundary-element table `data/steady3d_bem.csv` (module `creep_reference::steady3d`): markdown
-//! on stdout, and the per-case CSV to the file given as the first argument, if any.
+//! boundary-element table `data/steady3d_bem.csv` (module `creep_reference::steady3d`), or
+//! against another table in the same format given with `--table FILE` (for instance the
+//! validation table `data/steady3d_bem_validation.csv`, off the fitted nodes): markdown on
+//! stdout, and the per-case CSV to the file given as the first other argument, if any.
 //!
-//! `cargo run --release -p creep-reference --example steady3d_errors [-- errors.csv]`
-use creep_reference::steady3d::{error_markdown, law_errors, table};
+//! `cargo run --release -p creep-reference --example steady3d_errors [-- [--table FILE] [errors.csv]]`
+use creep_reference::steady3d::{error_markdown, law_errors, read_csv, table};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let errors = law_errors(&table()?)?;
+    let mut args = std::env::args().skip(1);
+    let mut points = None;
+    let mut out = None;
+    while let Some(a) = args.next() {
+        if a == "--table" {
+            let path = args.next().ok_or("--table needs a file")?;
+            points = Some(read_csv(&std::fs::read_to_string(path)?)?);
+        } else {
+            out = Some(a);
+        }
+    }
+    let points = match points {
+        Some(p) => p,
+        None => table()?,
+    };
+    let errors = law_errors(&points)?;
     print!("{}", error_markdown(&errors));
-    if let Some(path) = std::env::args().nth(1) {
+    if let Some(path) = out {
         let mut csv = String::from(
             "ab,nu,kind,force_err,force_at_xi,force_at_eta,force_at_phi,moment_err,moment_at_xi,moment_at_eta,moment_at_phi\n",
         );

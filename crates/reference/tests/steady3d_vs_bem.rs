@@ -7,7 +7,7 @@ use creep_law::kalker3d;
 use creep_reference::bem::{
     EllipticContact, EllipticSteadySolver, SolverOptions, elliptic_creep_coefficients,
 };
-use creep_reference::steady3d::{Kind, POISSON, RATIOS, law_errors, table};
+use creep_reference::steady3d::{Kind, POISSON, RATIOS, law_errors, read_csv, table};
 
 #[test]
 fn circular_c22_c23_c33_within_2_percent_of_kalkers_table() {
@@ -101,38 +101,63 @@ fn worst(kind: Kind) -> (f64, f64) {
 }
 
 #[test]
-fn fast_law_pure_translation_meets_the_issue_target() {
-    // Issue target: pure cases within 2 % of mu P. Longitudinal and lateral forces: measured
-    // at most 0.62 % and 0.55 % over a/b = 1, 0.5, 0.2 and nu = 0, 0.25, 0.5; the moment of
-    // lateral creepage at most 0.72 % of mu P c.
+fn fast_law_pure_cases_meet_the_issue_target() {
+    // Issue target: pure cases within 2 % of mu P (forces; moments within 2 % of mu P c), at
+    // a/b = 1, 0.5, 0.2 and nu = 0, 0.25, 0.5. Measured (docs/CREEP3D.md): longitudinal and
+    // lateral forces at most 0.64 %, the lateral creepage's moment 0.68 %, the lateral force of
+    // pure spin 1.68 %, the spin moment 0.76 % (before this law: 5.2 % and 2.07 %).
     let (fx, _) = worst(Kind::Longitudinal);
     let (fy, my) = worst(Kind::Lateral);
-    assert!(fx < 0.02 && fy < 0.02 && my < 0.02, "{fx} {fy} {my}");
-    assert!(fx < 0.0065 && fy < 0.006 && my < 0.0075, "{fx} {fy} {my}");
-}
-
-#[test]
-fn fast_law_measured_errors_where_it_misses_the_targets() {
-    // The issue's targets are NOT met for spin and combined creepage (see
-    // `issue_targets_for_spin_and_combined`, ignored): these are the measured worst errors,
-    // pinned so that any change of the law is noticed.
     let (fs, ms) = worst(Kind::Spin);
-    let (fc, mc) = worst(Kind::Combined);
-    for (name, got, measured) in [
-        ("spin force", fs, 0.0523),
-        ("spin moment", ms, 0.0208),
-        ("combined force", fc, 0.1255),
-        ("combined moment", mc, 0.1151),
+    for (name, got) in [
+        ("longitudinal force", fx),
+        ("lateral force", fy),
+        ("lateral moment", my),
+        ("spin force", fs),
+        ("spin moment", ms),
     ] {
-        assert!(got <= measured, "{name}: {got} > measured {measured}");
+        assert!(got < 0.02, "{name}: {got}");
     }
 }
 
 #[test]
-#[ignore = "fails: the fast law misses the issue's targets for spin (5.2 % / 2.1 %) and combined creepage (12.5 % / 11.5 %)"]
-fn issue_targets_for_spin_and_combined() {
-    let (fs, ms) = worst(Kind::Spin);
+fn fast_law_combined_creepage_meets_the_issue_target() {
+    // Issue target: combined creepages within 5 %. Measured: force 4.99 % (a/b = 1,
+    // nu = 0.5; at most 3.51 % elsewhere), moment 3.69 % (before this law: 12.5 % and 11.5 %).
     let (fc, mc) = worst(Kind::Combined);
-    assert!(fs < 0.02 && ms < 0.02, "{fs} {ms}");
     assert!(fc < 0.05 && mc < 0.05, "{fc} {mc}");
+}
+
+#[test]
+fn fast_law_off_the_fitted_nodes_measured_errors() {
+    // The validation table (data/steady3d_bem_validation.csv: the same creepages, solved like
+    // the fitted table, at a/b and nu the fit never saw). Between the nodes (a/b = 0.35,
+    // nu = 0.125 and a/b = 0.7, nu = 0.375) the pure translation stays within 0.5 % and the
+    // moments within 3.5 %, but the lateral force of pure spin is off by up to 13 % and the
+    // combined force by up to 10.4 %: the issue's targets are NOT met between the nodes (three
+    // rows in a/b are too few for the spin force's shape). Beyond them, a/b = 2 (a > b, never
+    // fitted), translation is within 1.3 % (moment 2.1 %) but every spin load is wrong (force
+    // up to 77 %). These are the measured errors, pinned so that any change is noticed.
+    let v = read_csv(include_str!("../data/steady3d_bem_validation.csv")).unwrap();
+    assert_eq!(v.len(), 4 * 39);
+    for x in law_errors(&v).unwrap() {
+        let between = x.ab < 1.0;
+        let (f, m) = match (x.kind, between) {
+            (Kind::Longitudinal | Kind::Lateral, true) => (0.005, 0.005),
+            (Kind::Longitudinal | Kind::Lateral, false) => (0.013, 0.021),
+            (Kind::Spin, true) => (0.130, 0.011),
+            (Kind::Combined, true) => (0.105, 0.035),
+            (Kind::Spin, false) => (0.770, 0.066),
+            (Kind::Combined, false) => (0.468, 0.165),
+        };
+        assert!(
+            x.force <= f && x.moment <= m,
+            "a/b={} nu={} {:?}: {} {}",
+            x.ab,
+            x.nu,
+            x.kind,
+            x.force,
+            x.moment
+        );
+    }
 }
