@@ -394,7 +394,8 @@ impl<T: TangentialLaw> BoundarySet<T> {
             rot_c,
             fixed,
             reach,
-            com0: DVec3::ZERO,
+            // A collider without a body: torques are reported about its origin.
+            com0: fixed.0,
             rot0: DQuat::IDENTITY,
             v: DVec3::ZERO,
             w: DVec3::ZERO,

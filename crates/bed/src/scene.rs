@@ -193,6 +193,18 @@ pub fn surface_height<T: TangentialLaw>(dem: &Dem<T>) -> f64 {
     top.iter().sum::<f64>() / top.len().max(1) as f64
 }
 
+/// The highest grain top \[m\] among the grains whose centres are within `half.x` along x and
+/// `half.z` along z of `centre` (a body's footprint), or [`surface_height`] if none is.
+pub fn highest_under<T: TangentialLaw>(dem: &Dem<T>, centre: Vec3, half: Vec3) -> f64 {
+    dem.positions()
+        .iter()
+        .zip(dem.radii())
+        .filter(|(x, _)| (x.x - centre.x).abs() < half.x && (x.z - centre.z).abs() < half.z)
+        .map(|(x, r)| x.y + r)
+        .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.max(t))))
+        .unwrap_or_else(|| surface_height(dem))
+}
+
 /// The resting-sphere scene's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RestingSphere {
@@ -246,6 +258,14 @@ pub fn resting_sphere<T: TangentialLaw>(s: &RestingSphere) -> Result<RestingRepo
     let (lx, lz) = b.footprint();
     let rb = s.radius_factor * b.radius;
 
+    // Just above the highest grain under the sphere (the mean surface is lower: a sphere placed
+    // on it would start overlapping the highest grains and be kicked off).
+    let reach = rb + b.radius;
+    let start = highest_under(
+        &dem,
+        Vec3::new(0.5 * lx, 0.0, 0.5 * lz),
+        Vec3::new(reach, 0.0, reach),
+    );
     let mut world = PhysicsWorld {
         gravity: FVec3::new(0.0, -b.gravity as f32, 0.0),
         ..Default::default()
@@ -255,7 +275,7 @@ pub fn resting_sphere<T: TangentialLaw>(s: &RestingSphere) -> Result<RestingRepo
         RigidBodyBuilder::dynamic()
             .translation(FVec3::new(
                 (0.5 * lx) as f32,
-                (top + rb + 0.05 * b.radius) as f32,
+                (start + rb + 0.05 * b.radius) as f32,
                 (0.5 * lz) as f32,
             ))
             .can_sleep(false)

@@ -9,11 +9,11 @@
 //! axle along the spin.
 
 use creep_dem::TangentialLaw;
-use creep_law::Material;
+use creep_law::{Material, Vec3};
 use rapier3d::glamx::{Quat, Vec3 as FVec3};
 use rapier3d::prelude::*;
 
-use crate::scene::{BedSpec, surface_height};
+use crate::scene::{BedSpec, highest_under, surface_height};
 use crate::{Bed, BedConfig, BedError};
 
 /// The wheel scene's settings.
@@ -102,6 +102,11 @@ pub fn wheel_on_sand<T: TangentialLaw>(
     let rw = s.radius_factor * b.radius;
     let half_w = 0.5 * s.width_factor * b.radius;
 
+    let start = highest_under(
+        &dem,
+        Vec3::new(1.5 * rw, 0.0, 0.5 * lz),
+        Vec3::new(rw + b.radius, 0.0, half_w + b.radius),
+    );
     let mut world = PhysicsWorld {
         gravity: FVec3::new(0.0, -b.gravity as f32, 0.0),
         ..Default::default()
@@ -111,7 +116,7 @@ pub fn wheel_on_sand<T: TangentialLaw>(
         RigidBodyBuilder::dynamic()
             .translation(FVec3::new(
                 (1.5 * rw) as f32,
-                (top + rw + 0.02 * b.radius) as f32,
+                (start + rw + 0.02 * b.radius) as f32,
                 (0.5 * lz) as f32,
             ))
             .can_sleep(false)

@@ -43,8 +43,8 @@ fn a_settled_bed_carries_a_resting_sphere() {
 #[ignore = "a few thousand grains: run with --release"]
 fn a_settled_bed_of_thousands_of_grains_carries_a_resting_sphere() {
     let mut s = spec([16, 10, 16], 9.81);
-    s.settle_steps = 200_000;
-    s.rest_steps = 3000;
-    s.window = 1000;
+    s.settle_steps = 60_000;
+    s.rest_steps = 1500;
+    s.window = 500;
     check(&s);
 }
