@@ -13,7 +13,9 @@
 # with cargo in release), BEFORE_BIN (another build of the example, e.g. of an earlier commit:
 # its rows, dem-*-before, run in the same rounds), WORK (DIR/../engine-bench: logs).
 # Ours: wall-clock particle-steps/s of the stepping (set-up excluded), and the same from the
-# thread's CPU time; LAMMPS: its "Loop time" (wall clock). Never run in CI.
+# thread's CPU time; LAMMPS: its "Loop time" (wall clock), and its CPU time (GNU time's user +
+# sys, less a 0-step run's). On a loaded machine the CPU-time columns are the comparable ones.
+# Never run in CI.
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -46,11 +48,20 @@ for round in $(seq 1 "$ROUNDS"); do
       printf '%s\t%s\t%s\t%s\n' "$name" "$round" "$wall" "$cpu" >>"$WORK/rows.tsv"
     done
   done
+  # LAMMPS' CPU time: user + sys of the run less that of a 0-step run (reading the data,
+  # set-up, first neighbour build), from GNU time.
+  lmp_cpu() { # steps rolling log -> CPU seconds of the process
+    /usr/bin/time -f '%U %S' -o "$3.time" lmp -nocite -log none -var dir "$DIR" -var steps "$1" \
+      -var rolling "$2" -in "$HERE/in.lammps" >"$3" 2>&1 || { echo "lmp failed: $3" >&2; exit 1; }
+    awk '{ print $1 + $2 }' "$3.time"
+  }
+  setup=$(lmp_cpu 0 sds "$WORK/lammps-setup-$round.log")
   for rolling in sds none; do
     log="$WORK/lammps-$rolling-$round.log"
-    lmp -nocite -log none -var dir "$DIR" -var steps "$PEER_STEPS" -var rolling "$rolling" \
-      -in "$HERE/in.lammps" >"$log" 2>&1 || { echo "lmp failed: $log" >&2; exit 1; }
-    awk -v r="$rolling" -v round="$round" '/^Loop time of/ { printf "lammps-%s\t%s\t%s\t\n", r, round, $9 * $12 / $4 }' "$log" >>"$WORK/rows.tsv"
+    cpu=$(lmp_cpu "$PEER_STEPS" "$rolling" "$log")
+    awk -v r="$rolling" -v round="$round" -v cpu="$cpu" -v setup="$setup" '/^Loop time of/ {
+      printf "lammps-%s\t%s\t%s\t%s\n", r, round, $9 * $12 / $4, (cpu > setup ? $9 * $12 / (cpu - setup) : "")
+    }' "$log" >>"$WORK/rows.tsv"
   done
   echo "round $round done ($(uptime | sed 's/.*load average: *//'))"
 done
@@ -59,11 +70,14 @@ col() { awk -v v="$1" -v c="$2" -F'\t' '$1 == v { print $c }' "$WORK/rows.tsv"; 
 ref=$(col lammps-sds 3 | median)
 echo "load average at the end: $(uptime | sed 's/.*load average: *//')"
 echo
-echo "| variant | particle-steps/s, wall clock (median) | ratio to LAMMPS sds (medians) | per-round ratio (median) | ours from CPU time |"
-echo "|---|---|---|---|---|"
+refc=$(col lammps-sds 4 | median)
+echo "| variant | particle-steps/s, wall clock (median) | ratio to LAMMPS sds | per-round ratio (median) | particle-steps/s, CPU time (median) | ratio to LAMMPS sds, CPU | per-round ratio, CPU (median) |"
+echo "|---|---|---|---|---|---|---|"
 for v in lammps-sds lammps-none dem-cheap dem-exact ${BEFORE_BIN:+dem-cheap-before dem-exact-before}; do
   med=$(col "$v" 3 | median)
   per=$(paste <(col "$v" 3) <(col lammps-sds 3) | awk '{ print $1 / $2 }' | median)
-  cpu=$( [[ $v == dem-* ]] && col "$v" 4 | median || echo "")
-  printf '| %s | %.3e | %.3f | %.3f | %s |\n' "$v" "$med" "$(awk -v a="$med" -v b="$ref" 'BEGIN { print a / b }')" "$per" "${cpu:+$(printf '%.3e' "$cpu")}"
+  cpu=$(col "$v" 4 | median)
+  perc=$(paste <(col "$v" 4) <(col lammps-sds 4) | awk '{ print $1 / $2 }' | median)
+  printf '| %s | %.3e | %.3f | %.3f | %.3e | %.3f | %.3f |\n' "$v" "$med" "$(awk -v a="$med" -v b="$ref" 'BEGIN { print a / b }')" "$per" \
+    "$cpu" "$(awk -v a="$cpu" -v b="$refc" 'BEGIN { print a / b }')" "$perc"
 done
