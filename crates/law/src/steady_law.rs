@@ -281,16 +281,16 @@ impl SteadyLaw {
             return 0.0;
         }
         if let SteadyLaw::Kuhn { c11 } = self {
-            // Kalker's closed form with `mu P` cancelled: `mu P/(G a^2) 3/C11 s/(1 + c + c^2)`
-            // (`s = |Q|/(mu P)` clamped to [0, 1], `c = (1 - s)^(1/3)`, kalker::creepage_n's
-            // form) is `3 min(|Q|, mu P) / (G a^2 C11 (1 + c + c^2))`: two divisions, not five.
+            // Kalker's closed form with fewer divisions: `mu P/(G a^2) 3/C11 (1 - c)` with
+            // `c = (1 - s)^(1/3)`, `s = |Q|/(mu P)` clamped to [0, 1] (kalker::creepage_n's
+            // form) as `3 mu P (1 - c) / (G a^2 C11)`: two divisions, not four.
             let q = if q_abs.is_nan() {
                 0.0
             } else {
                 q_abs.clamp(0.0, mu_p)
             };
             let c = kalker::cbrt(1.0 - q / mu_p);
-            return 3.0 * q / (denom * *c11 * (1.0 + c * (1.0 + c)));
+            return 3.0 * mu_p * (1.0 - c) / (denom * *c11);
         }
         mu_p / denom * self.creepage_n(q_abs / mu_p)
     }

@@ -194,10 +194,13 @@ impl TangentialLaw for Cheap {
         let mut creep_e = 0.0;
         if roll > 0.0 && roll.is_finite() && q2 > 0.0 {
             let q_abs = q2.sqrt();
+            // From the stored force alone: off the chain of divisions that runs through the
+            // new `mu P` and `F_ss`.
+            let inv_q = 1.0 / q_abs;
             let f = c.steady.creepage_for_force(q_abs, mu_p, pm.g, a);
             let creep = (f * roll).min(q_abs / k);
             if creep.is_finite() && creep > 0.0 {
-                creep_vec = q_old * (creep / q_abs);
+                creep_vec = q_old * (creep * inv_q);
                 creep_e = q_abs * creep;
             }
         }
