@@ -189,11 +189,30 @@ pub struct StepCounts {
     pub max_loop_gain: f64,
     /// Registered colliders whose hook was on for this step (set by [`crate::CreepPipeline`]).
     pub hooks_on: usize,
+    /// Contacts of pairs whose two colliders are below the activation speed, in the one step
+    /// before their hooks go off: left as plain Rapier contacts (their targets cleared, so that
+    /// Rapier's contact recycling does not keep a stale creep target).
+    pub quiet: usize,
 }
 
 struct Inner {
     store: ContactStore,
     counts: StepCounts,
+}
+
+/// A registered collider's hook state, decided before each step by
+/// [`CreepHooks::update_activation`] (see [`CreepSettings::activation_speed`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+enum Activity {
+    /// Hook on, contacts modified.
+    #[default]
+    Active,
+    /// Below the activation speed for the first step: hook still on, but a pair of two quiet
+    /// colliders is left unmodified (plain Rapier solver contacts), so that when the flag goes
+    /// off Rapier recycles clean solver contacts, not the last creep target and gap correction.
+    Clearing,
+    /// Below the activation speed: hook off (Rapier's recycling kept).
+    Off,
 }
 
 /// The creep-friction physics hooks (rigid regime). Rapier calls them inside a step that a
@@ -211,6 +230,8 @@ pub struct CreepHooks {
     /// [`PluginError::HookOutsideStep`] by the next step.
     outside: AtomicUsize,
     inner: Mutex<Inner>,
+    /// Hook state of each registered collider, by collider index.
+    activity: Vec<Activity>,
 }
 
 impl CreepHooks {
@@ -228,6 +249,7 @@ impl CreepHooks {
                 store: ContactStore::default(),
                 counts: StepCounts::default(),
             }),
+            activity: Vec::new(),
         })
     }
 
@@ -268,6 +290,10 @@ impl CreepHooks {
     /// colliders: switches `ActiveHooks::MODIFY_SOLVER_CONTACTS` on for the registered colliders
     /// whose body moves faster than [`CreepSettings::activation_speed`] (always for `Creep`
     /// colliders) and off for the others, so that quiet contacts keep Rapier's contact recycling.
+    /// A collider that becomes quiet keeps its flag for one clearing step ([`Activity`]): a
+    /// recycled pair keeps the solver contacts of its last full update, `tangent_velocity` and
+    /// `dist` included, so switching the flag off right away would leave the last creep target
+    /// and gap correction in force for as long as Rapier recycles the pair.
     /// Returns how many are on. Unregistered colliders are left as they are.
     pub(crate) fn update_activation(
         &mut self,
@@ -276,6 +302,7 @@ impl CreepHooks {
     ) -> usize {
         let v_act = self.settings.activation_speed;
         let mut on_count = 0;
+        let activity = &mut self.activity;
         for (&handle, mat) in self.registry.iter() {
             // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
             // re-process it (a large cost if done for every collider every step).
@@ -295,7 +322,7 @@ impl CreepHooks {
                 }
                 continue;
             }
-            let on = mat.fidelity == Fidelity::Creep
+            let moving = mat.fidelity == Fidelity::Creep
                 || matches!(mat.rolling, RollingResistance::Torque(_))
                 || v_act == 0.0
                 || co.parent().and_then(|h| bodies.get(h)).is_some_and(|rb| {
@@ -303,6 +330,19 @@ impl CreepHooks {
                     rb.linvel().length() + rb.angvel().length() * r > v_act as f32
                 });
             let flags = co.active_hooks();
+            let i = handle.into_raw_parts().0 as usize;
+            if i >= activity.len() {
+                activity.resize(i + 1, Activity::Active);
+            }
+            let flag_on = flags.contains(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+            activity[i] = if moving {
+                Activity::Active
+            } else if flag_on && activity[i] != Activity::Clearing {
+                Activity::Clearing
+            } else {
+                Activity::Off
+            };
+            let on = activity[i] != Activity::Off;
             let wanted = if on {
                 flags | ActiveHooks::MODIFY_SOLVER_CONTACTS
             } else {
@@ -405,6 +445,14 @@ impl CreepHooks {
         inner.store.iter().map(|(k, r)| (*k, *r)).collect()
     }
 
+    /// The hook state of a registered collider for the step in progress.
+    fn activity_of(&self, collider: ColliderHandle) -> Activity {
+        self.activity
+            .get(collider.into_raw_parts().0 as usize)
+            .copied()
+            .unwrap_or_default()
+    }
+
     /// A copy of the record of one contact, if live.
     pub fn record(&self, key: &ContactKey) -> Option<ContactRecord> {
         let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
@@ -452,6 +500,12 @@ impl PhysicsHooks for CreepHooks {
             return;
         }
         // --- end compliant ---
+        if self.activity_of(c1) != Activity::Active && self.activity_of(c2) != Activity::Active {
+            // Both below the activation speed: plain Rapier contacts (as with the hook off),
+            // rebuilt clean before Rapier starts recycling them.
+            counts.quiet += n_contacts;
+            return;
+        }
         let surfaces = (
             colliders.get(c1).and_then(rigid_surface_of),
             colliders.get(c2).and_then(rigid_surface_of),
