@@ -200,19 +200,18 @@ struct Inner {
     counts: StepCounts,
 }
 
-/// A registered collider's hook state, decided before each step by
-/// [`CreepHooks::update_activation`] (see [`CreepSettings::activation_speed`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-enum Activity {
-    /// Hook on, contacts modified.
-    #[default]
-    Active,
-    /// Below the activation speed for the first step: hook still on, but a pair of two quiet
-    /// colliders is left unmodified (plain Rapier solver contacts), so that when the flag goes
-    /// off Rapier recycles clean solver contacts, not the last creep target and gap correction.
-    Clearing,
-    /// Below the activation speed: hook off (Rapier's recycling kept).
-    Off,
+/// The mark of a collider in its clearing step (see [`CreepHooks::update_activation`]): kept on
+/// the collider itself, not in the hooks, so that a copied world (`clone_physics` with fresh
+/// hooks) steps exactly as the original. `FILTER_INTERSECTION_PAIR` is used because it does
+/// nothing for a non-sensor pair and the hooks keep Rapier's default for sensors.
+const CLEARING_MARK: ActiveHooks = ActiveHooks::FILTER_INTERSECTION_PAIR;
+
+/// Whether a collider's hook is in its clearing step or off (below the activation speed).
+fn quiet_collider(colliders: &ColliderSet, handle: ColliderHandle) -> bool {
+    colliders.get(handle).is_none_or(|co| {
+        let f = co.active_hooks();
+        !f.contains(ActiveHooks::MODIFY_SOLVER_CONTACTS) || f.contains(CLEARING_MARK)
+    })
 }
 
 /// The creep-friction physics hooks (rigid regime). Rapier calls them inside a step that a
@@ -230,8 +229,6 @@ pub struct CreepHooks {
     /// [`PluginError::HookOutsideStep`] by the next step.
     outside: AtomicUsize,
     inner: Mutex<Inner>,
-    /// Hook state of each registered collider, by collider index.
-    activity: Vec<Activity>,
 }
 
 impl CreepHooks {
@@ -249,7 +246,6 @@ impl CreepHooks {
                 store: ContactStore::default(),
                 counts: StepCounts::default(),
             }),
-            activity: Vec::new(),
         })
     }
 
@@ -290,7 +286,7 @@ impl CreepHooks {
     /// colliders: switches `ActiveHooks::MODIFY_SOLVER_CONTACTS` on for the registered colliders
     /// whose body moves faster than [`CreepSettings::activation_speed`] (always for `Creep`
     /// colliders) and off for the others, so that quiet contacts keep Rapier's contact recycling.
-    /// A collider that becomes quiet keeps its flag for one clearing step ([`Activity`]): a
+    /// A collider that becomes quiet keeps its flag for one clearing step ([`CLEARING_MARK`]): a
     /// recycled pair keeps the solver contacts of its last full update, `tangent_velocity` and
     /// `dist` included, so switching the flag off right away would leave the last creep target
     /// and gap correction in force for as long as Rapier recycles the pair.
@@ -302,7 +298,6 @@ impl CreepHooks {
     ) -> usize {
         let v_act = self.settings.activation_speed;
         let mut on_count = 0;
-        let activity = &mut self.activity;
         for (&handle, mat) in self.registry.iter() {
             // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
             // re-process it (a large cost if done for every collider every step).
@@ -330,24 +325,17 @@ impl CreepHooks {
                     rb.linvel().length() + rb.angvel().length() * r > v_act as f32
                 });
             let flags = co.active_hooks();
-            let i = handle.into_raw_parts().0 as usize;
-            if i >= activity.len() {
-                activity.resize(i + 1, Activity::Active);
-            }
-            let flag_on = flags.contains(ActiveHooks::MODIFY_SOLVER_CONTACTS);
-            activity[i] = if moving {
-                Activity::Active
-            } else if flag_on && activity[i] != Activity::Clearing {
-                Activity::Clearing
+            // Active (flag on) -> clearing (flag on, marked: pairs of two quiet colliders are
+            // left as Rapier built them) -> off (flag off: recycled clean).
+            let modify = ActiveHooks::MODIFY_SOLVER_CONTACTS;
+            let wanted = if moving {
+                (flags | modify) - CLEARING_MARK
+            } else if flags.contains(modify) && !flags.contains(CLEARING_MARK) {
+                flags | CLEARING_MARK
             } else {
-                Activity::Off
+                flags - modify - CLEARING_MARK
             };
-            let on = activity[i] != Activity::Off;
-            let wanted = if on {
-                flags | ActiveHooks::MODIFY_SOLVER_CONTACTS
-            } else {
-                flags - ActiveHooks::MODIFY_SOLVER_CONTACTS
-            };
+            let on = wanted.contains(modify);
             if wanted != flags
                 && let Some(co) = colliders.get_mut(handle)
             {
@@ -445,14 +433,6 @@ impl CreepHooks {
         inner.store.iter().map(|(k, r)| (*k, *r)).collect()
     }
 
-    /// The hook state of a registered collider for the step in progress.
-    fn activity_of(&self, collider: ColliderHandle) -> Activity {
-        self.activity
-            .get(collider.into_raw_parts().0 as usize)
-            .copied()
-            .unwrap_or_default()
-    }
-
     /// A copy of the record of one contact, if live.
     pub fn record(&self, key: &ContactKey) -> Option<ContactRecord> {
         let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
@@ -500,7 +480,7 @@ impl PhysicsHooks for CreepHooks {
             return;
         }
         // --- end compliant ---
-        if self.activity_of(c1) != Activity::Active && self.activity_of(c2) != Activity::Active {
+        if quiet_collider(colliders, c1) && quiet_collider(colliders, c2) {
             // Both below the activation speed: plain Rapier contacts (as with the hook off),
             // rebuilt clean before Rapier starts recycling them.
             counts.quiet += n_contacts;
