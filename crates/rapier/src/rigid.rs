@@ -64,6 +64,7 @@
 //! Requirements (checked by [`check_parameters`]): `FrictionModel::Coulomb` (per-point friction
 //! impulses are only written then) and `contact_clustering = false`.
 
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use creep_law::kinematics::contact_rates;
@@ -76,11 +77,9 @@ use rapier3d::prelude::*;
 use crate::convert::{inverse_mass, motion, v3, vf};
 use crate::error::PluginError;
 use crate::gap::rotation_gap_correction;
-use crate::registry::{
-    CreepMaterial, Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of,
-};
+use crate::registry::{Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of};
 use crate::rolling::{apply_rolling_impulse, rolling_torque};
-use crate::store::{ContactKey, ContactRecord, MAX_POINTS, ManifoldSlab, ManifoldSlot, PairCache};
+use crate::store::{ContactKey, ContactRecord, ContactStore};
 
 /// Checks that Rapier's integration parameters suit the plugin.
 pub fn check_parameters(params: &IntegrationParameters) -> Result<(), PluginError> {
@@ -196,56 +195,23 @@ pub struct StepCounts {
     pub quiet: usize,
 }
 
-/// The counts of a step as the hook accumulates them (no lock: relaxed atomic adds, once per
-/// manifold and category; the creep power and loop gain are kept per manifold and reduced at
-/// the end of the step).
-#[derive(Debug, Default)]
-struct AtomicCounts {
-    coulomb_unregistered: AtomicUsize,
-    coulomb_unsupported: AtomicUsize,
-    coulomb_no_sphere: AtomicUsize,
-    coulomb_requested: AtomicUsize,
-    coulomb_auto: AtomicUsize,
-    creep: AtomicUsize,
-    rolling_torque: AtomicUsize,
-    quiet: AtomicUsize,
+struct Inner {
+    store: ContactStore,
+    counts: StepCounts,
 }
 
-impl AtomicCounts {
-    fn add(&self, c: &AtomicUsize, n: usize) {
-        if n > 0 {
-            c.fetch_add(n, Ordering::Relaxed);
-        }
-    }
-    fn take(&mut self) -> StepCounts {
-        let t = |a: &mut AtomicUsize| std::mem::take(a.get_mut());
-        StepCounts {
-            coulomb_unregistered: t(&mut self.coulomb_unregistered),
-            coulomb_unsupported: t(&mut self.coulomb_unsupported),
-            coulomb_no_sphere: t(&mut self.coulomb_no_sphere),
-            coulomb_requested: t(&mut self.coulomb_requested),
-            coulomb_auto: t(&mut self.coulomb_auto),
-            creep: t(&mut self.creep),
-            rolling_torque: t(&mut self.rolling_torque),
-            quiet: t(&mut self.quiet),
-            ..StepCounts::default()
-        }
-    }
-}
+/// The mark of a collider in its clearing step (see [`CreepHooks::update_activation`]): kept on
+/// the collider itself, not in the hooks, so that a copied world (`clone_physics` with fresh
+/// hooks) steps exactly as the original. `FILTER_INTERSECTION_PAIR` is used because it does
+/// nothing for a non-sensor pair and the hooks keep Rapier's default for sensors.
+const CLEARING_MARK: ActiveHooks = ActiveHooks::FILTER_INTERSECTION_PAIR;
 
-/// A registered collider's hook state, decided before each step by
-/// [`CreepHooks::update_activation`] (see [`CreepSettings::activation_speed`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-enum Activity {
-    /// Hook on, contacts modified.
-    #[default]
-    Active,
-    /// Below the activation speed for the first step: hook still on, but a pair of two quiet
-    /// colliders is left unmodified (plain Rapier solver contacts), so that when the flag goes
-    /// off Rapier recycles clean solver contacts, not the last creep target and gap correction.
-    Clearing,
-    /// Below the activation speed: hook off (Rapier's recycling kept).
-    Off,
+/// Whether a collider's hook is in its clearing step or off (below the activation speed).
+fn quiet_collider(colliders: &ColliderSet, handle: ColliderHandle) -> bool {
+    colliders.get(handle).is_none_or(|co| {
+        let f = co.active_hooks();
+        !f.contains(ActiveHooks::MODIFY_SOLVER_CONTACTS) || f.contains(CLEARING_MARK)
+    })
 }
 
 /// The creep-friction physics hooks (rigid regime). Rapier calls them inside a step that a
@@ -262,17 +228,7 @@ pub struct CreepHooks {
     /// Contacts the hook saw while no step was prepared (left to Rapier), reported as
     /// [`PluginError::HookOutsideStep`] by the next step.
     outside: AtomicUsize,
-    /// Per-manifold records, addressed by the manifold's `user_data`.
-    slab: ManifoldSlab,
-    /// Counts of the step in progress.
-    step_counts: AtomicCounts,
-    /// Counts of the last finished (or abandoned) step.
-    counts: StepCounts,
-    /// Hook state of each registered collider, by collider index.
-    activity: Vec<Activity>,
-    /// Rolling-torque contacts of the step, sorted before their impulses are applied (a
-    /// reused buffer: the order does not depend on where the records sit).
-    torques: Vec<(ContactKey, ContactRecord)>,
+    inner: Mutex<Inner>,
 }
 
 impl CreepHooks {
@@ -286,11 +242,10 @@ impl CreepHooks {
             substeps: 4,
             prepared: false,
             outside: AtomicUsize::new(0),
-            slab: ManifoldSlab::default(),
-            step_counts: AtomicCounts::default(),
-            counts: StepCounts::default(),
-            activity: Vec::new(),
-            torques: Vec::new(),
+            inner: Mutex::new(Inner {
+                store: ContactStore::default(),
+                counts: StepCounts::default(),
+            }),
         })
     }
 
@@ -321,9 +276,9 @@ impl CreepHooks {
         self.prepared = true;
         self.dt = f64::from(params.dt);
         self.substeps = params.num_solver_iterations.max(1);
-        self.slab.begin_step();
-        self.step_counts.take();
-        self.counts = StepCounts::default();
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        inner.store.begin_step();
+        inner.counts = StepCounts::default();
         Ok(())
     }
 
@@ -331,7 +286,7 @@ impl CreepHooks {
     /// colliders: switches `ActiveHooks::MODIFY_SOLVER_CONTACTS` on for the registered colliders
     /// whose body moves faster than [`CreepSettings::activation_speed`] (always for `Creep`
     /// colliders) and off for the others, so that quiet contacts keep Rapier's contact recycling.
-    /// A collider that becomes quiet keeps its flag for one clearing step ([`Activity`]): a
+    /// A collider that becomes quiet keeps its flag for one clearing step ([`CLEARING_MARK`]): a
     /// recycled pair keeps the solver contacts of its last full update, `tangent_velocity` and
     /// `dist` included, so switching the flag off right away would leave the last creep target
     /// and gap correction in force for as long as Rapier recycles the pair.
@@ -343,7 +298,6 @@ impl CreepHooks {
     ) -> usize {
         let v_act = self.settings.activation_speed;
         let mut on_count = 0;
-        let activity = &mut self.activity;
         for (&handle, mat) in self.registry.iter() {
             // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
             // re-process it (a large cost if done for every collider every step).
@@ -371,24 +325,17 @@ impl CreepHooks {
                     rb.linvel().length() + rb.angvel().length() * r > v_act as f32
                 });
             let flags = co.active_hooks();
-            let i = handle.into_raw_parts().0 as usize;
-            if i >= activity.len() {
-                activity.resize(i + 1, Activity::Active);
-            }
-            let flag_on = flags.contains(ActiveHooks::MODIFY_SOLVER_CONTACTS);
-            activity[i] = if moving {
-                Activity::Active
-            } else if flag_on && activity[i] != Activity::Clearing {
-                Activity::Clearing
+            // Active (flag on) -> clearing (flag on, marked: pairs of two quiet colliders are
+            // left as Rapier built them) -> off (flag off: recycled clean).
+            let modify = ActiveHooks::MODIFY_SOLVER_CONTACTS;
+            let wanted = if moving {
+                (flags | modify) - CLEARING_MARK
+            } else if flags.contains(modify) && !flags.contains(CLEARING_MARK) {
+                flags | CLEARING_MARK
             } else {
-                Activity::Off
+                flags - modify - CLEARING_MARK
             };
-            let on = activity[i] != Activity::Off;
-            let wanted = if on {
-                flags | ActiveHooks::MODIFY_SOLVER_CONTACTS
-            } else {
-                flags - ActiveHooks::MODIFY_SOLVER_CONTACTS
-            };
+            let on = wanted.contains(modify);
             if wanted != flags
                 && let Some(co) = colliders.get_mut(handle)
             {
@@ -396,7 +343,8 @@ impl CreepHooks {
             }
             on_count += usize::from(on);
         }
-        self.counts.hooks_on = on_count;
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        inner.counts.hooks_on = on_count;
         on_count
     }
 
@@ -408,57 +356,15 @@ impl CreepHooks {
             return Err(PluginError::StepNotPrepared);
         }
         let dt = self.dt;
-        self.finish_counts();
-        // Rolling impulses in the order of the contact keys (not of the slots, which depends
-        // on the order Rapier met the manifolds, thread scheduling included).
-        self.torques.clear();
-        let g = self.slab.generation;
-        for slot in self.slab.live_mut() {
-            if slot.seen != g {
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        for (_, rec) in inner.store.records.iter() {
+            if rec.torque == Vec3::ZERO || rec.generation != inner.store.generation {
                 continue;
             }
-            let Some((c1, c2)) = slot.owner else { continue };
-            for (f1, f2, rec) in &slot.contacts[..slot.n] {
-                if rec.torque != Vec3::ZERO {
-                    let key = ContactKey {
-                        collider1: c1,
-                        collider2: c2,
-                        feature1: *f1,
-                        feature2: *f2,
-                    };
-                    self.torques.push((key, *rec));
-                }
-            }
-        }
-        self.torques.sort_unstable_by_key(|(k, _)| {
-            (
-                k.collider1.into_raw_parts(),
-                k.collider2.into_raw_parts(),
-                k.feature1,
-                k.feature2,
-            )
-        });
-        for (_, rec) in &self.torques {
             apply_rolling_impulse(bodies, rec, dt);
         }
-        self.slab.end_step();
+        inner.store.sweep();
         Ok(())
-    }
-
-    /// Moves the step's counts into [`CreepHooks::counts`] (the creep power and loop gain
-    /// reduced over the manifolds touched in the step).
-    fn finish_counts(&mut self) {
-        let hooks_on = self.counts.hooks_on;
-        let mut c = self.step_counts.take();
-        c.hooks_on = hooks_on;
-        let g = self.slab.generation;
-        for slot in self.slab.live_mut() {
-            if slot.seen == g {
-                c.creep_power += slot.creep_power;
-                c.max_loop_gain = c.max_loop_gain.max(slot.max_loop_gain);
-            }
-        }
-        self.counts = c;
     }
 
     /// Whether a step is prepared and not yet finished.
@@ -470,7 +376,6 @@ impl CreepHooks {
     /// rolling torque is applied, no record is swept.
     pub(crate) fn abandon_step(&mut self) {
         self.prepared = false;
-        self.finish_counts();
     }
 
     /// Lifts Rapier's angular speed cap (45 degrees per step, `RigidBody::set_allow_fast_rotation`)
@@ -508,46 +413,30 @@ impl CreepHooks {
 
     /// What the plugin did in the last step.
     pub fn counts(&self) -> StepCounts {
-        self.counts
+        self.inner
+            .lock()
+            .map(|i| i.counts)
+            .unwrap_or_else(|e| e.into_inner().counts)
     }
 
     /// Number of live per-contact records.
     pub fn live_contacts(&self) -> usize {
-        self.slab.live().map(|s| s.n).sum()
+        self.inner
+            .lock()
+            .map(|i| i.store.len())
+            .unwrap_or_else(|e| e.into_inner().store.len())
     }
 
     /// Copies of all live contact records.
     pub fn records(&self) -> Vec<(ContactKey, ContactRecord)> {
-        let mut out = Vec::new();
-        for slot in self.slab.live() {
-            let Some((c1, c2)) = slot.owner else { continue };
-            for (f1, f2, rec) in &slot.contacts[..slot.n] {
-                let key = ContactKey {
-                    collider1: c1,
-                    collider2: c2,
-                    feature1: *f1,
-                    feature2: *f2,
-                };
-                out.push((key, *rec));
-            }
-        }
-        out
+        let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        inner.store.iter().map(|(k, r)| (*k, *r)).collect()
     }
 
     /// A copy of the record of one contact, if live.
     pub fn record(&self, key: &ContactKey) -> Option<ContactRecord> {
-        self.records()
-            .into_iter()
-            .find(|(k, _)| k == key)
-            .map(|(_, r)| r)
-    }
-
-    /// The hook state of a registered collider for the step in progress.
-    fn activity_of(&self, collider: ColliderHandle) -> Activity {
-        self.activity
-            .get(collider.into_raw_parts().0 as usize)
-            .copied()
-            .unwrap_or_default()
+        let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        inner.store.records.get(key).copied()
     }
 }
 
@@ -565,6 +454,8 @@ fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
 
 impl PhysicsHooks for CreepHooks {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        let mut inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        let Inner { store, counts } = &mut *inner;
         let (c1, c2) = (context.collider1, context.collider2);
         let (h1, h2) = (context.rigid_body1, context.rigid_body2);
         let bodies = context.bodies;
@@ -579,9 +470,8 @@ impl PhysicsHooks for CreepHooks {
             self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
             return;
         }
-        let counts = &self.step_counts;
         let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
-            counts.add(&counts.coulomb_unregistered, n_contacts);
+            counts.coulomb_unregistered += n_contacts;
             return;
         };
         // --- Compliant regime (crate::compliant applies this pair's forces itself). ---
@@ -590,10 +480,10 @@ impl PhysicsHooks for CreepHooks {
             return;
         }
         // --- end compliant ---
-        if self.activity_of(c1) != Activity::Active && self.activity_of(c2) != Activity::Active {
+        if quiet_collider(colliders, c1) && quiet_collider(colliders, c2) {
             // Both below the activation speed: plain Rapier contacts (as with the hook off),
             // rebuilt clean before Rapier starts recycling them.
-            counts.add(&counts.quiet, n_contacts);
+            counts.quiet += n_contacts;
             return;
         }
         let surfaces = (
@@ -617,60 +507,21 @@ impl PhysicsHooks for CreepHooks {
             }
         }
         let (Some(s1), Some(s2)) = surfaces else {
-            counts.add(&counts.coulomb_unsupported, n_contacts);
+            counts.coulomb_unsupported += n_contacts;
             return;
         };
         if !matches!(s1, Surface::Sphere(_)) && !matches!(s2, Surface::Sphere(_)) {
             // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
-            counts.add(&counts.coulomb_no_sphere, n_contacts);
+            counts.coulomb_no_sphere += n_contacts;
             return;
         }
         let mu = f64::from(*rigid.friction);
-        let user_data = *rigid.user_data;
-        let (_, user_data) = self.slab.with_slot(user_data, (c1, c2), |slot, _| {
-            self.creep_manifold(slot, rigid, (m1, m2), (s1, s2), (h1, h2), bodies, mu);
-        });
-        *rigid.user_data = user_data;
-    }
-}
-
-impl CreepHooks {
-    /// The creep part of the hook for one manifold of a supported pair, with its slot.
-    #[allow(clippy::too_many_arguments)]
-    fn creep_manifold(
-        &self,
-        slot: &mut ManifoldSlot,
-        rigid: &mut ModifiableManifold,
-        (m1, m2): (&CreepMaterial, &CreepMaterial),
-        (s1, s2): (Surface, Surface),
-        (h1, h2): (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
-        bodies: &RigidBodySet,
-        mu: f64,
-    ) {
-        let counts = &self.step_counts;
-        let n_contacts = rigid.solver_contacts.len();
-        slot.creep_power = 0.0;
-        slot.max_loop_gain = 0.0;
-        let key = (m1.material, m2.material, s1, s2, mu);
-        let cache = match slot.cache {
-            Some(c) if c.key == key => c,
-            _ => {
-                slot.n = 0;
-                let Ok(pair) = PairMaterial::new(&m1.material, &m2.material, s1, s2)
-                    .and_then(|p| p.with_friction(mu))
-                else {
-                    slot.cache = None;
-                    counts.add(&counts.coulomb_unsupported, n_contacts);
-                    return;
-                };
-                let law = SteadyLaw::with_c11(self.settings.creep_model, pair.nu, pair.c11);
-                let c = PairCache { key, pair, law };
-                slot.cache = Some(c);
-                c
-            }
+        let Ok(pair) =
+            PairMaterial::new(&m1.material, &m2.material, s1, s2).and_then(|p| p.with_friction(mu))
+        else {
+            counts.coulomb_unsupported += n_contacts;
+            return;
         };
-        let pair = &cache.pair;
-        let law = &cache.law;
         let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
         let rolling = match (m1.rolling, m2.rolling) {
             (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
@@ -678,27 +529,23 @@ impl CreepHooks {
         };
         let n = v3(*rigid.normal);
         let dt = self.dt;
-        let generation = self.slab.generation;
-        let old = (slot.contacts, slot.n);
-        let mut kept = 0;
-        let (mut requested, mut auto, mut creep, mut torque) = (0, 0, 0, 0);
         for sc in rigid.solver_contacts.iter_mut() {
             let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
             let Some(point) = rigid.manifold.points.get(cid) else {
                 continue;
             };
-            let (f1, f2) = (point.fid1.0, point.fid2.0);
-            let mut rec = old.0[..old.1]
-                .iter()
-                .find(|(a, b, _)| (*a, *b) == (f1, f2))
-                .map(|(_, _, r)| *r)
-                .unwrap_or_default();
-            rec.generation = generation;
+            let key = ContactKey {
+                collider1: c1,
+                collider2: c2,
+                feature1: point.fid1.0,
+                feature2: point.fid2.0,
+            };
             let (a1, a2) = (v3(sc.anchor1), v3(sc.anchor2));
             let c = (a1 + a2) * 0.5;
             let p_motion = motion(bodies, h1, a1 - n, s1);
             let q_motion = motion(bodies, h2, a2 + n, s2);
             let rates = contact_rates(&p_motion, &q_motion, c, n);
+            let rec = store.touch(key);
             rec.bodies = (h1, h2);
             let p_force = f64::from(point.data.impulse) / dt;
             rec.p = p_force;
@@ -709,109 +556,98 @@ impl CreepHooks {
             // Contact-torque rolling resistance (computed here, applied in end_step).
             rec.torque = Vec3::ZERO;
             if let Some(model) = rolling {
-                torque += 1;
+                counts.rolling_torque += 1;
                 rec.torque = rolling_torque(
                     &model,
-                    &mut rec,
+                    rec,
                     bodies,
                     (h1, h2),
-                    pair,
+                    &pair,
                     p_force,
                     rates.w_roll,
                     n,
                     dt,
                 );
             }
-            let target: Option<Vec3> = 'creep: {
-                if fidelity == Fidelity::Coulomb {
-                    requested += 1;
-                    break 'creep Some(Vec3::ZERO);
-                }
-                if !(p_force > 0.0) || !(roll > 0.0) || !(mu > 0.0) {
-                    // New contact (no impulse yet), no rolling, or frictionless: nothing creeps.
-                    break 'creep None;
-                }
-                let a = hertz::contact_radius(pair, p_force);
-                let mu_p = mu * p_force;
-                let bound = kalker::steady_creepage(1.0, mu_p, pair.g, a, pair.c11) * roll;
-                if fidelity == Fidelity::Auto && bound < self.settings.auto_tolerance {
-                    break 'creep None;
-                }
-                // Measured friction force of the last step, on body 1: the step's total tangent
-                // impulse in the solver's tangent basis, built from the normal of that step.
-                // (`warmstart_tangent_world` holds the last substep only and reads zero on most
-                // rolling steps: a direction taken from it never follows a reversal.)
-                let ti = point.data.tangent_impulse;
-                let n_prev = if n_prev_step == Vec3::ZERO {
-                    n
-                } else {
-                    n_prev_step
-                };
-                let (t1, t2) = solver_tangents(n_prev);
-                let q_meas = (t1 * f64::from(ti.x) + t2 * f64::from(ti.y)).reject(n) * (1.0 / dt);
-                // Local implicit solve of the creep relation (module docs): the force the solver
-                // would transmit for a target tau is Q* - (m_t/dt) tau, with
-                // Q* = Q_meas + (m_t/dt) tau_prev; tau = F_ss(|Q|/mu P) |v_roll| Q/|Q|.
-                // If the force the solver transmitted opposed last step's target (the demanded
-                // force reversed), that target did negative work: drop it from the estimate
-                // instead of carrying it into this step.
-                let tau_prev = if q_meas.dot(rec.target) < 0.0 {
-                    Vec3::ZERO
-                } else {
-                    rec.target.reject(n)
-                };
-                let probe = (q_meas + tau_prev).try_normalize().unwrap_or(Vec3::X);
-                let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(probe), vf(probe));
-                let q_star = if inv_m > 0.0 {
-                    q_meas + tau_prev * (1.0 / (inv_m * dt))
-                } else {
-                    q_meas
-                };
-                let Some(q_hat) = q_star.try_normalize() else {
-                    break 'creep None;
-                };
-                let k = if inv_m > 0.0 {
-                    roll / (inv_m * dt)
-                } else {
-                    0.0
-                };
-                let creepage = |q: f64| law.creepage_for_force(q, mu_p, pair.g, a);
-                let q_abs = solve_creep_force(q_star.length(), k, mu_p, &creepage);
-                let dq = 1e-6 * mu_p;
-                let gain = k * (creepage((q_abs + dq).min(mu_p)) - creepage((q_abs - dq).max(0.0)))
-                    / (2.0 * dq);
-                slot.max_loop_gain = slot.max_loop_gain.max(gain);
-                let q_used = q_hat * q_abs;
-                rec.q_used = q_used;
-                let slip = creepage(q_abs) * roll;
-                let target = q_hat * slip;
-                creep += 1;
-                slot.creep_power += q_used.dot(target).max(0.0);
-                Some(target)
+
+            if fidelity == Fidelity::Coulomb {
+                counts.coulomb_requested += 1;
+                rec.target = Vec3::ZERO;
+                continue;
+            }
+            if !(p_force > 0.0) || !(roll > 0.0) || !(mu > 0.0) {
+                // New contact (no impulse yet), no rolling, or frictionless: nothing creeps.
+                rec.q_used = Vec3::ZERO;
+                counts.coulomb_auto += 1;
+                rec.target = Vec3::ZERO;
+                continue;
+            }
+            let a = hertz::contact_radius(&pair, p_force);
+            let mu_p = mu * p_force;
+            let bound = kalker::steady_creepage(1.0, mu_p, pair.g, a, pair.c11) * roll;
+            if fidelity == Fidelity::Auto && bound < self.settings.auto_tolerance {
+                counts.coulomb_auto += 1;
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
+                continue;
+            }
+            // Measured friction force of the last step, on body 1: the step's total tangent
+            // impulse in the solver's tangent basis, built from the normal of that step.
+            // (`warmstart_tangent_world` holds the last substep only and reads zero on most
+            // rolling steps: a direction taken from it never follows a reversal.)
+            let ti = point.data.tangent_impulse;
+            let n_prev = if n_prev_step == Vec3::ZERO {
+                n
+            } else {
+                n_prev_step
             };
-            match target {
-                Some(t) => {
-                    rec.target = t;
-                    if t != Vec3::ZERO {
-                        sc.tangent_velocity += vf(t);
-                    }
-                }
-                None => {
-                    auto += 1;
-                    rec.q_used = Vec3::ZERO;
-                    rec.target = Vec3::ZERO;
-                }
-            }
-            if kept < MAX_POINTS {
-                slot.contacts[kept] = (f1, f2, rec);
-                kept += 1;
-            }
+            let (t1, t2) = solver_tangents(n_prev);
+            let q_meas = (t1 * f64::from(ti.x) + t2 * f64::from(ti.y)).reject(n) * (1.0 / dt);
+            // Local implicit solve of the creep relation (module docs): the force the solver
+            // would transmit for a target tau is Q* - (m_t/dt) tau, with
+            // Q* = Q_meas + (m_t/dt) tau_prev; tau = F_ss(|Q|/mu P) |v_roll| Q/|Q|.
+            // If the force the solver transmitted opposed last step's target (the demanded force
+            // reversed), that target did negative work: drop it from the estimate instead of
+            // carrying it into this step.
+            let tau_prev = if q_meas.dot(rec.target) < 0.0 {
+                Vec3::ZERO
+            } else {
+                rec.target.reject(n)
+            };
+            let probe = (q_meas + tau_prev).try_normalize().unwrap_or(Vec3::X);
+            let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(probe), vf(probe));
+            let q_star = if inv_m > 0.0 {
+                q_meas + tau_prev * (1.0 / (inv_m * dt))
+            } else {
+                q_meas
+            };
+            let Some(q_hat) = q_star.try_normalize() else {
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
+                counts.coulomb_auto += 1;
+                continue;
+            };
+            let k = if inv_m > 0.0 {
+                roll / (inv_m * dt)
+            } else {
+                0.0
+            };
+            let law = SteadyLaw::with_c11(self.settings.creep_model, pair.nu, pair.c11);
+            let creepage = |q: f64| law.creepage_for_force(q, mu_p, pair.g, a);
+            let q_abs = solve_creep_force(q_star.length(), k, mu_p, &creepage);
+            let dq = 1e-6 * mu_p;
+            let gain = k * (creepage((q_abs + dq).min(mu_p)) - creepage((q_abs - dq).max(0.0)))
+                / (2.0 * dq);
+            counts.max_loop_gain = counts.max_loop_gain.max(gain);
+            let q_used = q_hat * q_abs;
+            rec.q_used = q_used;
+            let slip = creepage(q_abs) * roll;
+            let target = q_hat * slip;
+            rec.target = target;
+            counts.creep += 1;
+            counts.creep_power += q_used.dot(target).max(0.0);
+            sc.tangent_velocity += vf(target);
         }
-        slot.n = kept;
-        counts.add(&counts.coulomb_requested, requested);
-        counts.add(&counts.coulomb_auto, auto);
-        counts.add(&counts.creep, creep);
-        counts.add(&counts.rolling_torque, torque);
     }
 }
 
