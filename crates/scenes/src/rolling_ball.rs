@@ -24,7 +24,9 @@ pub enum Ground {
     Plane,
     /// A flat triangle mesh of 1 m x 1 m cells (two triangles each), internal edges fixed.
     Trimesh,
-    /// A flat heightfield of 1 m cells, internal edges fixed.
+    /// A flat heightfield of 1 m cells. Built without `HeightFieldFlags::FIX_INTERNAL_EDGES`:
+    /// with that flag Rapier 0.36 gives this flat heightfield no contact with the ball at all
+    /// (measured: the ball falls 490 m in 10 s, in plain Rapier alike).
     Heightfield,
 }
 
