@@ -3,11 +3,11 @@
 # (issue #16): OLD = crates/lammps/plugin at eb627c0 (gather + scatter of every history per
 # step), NEW = this branch, both linked to the same libcreep_lammps.a (same kernel), and LAMMPS'
 # granular, on the exported 4,096-sphere packing with LAMMPS' walls, 1 rank.
-#   notes/lammps-ab.sh OLD.so NEW.so EXPORT_DIR [ROUNDS=5] [STEPS=300]
+#   crates/lammps/bench-ab.sh OLD.so NEW.so EXPORT_DIR [ROUNDS=5] [STEPS=300]
 set -euo pipefail
 OLD=$1 NEW=$2 PK=$3 ROUNDS=${4:-5} STEPS=${5:-300}
 V=${CREEP_LAMMPS_VENV:?}
-IN=$(cd "$(dirname "$0")/.." && pwd)/crates/lammps/tests/lammps/in.bench
+IN=$(cd "$(dirname "$0")" && pwd)/tests/lammps/in.bench
 export OMP_NUM_THREADS=1
 TSV=$(mktemp)
 for r in $(seq "$ROUNDS"); do
