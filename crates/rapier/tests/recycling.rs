@@ -5,7 +5,13 @@ use creep_law::Material;
 use creep_rapier::*;
 use rapier3d::prelude::*;
 
-/// A 0.1 m steel ball rolling at `v` m/s along +x on a steel ground (both `Auto`).
+/// Horizontal push on the ball \[N\]: rolling with a tangential load (the friction force is
+/// (2/7) of it, far below mu m g), so the contact creeps. In free rolling there is no load and
+/// no creep target.
+const PUSH: f32 = 50.0;
+
+/// A 0.1 m steel ball rolling at `v` m/s along +x on a steel ground (both `Auto`), pushed
+/// along +x by [`PUSH`].
 fn rolling_ball(v: f32) -> (CreepWorld, RigidBodyHandle, ColliderHandle) {
     let mut w = CreepWorld::new(1.0 / 60.0, CreepSettings::default()).unwrap();
     let steel = CreepMaterial::new(Material::steel().with_friction(0.5).unwrap());
@@ -23,6 +29,7 @@ fn rolling_ball(v: f32) -> (CreepWorld, RigidBodyHandle, ColliderHandle) {
         ColliderBuilder::ball(0.1).friction(0.5),
         Some(steel),
     );
+    w.physics.bodies[ball].add_force(Vector::new(PUSH, 0.0, 0.0), true);
     (w, ball, co)
 }
 
@@ -45,11 +52,12 @@ fn a_pair_whose_hooks_go_off_keeps_no_stale_target() {
     for _ in 0..20 {
         w.step().unwrap();
     }
-    // Rolling: the hook writes the gap correction's rate (and the creep target).
+    // Rolling under a load: the hook writes the creep target.
     assert!(max_target(&w) > 0.0, "{}", max_target(&w));
     assert!(w.hooks.live_contacts() > 0);
-    // The ball stops: below the activation speed, both sides quiet.
+    // The ball stops (and is no longer pushed): below the activation speed, both sides quiet.
     let rb = w.physics.bodies.get_mut(ball).unwrap();
+    rb.reset_forces(true);
     rb.set_linvel(Vector::ZERO, true);
     rb.set_angvel(Vector::ZERO, true);
     let c = w.step().unwrap();
@@ -75,8 +83,9 @@ fn a_pair_whose_hooks_go_off_keeps_no_stale_target() {
         );
     }
     assert_eq!(w.hooks.live_contacts(), 0);
-    // Set rolling again: the hook comes back on and writes targets again.
+    // Set rolling (and pushed) again: the hook comes back on and writes targets again.
     let rb = w.physics.bodies.get_mut(ball).unwrap();
+    rb.add_force(Vector::new(PUSH, 0.0, 0.0), true);
     rb.set_linvel(Vector::new(1.0, 0.0, 0.0), true);
     rb.set_angvel(Vector::new(0.0, 0.0, -10.0), true);
     for _ in 0..3 {
