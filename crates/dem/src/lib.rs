@@ -39,7 +39,7 @@ mod grid;
 mod probe;
 
 pub use external::{ExternalForces, ExternalView, NoExternal};
-pub use probe::ContactForce;
+pub use probe::{ContactForce, ContactLoad};
 
 use creep_law::pair::{
     ContactGeometry, ContactHistory, PairBody, PairConstants, pair_force, release,
