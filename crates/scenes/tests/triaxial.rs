@@ -297,10 +297,12 @@ fn both_engines_shear_the_same_packing_alike() {
 }
 
 /// The `--quick` size (343 spheres, I = 5e-3, to 10 %): both engines shear the same
-/// Rapier-compacted packing; beyond a few percent the runs are two samples of a chaotic
-/// system, so only the summary is compared: peak friction angle within 1 degree, dilatancy
-/// angle within 1.5 degrees (at this size a sample's peak scatters by about that much). Release
-/// build: `cargo test --release -p creep-scenes --test triaxial -- --ignored quick`.
+/// Rapier-compacted packing. Beyond a few percent the runs are two trajectories of a chaotic
+/// system, so only the summaries are compared: peak friction angle within 0.2 degree,
+/// dilatancy angle within 0.5 degree (measured: 0.004 and 0.09 degree with Coulomb-Mindlin,
+/// 0.006 and 0.15 with creep; the `--quick` runs of the README, each engine from its own
+/// compaction, differ by 0.46 degree: the packing, not the engine). Release build:
+/// `cargo test --release -p creep-scenes --test triaxial -- --ignored quick`.
 #[test]
 #[ignore = "a minute of CPU in release; run with --release -- --ignored"]
 fn quick_size_both_engines_agree_in_summary() {
@@ -314,8 +316,8 @@ fn quick_size_both_engines_agree_in_summary() {
         println!("creep {creep}:\n  rapier {a:?}\n  dem    {b:?}");
         let d_phi = (a.peak_friction_angle_deg - b.peak_friction_angle_deg).abs();
         let d_psi = (a.dilatancy_angle_deg - b.dilatancy_angle_deg).abs();
-        assert!(d_phi < 1.0, "peak friction angle differs by {d_phi} deg");
-        assert!(d_psi < 1.5, "dilatancy angle differs by {d_psi} deg");
+        assert!(d_phi < 0.2, "peak friction angle differs by {d_phi} deg");
+        assert!(d_psi < 0.5, "dilatancy angle differs by {d_psi} deg");
     }
 }
 
@@ -395,4 +397,27 @@ fn measurement_cost_against_the_step() {
         w / st
     );
     assert!(l < k, "load probe {l} s vs kernel {k} s");
+}
+
+/// The other half of the diagnosis: today's Rapier compliant regime shears its own compacted
+/// 4,096-sphere packing (Coulomb-Mindlin) to 8 % axial strain, past the peak (~6.5-7.5 %), to
+/// compare with the creep-dem shear of the same packing and with the stored full run. About 5
+/// min of CPU in release:
+/// `cargo test --release -p creep-scenes --test triaxial -- --ignored rapier_shear --nocapture`.
+#[test]
+#[ignore = "minutes of CPU in release; a diagnosis, run by hand"]
+fn full_size_rapier_shear_to_the_peak() {
+    let params = TriaxialParams {
+        axial_strain: 0.08,
+        ..TriaxialParams::default()
+    };
+    let mut s = Specimen::generate(params).unwrap();
+    let c = compact(&mut s, 2_000_000, &mut |_| {}).unwrap();
+    println!("compaction (Rapier): {c:?}");
+    let r = shear(&s, false, &mut |_| {}).unwrap();
+    println!(
+        "rapier shear, Coulomb-Mindlin, to 8 %: {:?}; stress gap {:.4}",
+        r.summary(),
+        r.max_stress_mismatch
+    );
 }
