@@ -50,7 +50,7 @@ pub use config::{DemConfig, DemError, Particle, Wall};
 pub use external::{ExternalForces, ExternalView, NoExternal};
 pub use material::MaterialTable;
 pub use measure::{ContactView, DemCounts, DemEnergy};
-pub use probe::ContactForce;
+pub use probe::{ContactForce, ContactLoad};
 #[cfg(feature = "parallel")]
 pub(crate) use step::tally;
 

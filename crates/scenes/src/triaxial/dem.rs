@@ -4,7 +4,7 @@
 //! inner faces, frictionless), the same protocol ([`compact_dem`], [`shear_dem`]: the code of
 //! [`super::compact`] and [`super::shear`]) and the same measurements.
 
-use creep_dem::{ContactForce, Dem, Exact, MaterialTable};
+use creep_dem::{ContactLoad, Dem, Exact, MaterialTable};
 use creep_law::pair::PairConstants;
 use creep_law::{CreepModel, Vec2, Vec3};
 
@@ -50,14 +50,22 @@ impl DemSpecimen {
     /// Generates the loose packing of [`Specimen::generate`] (same seed, same balls) in the
     /// engine, frictionless for the compaction.
     pub fn generate(params: TriaxialParams) -> Result<Self, SceneError> {
-        let rapier = Specimen::generate(params)?;
-        let mut dem = dem_engine::<Exact>(&rapier, false, false)?;
+        Self::from_specimen(&Specimen::generate(params)?)
+    }
+
+    /// The balls and walls of a Rapier specimen (positions, velocities, wall speeds; e.g. one
+    /// compacted by [`super::compact`]) moved into the engine, frictionless, with fresh contact
+    /// histories (a frictionless packing's histories hold no tangential force): the two engines
+    /// can then shear the same packing.
+    pub fn from_specimen(rapier: &Specimen) -> Result<Self, SceneError> {
+        let params = *rapier.params();
+        let mut dem = dem_engine::<Exact>(rapier, false, false)?;
         dem.set_table(table(&params, 0.0, false)?)
             .map_err(dem_err)?;
         Ok(Self {
             dem,
             params,
-            steps: 0,
+            steps: rapier.steps(),
             energy0: (0.0, 0.0),
         })
     }
@@ -82,10 +90,11 @@ impl DemSpecimen {
         self.dem.is_empty()
     }
 
-    /// The stresses of the module docs from the forces the contacts carry
-    /// ([`Dem::for_each_contact_force`] with `dt = 0`); with `love_too` false the walls'
-    /// entries only (the wall contacts alone; the Love-Weber tensor then holds only their
-    /// share and is not a stress).
+    /// The stresses of the module docs from the loads the contacts carry
+    /// ([`Dem::for_each_contact_load`]: the forces of [`Dem::for_each_contact_force`] with
+    /// `dt = 0` without running the tangential law, cheap enough for every step); with
+    /// `love_too` false the walls' entries only (the wall contacts alone; the Love-Weber tensor
+    /// then holds only their share and is not a stress).
     fn measure(&self, love_too: bool) -> Stress {
         let dims = self.dims();
         let volume = dims[0] * dims[1] * dims[2];
@@ -102,22 +111,22 @@ impl DemSpecimen {
                 }
             }
         };
-        let each = |c: ContactForce| {
-            let f = c.forces.force_p;
+        let each = |c: ContactLoad| {
+            let f = c.force_p;
             match c.wall {
                 None => add(c.x_q - c.x_p, f),
                 Some(k) => {
                     // The ball is q and gets -f; the wall gets f.
-                    add(c.forces.point - c.x_q, -f);
+                    add(c.point - c.x_q, -f);
                     st.each[k] += side(k) * comp(f, k / 2);
-                    st.stiffness[k] += 1.5 * c.forces.normal_force / c.overlap;
+                    st.stiffness[k] += 1.5 * c.normal_force / c.overlap;
                 }
             }
         };
         if love_too {
-            self.dem.for_each_contact_force(0.0, each);
+            self.dem.for_each_contact_load(each);
         } else {
-            self.dem.for_each_wall_contact_force(0.0, each);
+            self.dem.for_each_wall_contact_load(each);
         }
         for axis in 0..3 {
             let area = dims[(axis + 1) % 3] * dims[(axis + 2) % 3];
@@ -150,8 +159,8 @@ impl Host for DemSpecimen {
         &self.params
     }
 
-    /// The stresses of the module docs from the forces the contacts carry
-    /// ([`Dem::for_each_contact_force`] with `dt = 0`).
+    /// The stresses of the module docs from the loads the contacts carry
+    /// ([`DemSpecimen::measure`]).
     fn stress(&self) -> Stress {
         self.measure(true)
     }
