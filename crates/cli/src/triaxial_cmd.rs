@@ -35,7 +35,7 @@ pub struct TriaxialArgs {
     /// crates/cli/assets/triaxial.toml. A run's params.toml repeats that run.
     #[arg(long)]
     config: Option<PathBuf>,
-    /// Engine: `rapier` (the compliant regime; the default) or `dem` (creep-dem, f64);
+    /// Engine: `dem` (creep-dem, f64; the default) or `rapier` (the compliant regime);
     /// overrides the config file's `engine` key.
     #[arg(long)]
     engine: Option<String>,
@@ -392,7 +392,7 @@ mod tests {
         let path = dir.join("params.toml");
         output::write(&path, &text).unwrap();
         assert_eq!(config(&args(Some(path.clone()), false, None)).unwrap(), cfg);
-        // Without the flags the defaults file gives the defaults (and the rapier engine).
+        // Without the flags the defaults file gives the defaults (and the dem engine).
         let plain = config(&args(None, false, None)).unwrap();
         assert_eq!(plain, TriaxialConfig::default());
 

@@ -120,10 +120,10 @@ fn the_packing_moves_to_the_dem_engine() {
 #[test]
 fn the_engine_key_and_flag_parse() {
     use creep_scenes::triaxial::TriaxialEngine;
-    // The shipped defaults stay on the Rapier compliant regime until a full creep-dem run
-    // reproduces the published results (issue #15).
+    // The shipped defaults run on creep-dem (issue #15: it agrees with the Rapier regime
+    // sheared from the same packing; `both_engines_shear_the_same_packing_alike`).
     let engine = |text: &str| TriaxialConfig::from_toml(text).map(|c| c.engine);
-    assert_eq!(engine(CONF).unwrap(), TriaxialEngine::Rapier);
+    assert_eq!(engine(CONF).unwrap(), TriaxialEngine::Dem);
     assert_eq!(engine("engine = \"dem\"").unwrap(), TriaxialEngine::Dem);
     assert_eq!(
         engine("engine = \"rapier\"").unwrap(),

@@ -137,11 +137,11 @@ impl TriaxialParams {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TriaxialEngine {
-    /// creep-dem ([`super::DemSpecimen`]): f64, neighbour lists, the exact tangential tier.
-    Dem,
-    /// The compliant regime of creep-rapier ([`super::Specimen`]); the default until a full
-    /// creep-dem run reproduces its published results.
+    /// creep-dem ([`super::DemSpecimen`]): f64, neighbour lists, the exact tangential tier;
+    /// the default (it agrees with the Rapier regime sheared from the same packing, README).
     #[default]
+    Dem,
+    /// The compliant regime of creep-rapier ([`super::Specimen`]).
     Rapier,
 }
 
