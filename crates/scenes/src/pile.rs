@@ -295,9 +295,10 @@ pub struct Interleaved {
     pub hooks_on: usize,
 }
 
+/// [`crate::stats::median`] of samples that are never empty here (`pairs` and `steps` are
+/// checked to be > 0 before sampling).
 fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+    crate::stats::median(v).unwrap_or(f64::NAN)
 }
 
 /// Steps `plain` and `plugin` alternately `pairs` times (alternating which goes first), so that
