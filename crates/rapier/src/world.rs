@@ -56,9 +56,10 @@ impl CreepWorld {
         })
     }
 
-    /// Inserts a body with one collider; with `material`, the collider opts in to creep-friction
-    /// (`ActiveHooks::MODIFY_SOLVER_CONTACTS`) and is registered, and a collider left at
-    /// Rapier's default density (1 kg/m^3) takes the material's density (its mass follows).
+    /// Inserts a body with one collider; with `material`, the collider is registered (each step's
+    /// activation then turns its `ActiveHooks::MODIFY_SOLVER_CONTACTS` on while it moves, as the
+    /// Bevy plugin's registration does), and a collider left at Rapier's default density
+    /// (1 kg/m^3) takes the material's density (its mass follows).
     pub fn insert(
         &mut self,
         body: impl Into<RigidBody>,
@@ -67,8 +68,6 @@ impl CreepWorld {
     ) -> (RigidBodyHandle, ColliderHandle) {
         let mut collider: Collider = collider.into();
         if let Some(m) = &material {
-            collider
-                .set_active_hooks(collider.active_hooks() | ActiveHooks::MODIFY_SOLVER_CONTACTS);
             if collider.density() == DEFAULT_DENSITY {
                 collider.set_density(m.material.density() as f32);
             }
