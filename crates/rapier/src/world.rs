@@ -67,10 +67,10 @@ impl CreepWorld {
         material: Option<CreepMaterial>,
     ) -> (RigidBodyHandle, ColliderHandle) {
         let mut collider: Collider = collider.into();
-        if let Some(m) = &material {
-            if collider.density() == DEFAULT_DENSITY {
-                collider.set_density(m.material.density() as f32);
-            }
+        if let Some(m) = &material
+            && collider.density() == DEFAULT_DENSITY
+        {
+            collider.set_density(m.material.density() as f32);
         }
         let (b, c) = self.physics.insert(body, collider);
         if let Some(m) = material {
