@@ -58,6 +58,39 @@ impl Default for BedSpec {
 const SPACING: f64 = 2.2;
 
 impl BedSpec {
+    /// A Rapier world for this bed (its gravity along -y, the game step `dt_rigid` \[s\]) with
+    /// one dynamic body at `position` \[m\] carrying `collider`, and the bed built from `dem`
+    /// with that collider as its boundary (material id 1): the set-up every coupled scene shares.
+    pub fn coupled_world<T: TangentialLaw>(
+        &self,
+        dem: Dem<T>,
+        dt_rigid: f64,
+        position: FVec3,
+        collider: Collider,
+    ) -> Result<(PhysicsWorld, RigidBodyHandle, Bed<T>), BedError> {
+        let mut world = PhysicsWorld {
+            gravity: FVec3::new(0.0, -self.gravity as f32, 0.0),
+            ..Default::default()
+        };
+        world.integration_parameters.dt = dt_rigid as f32;
+        let body = world.bodies.insert(
+            RigidBodyBuilder::dynamic()
+                .translation(position)
+                .can_sleep(false)
+                .build(),
+        );
+        let ch = world
+            .colliders
+            .insert_with_parent(collider, body, &mut world.bodies);
+        let mut bed = Bed::new(
+            dem,
+            BedConfig {
+                skin: 0.2 * self.radius,
+            },
+        )?;
+        bed.add_boundary(ch, 1, &world.bodies, &world.colliders)?;
+        Ok((world, body, bed))
+    }
     /// The grain material.
     pub fn material(&self) -> Result<Material, BedError> {
         Ok(Material::new(
@@ -266,35 +299,18 @@ pub fn resting_sphere<T: TangentialLaw>(s: &RestingSphere) -> Result<RestingRepo
         Vec3::new(0.5 * lx, 0.0, 0.5 * lz),
         Vec3::new(reach, 0.0, reach),
     );
-    let mut world = PhysicsWorld {
-        gravity: FVec3::new(0.0, -b.gravity as f32, 0.0),
-        ..Default::default()
-    };
-    world.integration_parameters.dt = dt_rigid as f32;
-    let ball = world.bodies.insert(
-        RigidBodyBuilder::dynamic()
-            .translation(FVec3::new(
-                (0.5 * lx) as f32,
-                (start + rb + 0.05 * b.radius) as f32,
-                (0.5 * lz) as f32,
-            ))
-            .can_sleep(false)
-            .build(),
-    );
-    let ch = world.colliders.insert_with_parent(
+    let (mut world, ball, mut bed) = b.coupled_world(
+        dem,
+        dt_rigid,
+        FVec3::new(
+            (0.5 * lx) as f32,
+            (start + rb + 0.05 * b.radius) as f32,
+            (0.5 * lz) as f32,
+        ),
         ColliderBuilder::ball(rb as f32)
             .density(s.density as f32)
             .build(),
-        ball,
-        &mut world.bodies,
-    );
-    let mut bed = Bed::new(
-        dem,
-        BedConfig {
-            skin: 0.2 * b.radius,
-        },
     )?;
-    bed.add_boundary(ch, 1, &world.bodies, &world.colliders)?;
     for _ in 0..s.rest_steps {
         bed.step(dt_rigid, &mut world.bodies)?;
         world.step();

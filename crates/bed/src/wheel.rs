@@ -13,8 +13,8 @@ use creep_law::{Material, Vec3};
 use rapier3d::glamx::{Quat, Vec3 as FVec3};
 use rapier3d::prelude::*;
 
+use crate::BedError;
 use crate::scene::{BedSpec, highest_under, surface_height};
-use crate::{Bed, BedConfig, BedError};
 
 /// The wheel scene's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,37 +107,20 @@ pub fn wheel_on_sand<T: TangentialLaw>(
         Vec3::new(1.5 * rw, 0.0, 0.5 * lz),
         Vec3::new(rw + b.radius, 0.0, half_w + b.radius),
     );
-    let mut world = PhysicsWorld {
-        gravity: FVec3::new(0.0, -b.gravity as f32, 0.0),
-        ..Default::default()
-    };
-    world.integration_parameters.dt = dt_rigid as f32;
-    let wheel = world.bodies.insert(
-        RigidBodyBuilder::dynamic()
-            .translation(FVec3::new(
-                (1.5 * rw) as f32,
-                (start + rw + 0.02 * b.radius) as f32,
-                (0.5 * lz) as f32,
-            ))
-            .can_sleep(false)
-            .build(),
-    );
     // Rapier's cylinder is about y: turn it about x so that its axis is z.
-    let ch = world.colliders.insert_with_parent(
+    let (mut world, wheel, mut bed) = b.coupled_world(
+        dem,
+        dt_rigid,
+        FVec3::new(
+            (1.5 * rw) as f32,
+            (start + rw + 0.02 * b.radius) as f32,
+            (0.5 * lz) as f32,
+        ),
         ColliderBuilder::cylinder(half_w as f32, rw as f32)
             .rotation(Quat::from_rotation_x(std::f32::consts::FRAC_PI_2).to_scaled_axis())
             .density(s.density as f32)
             .build(),
-        wheel,
-        &mut world.bodies,
-    );
-    let mut bed = Bed::new(
-        dem,
-        BedConfig {
-            skin: 0.2 * b.radius,
-        },
     )?;
-    bed.add_boundary(ch, 1, &world.bodies, &world.colliders)?;
     let set = |world: &mut PhysicsWorld, v: f64, w: f64| {
         let rb = &mut world.bodies[wheel];
         let vy = rb.linvel().y;
