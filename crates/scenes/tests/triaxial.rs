@@ -3,9 +3,33 @@
 //! reaches the confining pressure, the shear is quasi-static).
 
 use creep_scenes::SceneError;
-use creep_scenes::triaxial::{Specimen, TriaxialConfig, TriaxialParams, compact, shear};
+use creep_scenes::triaxial::{ShearRun, Specimen, TriaxialConfig, TriaxialParams, compact, shear};
 
 const CONF: &str = include_str!("../../cli/assets/triaxial.toml");
+
+/// The checks every short drained shear (to 3 % axial strain) must pass, on either engine.
+fn check_drained_shear(r: &ShearRun, creep: bool, p0: f64) {
+    let last = *r.rows.last().unwrap();
+    println!(
+        "creep {creep}: {} steps, stress gap {:.4}, last row {last:?}",
+        r.steps, r.max_stress_mismatch
+    );
+    // Quasi-static: walls and contacts agree within 2 % (after 1 % strain).
+    assert!(r.max_stress_mismatch < 0.02, "{}", r.max_stress_mismatch);
+    // Drained: the lateral walls hold p0 within 2 %.
+    for row in r.rows.iter().skip(1) {
+        assert!(
+            (row.sigma_lateral / p0 - 1.0).abs() < 0.02,
+            "lateral stress {row:?}"
+        );
+        assert!(row.q_over_p.is_finite() && row.volumetric_strain.is_finite());
+    }
+    // The deviator builds up with strain.
+    assert!(last.q_over_p > 0.3, "{last:?}");
+    assert!((last.axial_strain - 0.03).abs() < 1e-3, "{last:?}");
+    // Creep dissipates only when it is on.
+    assert_eq!(r.creep_dissipation > 0.0, creep);
+}
 
 #[test]
 fn the_defaults_file_is_the_default() {
@@ -63,26 +87,7 @@ fn a_small_packing_compacts_and_shears_quasi_statically() {
     let mut runs = vec![];
     for creep in [false, true] {
         let r = shear(&s, creep, &mut |_| {}).unwrap();
-        let last = *r.rows.last().unwrap();
-        println!(
-            "creep {creep}: {} steps, stress gap {:.4}, last row {last:?}",
-            r.steps, r.max_stress_mismatch
-        );
-        // Quasi-static: walls and contacts agree within 2 % (after 1 % strain).
-        assert!(r.max_stress_mismatch < 0.02, "{}", r.max_stress_mismatch);
-        // Drained: the lateral walls hold p0 within 2 %.
-        for row in r.rows.iter().skip(1) {
-            assert!(
-                (row.sigma_lateral / p0 - 1.0).abs() < 0.02,
-                "lateral stress {row:?}"
-            );
-            assert!(row.q_over_p.is_finite() && row.volumetric_strain.is_finite());
-        }
-        // The deviator builds up with strain.
-        assert!(last.q_over_p > 0.3, "{last:?}");
-        assert!((last.axial_strain - 0.03).abs() < 1e-3, "{last:?}");
-        // Creep dissipates only when it is on.
-        assert_eq!(r.creep_dissipation > 0.0, creep);
+        check_drained_shear(&r, creep, p0);
         runs.push(r);
     }
 }
@@ -176,22 +181,7 @@ fn a_small_packing_compacts_and_shears_on_the_dem_engine() {
     }
     for creep in [false, true] {
         let r = shear_dem(&s, creep, &mut |_| {}).unwrap();
-        let last = *r.rows.last().unwrap();
-        println!(
-            "creep {creep}: {} steps, stress gap {:.4}, last row {last:?}",
-            r.steps, r.max_stress_mismatch
-        );
-        assert!(r.max_stress_mismatch < 0.02, "{}", r.max_stress_mismatch);
-        for row in r.rows.iter().skip(1) {
-            assert!(
-                (row.sigma_lateral / p0 - 1.0).abs() < 0.02,
-                "lateral stress {row:?}"
-            );
-            assert!(row.q_over_p.is_finite() && row.volumetric_strain.is_finite());
-        }
-        assert!(last.q_over_p > 0.3, "{last:?}");
-        assert!((last.axial_strain - 0.03).abs() < 1e-3, "{last:?}");
-        assert_eq!(r.creep_dissipation > 0.0, creep);
+        check_drained_shear(&r, creep, p0);
     }
 }
 
