@@ -769,4 +769,6 @@ impl MindlinState {
 }
 
 #[cfg(test)]
+mod reference;
+#[cfg(test)]
 mod tests;

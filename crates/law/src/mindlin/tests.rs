@@ -560,3 +560,141 @@ fn springs_entering_a_full_memory_enter_unstrained() {
         assert!(st.memory_depth() <= MAX_PIECES);
     }
 }
+
+/// A small deterministic generator (xorshift64*), uniform in `[-1, 1)`.
+struct Rng(u64);
+
+impl Rng {
+    fn sym(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let u = (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64;
+        2.0 * u - 1.0
+    }
+}
+
+/// Drives the optimised memory and the frozen reference (`mindlin/reference.rs`, the algorithm
+/// before its speed-up) through the same inputs and requires the same bits after every step:
+/// state (`to_array`), force and both energies. Returns the memory-depth histogram.
+fn run_against_reference(pair: &PairMaterial, inputs: &[(f64, Vec2)]) -> [usize; MAX_PIECES + 1] {
+    let mut new = MindlinState::new();
+    let mut old = reference::MindlinState::new();
+    let mut depth = [0; MAX_PIECES + 1];
+    for (i, &(a, du)) in inputs.iter().enumerate() {
+        let s = new.update_with_radius(pair, a, du);
+        let r = old.update_with_radius(pair, a, du);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(
+            bits(&new.to_array()),
+            bits(&old.to_array()),
+            "step {i}: state differs from the reference"
+        );
+        assert_eq!(
+            bits(&[s.q.x, s.q.y, s.a, s.slip_dissipation, s.truncation_energy]),
+            bits(&[r.q.x, r.q.y, r.a, r.slip_dissipation, r.truncation_energy]),
+            "step {i}: step result differs from the reference"
+        );
+        depth[new.memory_depth()] += 1;
+    }
+    depth
+}
+
+#[test]
+fn reference_bit_for_bit_on_jittering_dem_paths() {
+    // A contact in a vibrating packing: the radius grows or shrinks every step (the memory is
+    // full and merges every step), the displacement turns, reverses, creeps and slides grossly;
+    // sometimes the contact opens. Friction from 0 (walls) to +inf.
+    let base = pair();
+    let a0 = hertz::contact_radius(&base, P);
+    let mut full = 0;
+    for (seed, mu) in [
+        (1u64, 0.5),
+        (2, 0.3),
+        (3, 0.0),
+        (4, f64::INFINITY),
+        (5, 1e3),
+        (6, 0.5),
+    ] {
+        let pair = base.with_friction(mu).unwrap();
+        let ds = delta_s(&base.with_friction(0.5).unwrap(), P);
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ seed.wrapping_mul(0xbf58_476d_1ce4_e5b9));
+        let (mut a, mut dir) = (a0, 0.0f64);
+        let mut inputs = Vec::new();
+        for i in 0..6000 {
+            a = (a * (1.0 + 3e-3 * rng.sym())).clamp(0.5 * a0, 1.5 * a0);
+            dir += 0.2 * rng.sym();
+            if i % 500 == 250 {
+                dir += std::f64::consts::PI;
+            }
+            // Step lengths from 1e-6 to 0.3 slip distances.
+            let len = ds * 10f64.powf(-3.5 + 3.0 * rng.sym());
+            let du = Vec2::new(dir.cos(), dir.sin()) * len;
+            let a_in = match i % 997 {
+                500 => 0.0,                // opens
+                501 => f64::NAN,           // bad input: open
+                502 => a0 * (1.0 + 1e-15), // closes again
+                _ => a,
+            };
+            inputs.push((a_in, du));
+        }
+        let depth = run_against_reference(&pair, &inputs);
+        full += depth[MAX_PIECES];
+    }
+    // The paths exercised the full memory (the merges) most of the time.
+    assert!(full > 10_000, "full memory in only {full} steps");
+}
+
+#[test]
+fn reference_bit_for_bit_on_cycles_and_rolling() {
+    let pair = pair();
+    let mu_p = pair.mu * P;
+    let ds = delta_s(&pair, P);
+    let a0 = hertz::contact_radius(&pair, P);
+    // Loading/unloading cycles of P with out-of-phase tangential cycles (collinear, then 2-D).
+    let cycles: Vec<(f64, Vec2)> = (1..3000)
+        .map(|i| {
+            let t = i as f64 * std::f64::consts::TAU / 150.0;
+            let p = P * (1.0 + 0.6 * t.sin());
+            let dd = 0.9 * ds * (t.cos() - (t - std::f64::consts::TAU / 150.0).cos());
+            let dir = if i < 1500 {
+                Vec2::new(1.0, 0.0)
+            } else {
+                Vec2::new(t.cos(), (0.7 * t).sin())
+            };
+            (hertz::contact_radius(&pair, p), dir * dd)
+        })
+        .collect();
+    run_against_reference(&pair, &cycles);
+    // Steady rolling with Kuhn's creep fed back from the force (constant P), then at a slowly
+    // falling load; the creep from the reference state's force.
+    let mut st = reference::MindlinState::new();
+    let dr = a0 * 1e-3;
+    let xi = crate::kalker::steady_creepage(0.6, mu_p, pair.g, a0, pair.c11);
+    let rolling: Vec<(f64, Vec2)> = (0..3000)
+        .map(|i| {
+            let p = if i < 2000 {
+                P
+            } else {
+                P * (1.0 - 1e-4 * (i - 2000) as f64)
+            };
+            let a = hertz::contact_radius(&pair, p);
+            let q = st.force().length();
+            let f = if q > 0.0 {
+                crate::kalker::steady_creepage(
+                    (q / (pair.mu * p)).min(1.0),
+                    pair.mu * p,
+                    pair.g,
+                    a,
+                    pair.c11,
+                )
+            } else {
+                0.0
+            };
+            let du = Vec2::new((xi - f) * dr, 0.1 * xi * dr);
+            st.update_with_radius(&pair, a, du);
+            (a, du)
+        })
+        .collect();
+    run_against_reference(&pair, &rolling);
+}

@@ -1,0 +1,313 @@
+//! The Cattaneo-Mindlin memory update (`MindlinState::update_with_radius`) against the frozen
+//! copy of the algorithm before its speed-up (`crates/law/src/mindlin/reference.rs`, also the
+//! crate's bit-for-bit test oracle), side by side: every round times each load path with both
+//! versions, interleaved, and the medians over the rounds are printed (the machine may be
+//! loaded; only ratios measured in one run mean anything).
+//!
+//! Load paths (1 mm glass beads at about 1 N, DEM-sized; one pass replays a precomputed input
+//! sequence from a virgin contact, so both versions see the same inputs):
+//! - `steady_rolling_creep`: constant load, Kuhn's creep term fed back from the force;
+//! - `load_unload_cycles`: the normal force cycles 0.5-1.5 P with a collinear tangential cycle;
+//! - `turning_reversals`: a 2-D path that turns and reverses, with a jittering contact radius
+//!   (every step grows or shrinks `a`, as in a vibrating packing: the memory stays full);
+//! - `dem_trace` (with `CREEP_MINDLIN_TRACE=FILE`): single updates sampled from a creep-dem
+//!   packing (records of 59 little-endian f64: `r_star, e_star, g_star, g, nu, mu, c11, a,
+//!   du.x, du.y` and the state's `to_array`), each replayed from its recorded state.
+//!
+//! Every pass also checks that both versions give the same bits (a bench of a wrong answer is
+//! worthless); a difference aborts.
+//!
+//! Run: `cargo bench -p creep-law --bench mindlin [-- ROUNDS]`
+
+use std::hint::black_box;
+use std::time::Instant;
+
+// The frozen reference refers to `crate::hertz`, `crate::material::PairMaterial`, ...: give it
+// those paths here.
+pub use creep_law::{LawError, hertz, material, vector};
+
+#[path = "../src/mindlin/reference.rs"]
+mod reference;
+
+use creep_law::{Material, MindlinState, PairMaterial, Surface, Vec2, kalker};
+
+/// Glass beads of 1 mm radius: a DEM-sized contact.
+fn pair() -> PairMaterial {
+    let m = Material::glass();
+    PairMaterial::new(&m, &m, Surface::Sphere(1e-3), Surface::Sphere(1e-3)).expect("valid pair")
+}
+
+/// A small deterministic generator (xorshift64*), so the paths are the same in every run.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// Uniform in `[-1, 1)`.
+    fn sym(&mut self) -> f64 {
+        2.0 * self.next() - 1.0
+    }
+}
+
+/// One update's inputs.
+#[derive(Clone, Copy)]
+struct Input {
+    a: f64,
+    du: Vec2,
+}
+
+/// A load path: its name and inputs, replayed from a virgin contact.
+struct Path {
+    name: &'static str,
+    inputs: Vec<Input>,
+}
+
+fn paths(pair: &PairMaterial) -> Vec<Path> {
+    let p0 = 1.0;
+    let a0 = hertz::contact_radius(pair, p0);
+    let ds = 3.0 * pair.mu * p0 / (16.0 * pair.g_star * a0);
+    let n = 4000;
+    let mut out = Vec::new();
+
+    // Steady rolling with creep at 0.6 mu P: du_eff = xi dr - F_ss(|Q|/(mu P)) dr along x, the
+    // creep computed from the reference state's own force (Kuhn 2011, eq. 1).
+    let dr = a0 * 2e-3;
+    let xi = kalker::steady_creepage(0.6, pair.mu * p0, pair.g, a0, pair.c11);
+    let mut st = reference::MindlinState::new();
+    let mut inputs = Vec::with_capacity(n);
+    for _ in 0..n {
+        let q = st.force().x.abs();
+        let f = if q > 0.0 {
+            kalker::steady_creepage(
+                (q / (pair.mu * p0)).min(1.0),
+                pair.mu * p0,
+                pair.g,
+                a0,
+                pair.c11,
+            )
+        } else {
+            0.0
+        };
+        let du = Vec2::new((xi - f) * dr, 0.0);
+        st.update_with_radius(pair, a0, du);
+        inputs.push(Input { a: a0, du });
+    }
+    out.push(Path {
+        name: "steady_rolling_creep",
+        inputs,
+    });
+
+    // Loading / unloading cycles: P from 0.5 to 1.5 P0 and back, Q cycling at 0.8 of the slip
+    // displacement, out of phase.
+    let inputs = (0..n)
+        .map(|i| {
+            let t = i as f64 / 200.0 * std::f64::consts::TAU;
+            let p = p0 * (1.0 + 0.5 * t.sin());
+            let dd = 0.8 * ds * (t.cos() - (t - std::f64::consts::TAU / 200.0).cos());
+            Input {
+                a: hertz::contact_radius(pair, p),
+                du: Vec2::new(dd, 0.0),
+            }
+        })
+        .collect();
+    out.push(Path {
+        name: "load_unload_cycles",
+        inputs,
+    });
+
+    // Turning path with reversals and a jittering radius.
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut dir: f64 = 0.0;
+    let mut a = a0;
+    let inputs = (0..n)
+        .map(|i| {
+            dir += 0.05 * rng.sym();
+            if i % 700 == 350 {
+                dir += std::f64::consts::PI;
+            }
+            a = (a * (1.0 + 2e-4 * rng.sym())).clamp(0.9 * a0, 1.1 * a0);
+            let len = ds * 2e-3 * (1.0 + rng.sym());
+            Input {
+                a,
+                du: Vec2::new(dir.cos(), dir.sin()) * len
+                    + Vec2::new(rng.sym(), rng.sym()) * (2e-4 * ds),
+            }
+        })
+        .collect();
+    out.push(Path {
+        name: "turning_reversals",
+        inputs,
+    });
+    out
+}
+
+/// Records of a creep-dem trace (see the module doc).
+fn trace() -> Option<Vec<(PairMaterial, Input, [f64; 49])>> {
+    let file = std::env::var("CREEP_MINDLIN_TRACE").ok()?;
+    let bytes = std::fs::read(&file).expect("CREEP_MINDLIN_TRACE: unreadable");
+    let vals: Vec<f64> = bytes
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+        .collect();
+    let base = pair();
+    Some(
+        vals.chunks_exact(59)
+            .map(|r| {
+                let pm = PairMaterial {
+                    r_star: r[0],
+                    e_star: r[1],
+                    g_star: r[2],
+                    g: r[3],
+                    nu: r[4],
+                    mu: r[5],
+                    c11: r[6],
+                    ..base
+                };
+                let mut s = [0.0; 49];
+                s.copy_from_slice(&r[10..59]);
+                (
+                    pm,
+                    Input {
+                        a: r[7],
+                        du: Vec2::new(r[8], r[9]),
+                    },
+                    s,
+                )
+            })
+            .collect(),
+    )
+}
+
+fn same(new: &MindlinState, old: &reference::MindlinState) -> bool {
+    new.to_array()
+        .iter()
+        .zip(old.to_array().iter())
+        .all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+/// Seconds per update of one pass over `path`: (new, reference). Checks bit equality.
+fn time_path(pair: &PairMaterial, path: &Path, reps: usize) -> (f64, f64) {
+    let t = Instant::now();
+    let mut new = MindlinState::new();
+    for _ in 0..reps {
+        new = MindlinState::new();
+        for x in &path.inputs {
+            black_box(new.update_with_radius(black_box(pair), x.a, x.du));
+        }
+    }
+    let t_new = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let mut old = reference::MindlinState::new();
+    for _ in 0..reps {
+        old = reference::MindlinState::new();
+        for x in &path.inputs {
+            black_box(old.update_with_radius(black_box(pair), x.a, x.du));
+        }
+    }
+    let t_old = t.elapsed().as_secs_f64();
+    assert!(same(&new, &old), "{}: results differ", path.name);
+    let k = (reps * path.inputs.len()) as f64;
+    (t_new / k, t_old / k)
+}
+
+fn time_trace(recs: &[(PairMaterial, Input, [f64; 49])], reps: usize) -> (f64, f64) {
+    let news: Vec<MindlinState> = recs
+        .iter()
+        .map(|r| MindlinState::from_array(&r.2).expect("valid state"))
+        .collect();
+    let olds: Vec<reference::MindlinState> = recs
+        .iter()
+        .map(|r| reference::MindlinState::from_array(&r.2).expect("valid state"))
+        .collect();
+    let t = Instant::now();
+    for _ in 0..reps {
+        for (r, s) in recs.iter().zip(&news) {
+            let mut s = *s;
+            black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
+        }
+    }
+    let t_new = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    for _ in 0..reps {
+        for (r, s) in recs.iter().zip(&olds) {
+            let mut s = *s;
+            black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
+        }
+    }
+    let t_old = t.elapsed().as_secs_f64();
+    for ((r, n), o) in recs.iter().zip(&news).zip(&olds) {
+        let (mut n, mut o) = (*n, *o);
+        let sn = n.update_with_radius(&r.0, r.1.a, r.1.du);
+        let so = o.update_with_radius(&r.0, r.1.a, r.1.du);
+        assert!(
+            same(&n, &o)
+                && sn.slip_dissipation.to_bits() == so.slip_dissipation.to_bits()
+                && sn.truncation_energy.to_bits() == so.truncation_energy.to_bits(),
+            "dem_trace: results differ"
+        );
+    }
+    let k = (reps * recs.len()) as f64;
+    (t_new / k, t_old / k)
+}
+
+/// A load path's timings over the rounds: name, new, reference, per-round ratio.
+type Row = (&'static str, Vec<f64>, Vec<f64>, Vec<f64>);
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn main() {
+    let rounds: usize = std::env::args()
+        .skip(1)
+        .find_map(|a| a.parse().ok())
+        .unwrap_or(7);
+    let pair = pair();
+    let paths = paths(&pair);
+    let trace = trace();
+    let mut rows: Vec<Row> = Vec::new();
+    for p in &paths {
+        rows.push((p.name, Vec::new(), Vec::new(), Vec::new()));
+    }
+    if trace.is_some() {
+        rows.push(("dem_trace", Vec::new(), Vec::new(), Vec::new()));
+    }
+    for _ in 0..rounds {
+        for (i, p) in paths.iter().enumerate() {
+            let (n, o) = time_path(&pair, p, 25);
+            rows[i].1.push(n);
+            rows[i].2.push(o);
+            rows[i].3.push(o / n);
+        }
+        if let Some(t) = &trace {
+            let (n, o) = time_trace(t, 20);
+            let r = rows.last_mut().expect("a row");
+            r.1.push(n);
+            r.2.push(o);
+            r.3.push(o / n);
+        }
+    }
+    println!("{rounds} rounds, interleaved; medians");
+    println!(
+        "| load path | new ns/update | reference ns/update | speed-up (median of per-round ratios) |"
+    );
+    println!("|---|---|---|---|");
+    for (name, n, o, r) in rows {
+        println!(
+            "| {name} | {:.1} | {:.1} | {:.2} |",
+            median(n) * 1e9,
+            median(o) * 1e9,
+            median(r)
+        );
+    }
+}
