@@ -287,8 +287,17 @@ impl MindlinState {
         let mut cuts = [0.0f64; MAX_PIECES + 1];
         let mut splits = 0;
         let mut x_lo = 0.0;
+        let k2 = kappa * kappa;
         for (p, cut_out) in self.pieces[..self.n].iter().zip(cuts.iter_mut()) {
-            let cut = stick_radius(p, kappa, a2).clamp(x_lo, p.x_hi.max(x_lo));
+            let hi = p.x_hi.max(x_lo);
+            // Most pieces stick wholly (or slip wholly): the cheap test below settles the first
+            // case without the root's chain of square roots and divisions, and gives the
+            // clamped value `stick_radius` would (see `surely_sticks`).
+            let cut = if surely_sticks(p, k2, a, a2) {
+                hi
+            } else {
+                stick_radius(p, kappa, a2).clamp(x_lo, hi)
+            };
             splits += usize::from(cut > x_lo && cut < p.x_hi);
             *cut_out = cut;
             x_lo = p.x_hi.max(x_lo);
@@ -393,6 +402,28 @@ fn piece_u2(p: &Piece, a: f64, x1: f64, x2: f64) -> f64 {
         w += p.beta.length_squared() * int_s2(a, x1, x2) + 2.0 * p.beta.dot(p.c) * int_s(a, x1, x2);
     }
     w
+}
+
+/// Whether all springs of a (trial) piece certainly stick, i.e. [`stick_radius`] certainly
+/// returns at least `p.x_hi`: a test without square roots or divisions, so that the common
+/// wholly-stuck piece skips the root. With `s` the depth at the piece's outer end and
+/// `|s beta + c|^2 <= (1 - 1e-9) kappa^2 s^2`, the concave `g(s) = kappa s - |s beta + c|`
+/// (zero at the root `s*`, slope at most `kappa + |beta| <= 2 kappa`) gives
+/// `s - s* >= g(s) / (2 kappa) >= 2.5e-10 s`; requiring `s >= 1e-4 a^2` makes that gap
+/// (`>= 2.5e-14 a^2`) far larger than the rounding of `stick_radius`' `a^2 - s*` (a few
+/// `1e-16 a^2`, the error of its root being `~1e-6` of the gap), so both give the same clamped
+/// cut bit for bit (checked against the frozen reference by the `reference_*` tests). Only
+/// for `|beta| <= kappa` (where `stick_radius` is the exact root) and finite values; `false`
+/// means "use `stick_radius`", never "slips".
+#[inline(always)]
+fn surely_sticks(p: &Piece, k2: f64, a: f64, a2: f64) -> bool {
+    let s = depth(a, p.x_hi);
+    let u = p.beta * s + p.c;
+    let lim = k2 * (s * s);
+    s >= 1e-4 * a2
+        && p.beta.length_squared() <= k2
+        && lim.is_finite()
+        && u.length_squared() <= (1.0 - 1e-9) * lim
 }
 
 /// The radius inside which the springs of a (trial) piece satisfy `|s beta + c| <= kappa s`.
