@@ -295,6 +295,8 @@ impl MindlinState {
             // clamped value `stick_radius` would (see `surely_sticks`).
             let cut = if surely_sticks(p, k2, a, a2) {
                 hi
+            } else if surely_slips(p, k2, a, a2, x_lo) {
+                x_lo
             } else {
                 stick_radius(p, kappa, a2).clamp(x_lo, hi)
             };
@@ -348,7 +350,9 @@ impl MindlinState {
                 x_lo = p.x_hi;
             }
             let (n, d_u2) = merge(&mut out, m, a, kappa);
-            self.pieces[..n].copy_from_slice(&out[..n]);
+            for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
+                *dst = *src;
+            }
             (n, d_u2)
         };
         self.a = a;
@@ -424,6 +428,38 @@ fn surely_sticks(p: &Piece, k2: f64, a: f64, a2: f64) -> bool {
         && p.beta.length_squared() <= k2
         && lim.is_finite()
         && u.length_squared() <= (1.0 - 1e-9) * lim
+}
+
+/// Whether all springs of a (trial) piece certainly slip, i.e. [`stick_radius`] certainly
+/// returns at most `x_lo`, the piece's inner radius \[m\]: the counterpart of
+/// [`surely_sticks`]. With `s` the depth at `x_lo` and `|s beta + c|^2 >= (1 + 1e-7) kappa^2
+/// s^2`, concavity gives `s* - s >= |g(s)| / (2 kappa) >= 2.4e-8 s`. `stick_radius`
+/// computes `s* = |c| / den` with `den = sqrt(D') - beta.c_hat` (cancellation when `beta.c >
+/// 0`), `D' = (beta.c_hat)^2 + max(0, kappa^2 - |beta|^2)`; its absolute error is below
+/// `~4e-16 (kappa + kappa^2 / sqrt(D'))`, so requiring `D' >= 1e-2 kappa^2` and `|c| >= 1e-4
+/// kappa s` bounds the relative error of `s*` by `~2e-11`, far below the gap; with
+/// `s >= 1e-4 a^2` the gap (`>= 2.4e-12 a^2`) also dwarfs the rounding of `a^2 - s*`. Only for
+/// `kappa > 0`, `|beta| <= kappa` (to rounding) and finite values in a sane range; `false` means
+/// "use `stick_radius`".
+#[inline(always)]
+fn surely_slips(p: &Piece, k2: f64, a: f64, a2: f64, x_lo: f64) -> bool {
+    let s = depth(a, x_lo);
+    let u = p.beta * s + p.c;
+    let lim = k2 * (s * s);
+    let b2 = p.beta.length_squared();
+    let c2 = p.c.length_squared();
+    let bc = p.beta.dot(p.c);
+    let u2 = u.length_squared();
+    k2 > 0.0
+        && (1e-250..=1e250).contains(&a2)
+        && s >= 1e-4 * a2
+        && b2 <= k2 * (1.0 + 1e-12)
+        && lim.is_finite()
+        && u2.is_finite()
+        && u2 >= (1.0 + 1e-7) * lim
+        && c2 >= 1e-8 * lim
+        && c2 <= 1e250
+        && bc * bc + (k2 - b2).max(0.0) * c2 >= 1e-2 * k2 * c2
 }
 
 /// The radius inside which the springs of a (trial) piece satisfy `|s beta + c| <= kappa s`.
@@ -592,9 +628,13 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
         // The adjacent pair of limit pieces with the closest directions, if any.
         let mut best_pair = None;
         let mut best_cos = f64::NEG_INFINITY;
+        let mut lim_p = at_limit(&out[0], kappa);
         for i in 0..n - 1 {
             let (p, q) = (&out[i], &out[i + 1]);
-            if at_limit(p, kappa) && at_limit(q, kappa) {
+            let lim_q = at_limit(q, kappa);
+            let both = lim_p && lim_q;
+            lim_p = lim_q;
+            if both {
                 let cos = p.beta.dot(q.beta);
                 if cos > best_cos {
                     best_cos = cos;
@@ -617,7 +657,7 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
                 beta: e * kappa,
                 c: Vec2::ZERO,
             };
-            out.copy_within(i + 2..n, i + 1);
+            remove_at(out, i + 1, n);
             n -= 1;
             continue;
         }
@@ -659,7 +699,7 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
             if ok {
                 d_u2 += piece_u2(&fit, a, lo, fit.x_hi) - old;
                 out[i] = fit;
-                out.copy_within(i + 2..n, i + 1);
+                remove_at(out, i + 1, n);
                 n -= 1;
                 merged = true;
                 break;
@@ -686,15 +726,24 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
         }
         let (gone, outer) = (out[best], out[best + 1]);
         d_u2 += piece_u2(&outer, a, best_lo, gone.x_hi) - piece_u2(&gone, a, best_lo, gone.x_hi);
-        out.copy_within(best + 1..n, best);
+        remove_at(out, best, n);
         n -= 1;
         if best > 0 && same_form(&out[best - 1], &out[best], a2) {
             out[best - 1].x_hi = out[best].x_hi;
-            out.copy_within(best + 1..n, best);
+            remove_at(out, best, n);
             n -= 1;
         }
     }
     (n, d_u2)
+}
+
+/// Removes `out[k]` from the first `n` pieces (shifting the rest down by one): a plain loop,
+/// since `copy_within` calls `memmove` for these few 40-byte pieces.
+#[inline(always)]
+fn remove_at(out: &mut [Piece], k: usize, n: usize) {
+    for j in k..n - 1 {
+        out[j] = out[j + 1];
+    }
 }
 
 /// The piece `s beta + c` on `lo < x <= q.x_hi` closest in `L2` to the two pieces `p`, `q`
