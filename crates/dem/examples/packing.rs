@@ -14,14 +14,19 @@
 //!
 //! `tiers`: `cheap`, `exact` or `both` (default; interleaved per round). `tiles`: a list
 //! `k,k,..` (default 1): the packing repeated `k` times along each axis, `k^3` copies side by
-//! side, box dimensions apart, inside six walls around the whole (as creep-scenes'
-//! `dem_engine_tiled`: the seams are as dense as the packing at its walls). `threads`: a list
+//! side, box dimensions apart, inside six walls around the whole; unlike creep-scenes'
+//! `dem_engine_tiled` (plain copies, whose seams push apart and rebuild the neighbour list
+//! every few steps at first), every other copy is mirrored, so that each sphere at a seam
+//! meets its own image with the force the wall gave it. `threads`: a list
 //! (default 1; more needs the `parallel` feature). Every round runs every tier, tiling and
 //! thread count in turn (interleaved). Prints, per round and variant, the mean CPU seconds per
 //! step and the particle-steps per second (one thread: the thread's CPU time; more: the
 //! process's), the same from the wall clock, then the particles, threads, neighbour-list
-//! entries and touching contacts per particle and the engine's bytes per particle; and the
-//! medians (CPU time; wall clock for more than one thread).
+//! entries and touching contacts per particle, the engine's bytes per particle, the
+//! neighbour-list rebuilds during the timed steps and the median CPU time of one step (which
+//! leaves the rebuild steps out when most steps have none: the tiled packings' seams, as
+//! dense as a wall, push apart at first and rebuild the list often); and the medians over the
+//! rounds (CPU time; wall clock for more than one thread).
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -112,8 +117,8 @@ fn load(dir: &str) -> Res<Packing> {
     })
 }
 
-/// `p` repeated `k` times along each axis (`k^3` copies, box dimensions apart), the walls
-/// moved to the faces of the whole.
+/// `p` repeated `k` times along each axis (`k^3` copies, box dimensions apart, mirrored on
+/// odd indices), the walls moved to the faces of the whole.
 fn tiled(p: &Packing, k: usize) -> Packing {
     if k <= 1 {
         return p.clone();
@@ -136,10 +141,45 @@ fn tiled(p: &Packing, k: usize) -> Packing {
     let mut particles = Vec::with_capacity(p.particles.len() * k * k * k);
     for t in 0..k * k * k {
         let (i, j, l) = (t % k, (t / k) % k, t / (k * k));
-        let shift = Vec3::new(i as f64 * dims[0], j as f64 * dims[1], l as f64 * dims[2]);
-        particles.extend(p.particles.iter().map(|&q| Particle {
-            position: q.position + shift,
-            ..q
+        // Copy (i, j, l) is the packing mirrored across each axis whose index is odd: a
+        // sphere pressed `delta` into a wall meets its own image across the seam with the
+        // overlap `2 delta` at `R* = r/2`, which carries the same Hertz force as the wall did
+        // (`E*` of two spheres is half that of a sphere on a half-space of the same material),
+        // so the seams start in equilibrium instead of pushing apart.
+        let idx = [i, j, l];
+        particles.extend(p.particles.iter().map(|&q| {
+            let x = [q.position.x, q.position.y, q.position.z];
+            let v = [q.velocity.x, q.velocity.y, q.velocity.z];
+            let w = [
+                q.angular_velocity.x,
+                q.angular_velocity.y,
+                q.angular_velocity.z,
+            ];
+            let mut xn = [0.0; 3];
+            let mut vn = v;
+            let mut wn = w;
+            for a in 0..3 {
+                let k = idx[a] as f64;
+                if idx[a] % 2 == 0 {
+                    xn[a] = x[a] + k * dims[a];
+                } else {
+                    // Reflection x -> -x: v_a flips, and w (a pseudovector) flips in the
+                    // two other components.
+                    xn[a] = lo[a] + (k + 1.0) * dims[a] - (x[a] - lo[a]);
+                    vn[a] = -vn[a];
+                    for (b, wb) in wn.iter_mut().enumerate() {
+                        if b != a {
+                            *wb = -*wb;
+                        }
+                    }
+                }
+            }
+            Particle {
+                position: Vec3::new(xn[0], xn[1], xn[2]),
+                velocity: Vec3::new(vn[0], vn[1], vn[2]),
+                angular_velocity: Vec3::new(wn[0], wn[1], wn[2]),
+                ..q
+            }
         }));
     }
     let walls = p
@@ -195,6 +235,10 @@ struct Timing {
     contacts: f64,
     /// The engine's bytes per particle (`Dem::bytes_per_particle`).
     bytes: f64,
+    /// Neighbour-list rebuilds during the timed steps.
+    rebuilds: usize,
+    /// Median CPU seconds of one step (the steps without a rebuild, when most are).
+    step_median: f64,
 }
 
 /// Mean seconds per step of `steps` steps (the set-up excluded) on `threads` threads.
@@ -209,9 +253,17 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
         let mut d = Dem::<T>::new(cfg, p.table.clone(), &p.particles, &p.walls)
             .map_err(|e| e.to_string())?;
         let clock = if threads > 1 { process_cpu_s } else { cpu_s };
+        let rebuilds = d.counts().rebuilds;
         let (t, c) = (Instant::now(), clock());
+        let mut per_step = Vec::with_capacity(steps);
+        let mut last = c;
         for _ in 0..steps {
             d.step().map_err(|e| e.to_string())?;
+            let now = clock();
+            if let (Some(a), Some(b)) = (last, now) {
+                per_step.push(b - a);
+            }
+            last = now;
         }
         let wall = t.elapsed().as_secs_f64();
         let cpu = match (c, clock()) {
@@ -226,6 +278,12 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
             neighbours: counts.neighbours as f64 / n,
             contacts: (counts.contacts + counts.wall_contacts) as f64 / n,
             bytes: d.bytes_per_particle(),
+            rebuilds: counts.rebuilds - rebuilds,
+            step_median: if per_step.len() == steps {
+                median(per_step)
+            } else {
+                f64::NAN
+            },
         })
     };
     creep_dem::with_threads(threads, || run().map_err(|e| e.to_string()))?.map_err(Into::into)
@@ -287,14 +345,17 @@ fn main() -> Res<()> {
                     };
                     let n = p.particles.len() as f64;
                     println!(
-                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0}",
+                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0} rebuilds {} median-step {:.4e} s {:.4e} particle-steps/s",
                         t.cpu,
                         n / t.cpu,
                         t.wall,
                         n / t.wall,
                         t.neighbours,
                         t.contacts,
-                        t.bytes
+                        t.bytes,
+                        t.rebuilds,
+                        t.step_median,
+                        n / t.step_median
                     );
                     let v = if th > 1 { n / t.wall } else { n / t.cpu };
                     let key = (tier, k, th);
