@@ -154,6 +154,7 @@ impl<T: TangentialLaw> Dem<T> {
     }
 
     /// Bytes held per particle by the engine's arrays, neighbour and wall lists and histories
+    /// (and, with the `parallel` feature, the parallel loop's buffers once it has run)
     /// (capacities, so an upper bound of what is in use).
     pub fn bytes_per_particle(&self) -> f64 {
         use std::mem::size_of;
@@ -165,6 +166,8 @@ impl<T: TangentialLaw> Dem<T> {
             + self.wl_k.capacity() * 4
             + self.wl_i.capacity() * 4
             + self.wl_h.capacity() * size_of::<ContactHistory<T>>();
+        #[cfg(feature = "parallel")]
+        let lists = lists + self.par.bytes();
         let n = self.len().max(1);
         (per * self.len() + lists + self.grid.bytes()) as f64 / n as f64
     }

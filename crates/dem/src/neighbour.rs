@@ -94,8 +94,24 @@ impl<T: TangentialLaw> Dem<T> {
                 }
             }
         }
+        // The lists grow by doubling at the first build (and when they grow later): give back
+        // what is more than an eighth over their length, so the engine holds about what it uses.
+        trim(&mut self.nl_j);
+        trim(&mut self.nl_h);
+        trim(&mut self.wl_k);
+        trim(&mut self.wl_i);
+        trim(&mut self.wl_h);
         self.x_build.clone_from(&self.x);
         self.wall_build = self.walls.iter().map(|w| w.point).collect();
+    }
+}
+
+/// Shrinks `v`'s capacity to its length plus an eighth when it holds more than a quarter
+/// over its length.
+fn trim<X>(v: &mut Vec<X>) {
+    let len = v.len();
+    if v.capacity() > len + len / 4 {
+        v.shrink_to(len + len / 8);
     }
 }
 

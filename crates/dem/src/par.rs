@@ -4,6 +4,7 @@
 //! The sums do not depend on the number of threads, so the results are identical run to run
 //! and for any thread count.
 
+use crate::step::WallOut;
 use crate::{Dem, DemCounts, DemEnergy, tally};
 use creep_law::Vec3;
 use creep_law::pair::{ContactHistory, PairForces, TangentialLaw};
@@ -30,9 +31,21 @@ pub(crate) struct Buffers {
     /// For each particle, the entries whose partner it is (CSR), rebuilt with the list.
     rev_start: Vec<u32>,
     rev_k: Vec<u32>,
+    /// The wall contacts' outputs (the kernel's, or the energy a history released).
+    wall_out: Vec<Result<WallOut, f64>>,
     /// List length the reverse index was built for.
     built_for: usize,
     built_rebuilds: usize,
+}
+
+impl Buffers {
+    /// Bytes held (capacities).
+    pub(crate) fn bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.out.capacity() * size_of::<Entry>()
+            + (self.rev_start.capacity() + self.rev_k.capacity()) * 4
+            + self.wall_out.capacity() * size_of::<Result<WallOut, f64>>()
+    }
 }
 
 impl<T: TangentialLaw> Dem<T> {
@@ -131,15 +144,18 @@ impl<T: TangentialLaw> Dem<T> {
             energy.rolling += e.rolling;
             energy.truncation += e.truncation;
         }
-        // Gather, in list order per particle.
+        // Gather, in list order per particle, from the particle's weight (`forces` leaves the
+        // arrays to this loop in parallel mode: one pass over them instead of two).
         let (start, rev_start, rev_k) = (&self.nl_start, &self.par.rev_start, &self.par.rev_k);
-        let outs = &out;
+        let (outs, mass, g) = (&out, &self.mass, self.cfg.gravity);
         self.f
             .par_iter_mut()
             .zip(self.t.par_iter_mut())
             .enumerate()
             .with_min_len(CHUNK)
             .for_each(|(i, (f, t))| {
+                *f = g * mass[i];
+                *t = Vec3::ZERO;
                 for k in start[i] as usize..start[i + 1] as usize {
                     *f += outs[k].force_i;
                     *t += outs[k].torque_i;
@@ -151,6 +167,86 @@ impl<T: TangentialLaw> Dem<T> {
             });
         self.nl_h = hist;
         self.par.out = out;
+    }
+}
+
+impl<T: TangentialLaw> Dem<T> {
+    /// [`Dem::kick_drift`](crate::Dem) on rayon's threads, in chunks of particles; the
+    /// largest displacement is a maximum, so it does not depend on the split.
+    pub(crate) fn kick_drift_parallel(&mut self, dt: f64) -> f64 {
+        let h = 0.5 * dt;
+        let (f, t, inv_m, inv_i, x_build, grid) = (
+            &self.f,
+            &self.t,
+            &self.inv_m,
+            &self.inv_i,
+            &self.x_build,
+            &self.grid,
+        );
+        self.v
+            .par_chunks_mut(CHUNK)
+            .zip(self.w.par_chunks_mut(CHUNK))
+            .zip(self.x.par_chunks_mut(CHUNK))
+            .enumerate()
+            .map(|(c, ((v, w), x))| {
+                let base = c * CHUNK;
+                let mut d2_max: f64 = 0.0;
+                for (o, ((v, w), x)) in v.iter_mut().zip(w.iter_mut()).zip(x.iter_mut()).enumerate()
+                {
+                    let i = base + o;
+                    *v += f[i] * (h * inv_m[i]);
+                    *w += t[i] * (h * inv_i[i]);
+                    *x = grid.wrap(*x + *v * dt);
+                    let d = grid.min_image(*x - x_build[i]);
+                    d2_max = d2_max.max(d.dot(d));
+                }
+                d2_max
+            })
+            .reduce(|| 0.0, f64::max)
+    }
+
+    /// [`Dem::kick`](crate::Dem) on rayon's threads.
+    pub(crate) fn kick_parallel(&mut self, h: f64) {
+        let (f, t, inv_m, inv_i) = (&self.f, &self.t, &self.inv_m, &self.inv_i);
+        self.v
+            .par_chunks_mut(CHUNK)
+            .zip(self.w.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, (v, w))| {
+                let base = c * CHUNK;
+                for (o, (v, w)) in v.iter_mut().zip(w.iter_mut()).enumerate() {
+                    let i = base + o;
+                    *v += f[i] * (h * inv_m[i]);
+                    *w += t[i] * (h * inv_i[i]);
+                }
+            });
+    }
+
+    /// The wall contacts on rayon's threads: the kernel per entry in parallel, then the
+    /// outputs added in list order, as the serial loop adds them (same sums, same results).
+    pub(crate) fn wall_forces_parallel(
+        &mut self,
+        dt: f64,
+        counts: &mut DemCounts,
+        energy: &mut DemEnergy,
+    ) {
+        for f in &mut self.wall_force {
+            *f = Vec3::ZERO;
+        }
+        let mut hist = std::mem::take(&mut self.wl_h);
+        let mut outs = std::mem::take(&mut self.par.wall_out);
+        outs.clear();
+        let this = &*self;
+        hist.par_iter_mut()
+            .enumerate()
+            .with_min_len(CHUNK)
+            .map(|(e, h)| this.wall_pair(e, h, dt))
+            .collect_into_vec(&mut outs);
+        for (e, out) in outs.drain(..).enumerate() {
+            self.apply_wall(e, out, counts, energy);
+        }
+        self.wl_h = hist;
+        self.par.wall_out = outs;
     }
 }
 

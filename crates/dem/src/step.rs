@@ -20,15 +20,14 @@ impl<T: TangentialLaw> Dem<T> {
         let dt = self.cfg.dt;
         let h = 0.5 * dt;
         let n = self.len();
-        let mut d2_max: f64 = 0.0;
-        for i in 0..n {
-            self.v[i] += self.f[i] * (h * self.inv_m[i]);
-            self.w[i] += self.t[i] * (h * self.inv_i[i]);
-            let x = self.grid.wrap(self.x[i] + self.v[i] * dt);
-            self.x[i] = x;
-            let d = self.grid.min_image(x - self.x_build[i]);
-            d2_max = d2_max.max(d.dot(d));
-        }
+        #[cfg(feature = "parallel")]
+        let d2_max = if self.cfg.parallel {
+            self.kick_drift_parallel(dt)
+        } else {
+            self.kick_drift(dt)
+        };
+        #[cfg(not(feature = "parallel"))]
+        let d2_max = self.kick_drift(dt);
         let mut wall_max: f64 = 0.0;
         for (k, wall) in self.walls.iter_mut().enumerate() {
             wall.point += wall.velocity * dt;
@@ -44,22 +43,58 @@ impl<T: TangentialLaw> Dem<T> {
         }
         self.forces(dt);
         external.add_forces(self.external_view(dt))?;
-        for i in 0..n {
-            self.v[i] += self.f[i] * (h * self.inv_m[i]);
-            self.w[i] += self.t[i] * (h * self.inv_i[i]);
+        #[cfg(feature = "parallel")]
+        if self.cfg.parallel {
+            self.kick_parallel(h);
+        } else {
+            self.kick(h);
         }
+        #[cfg(not(feature = "parallel"))]
+        self.kick(h);
         self.time += dt;
         self.steps += 1;
         Ok(())
+    }
+
+    /// Velocity Verlet's first half-kick and the drift: `v += f/m dt/2`, `w += t/I dt/2`,
+    /// `x += v dt` (wrapped); returns the largest squared displacement since the last rebuild
+    /// \[m^2\] (minimum image).
+    fn kick_drift(&mut self, dt: f64) -> f64 {
+        let h = 0.5 * dt;
+        let mut d2_max: f64 = 0.0;
+        for i in 0..self.len() {
+            self.v[i] += self.f[i] * (h * self.inv_m[i]);
+            self.w[i] += self.t[i] * (h * self.inv_i[i]);
+            let x = self.grid.wrap(self.x[i] + self.v[i] * dt);
+            self.x[i] = x;
+            let d = self.grid.min_image(x - self.x_build[i]);
+            d2_max = d2_max.max(d.dot(d));
+        }
+        d2_max
+    }
+
+    /// Velocity Verlet's second half-kick, `h = dt/2` \[s\].
+    fn kick(&mut self, h: f64) {
+        for i in 0..self.len() {
+            self.v[i] += self.f[i] * (h * self.inv_m[i]);
+            self.w[i] += self.t[i] * (h * self.inv_i[i]);
+        }
     }
 
     /// Evaluates every contact force (and gravity) into `f`, `t` and the wall forces.
     pub(crate) fn forces(&mut self, dt: f64) {
         let n = self.len();
         let g = self.cfg.gravity;
-        for i in 0..n {
-            self.f[i] = g * self.mass[i];
-            self.t[i] = Vec3::ZERO;
+        // The parallel gather starts each particle's sum from its weight itself.
+        #[cfg(feature = "parallel")]
+        let init = !self.cfg.parallel;
+        #[cfg(not(feature = "parallel"))]
+        let init = true;
+        if init {
+            for i in 0..n {
+                self.f[i] = g * self.mass[i];
+                self.t[i] = Vec3::ZERO;
+            }
         }
         let mut counts = DemCounts {
             neighbours: self.nl_j.len(),
@@ -79,6 +114,13 @@ impl<T: TangentialLaw> Dem<T> {
         if !done {
             self.pair_forces_serial(dt, &mut counts, &mut energy);
         }
+        #[cfg(feature = "parallel")]
+        if self.cfg.parallel {
+            self.wall_forces_parallel(dt, &mut counts, &mut energy);
+        } else {
+            self.wall_forces(dt, &mut counts, &mut energy);
+        }
+        #[cfg(not(feature = "parallel"))]
         self.wall_forces(dt, &mut counts, &mut energy);
         self.counts = counts;
         self.energy = energy;
@@ -173,32 +215,70 @@ impl<T: TangentialLaw> Dem<T> {
         }
         let mut hist = std::mem::take(&mut self.wl_h);
         for (e, h) in hist.iter_mut().enumerate() {
-            let k = self.wl_k[e] as usize;
-            let i = self.wl_i[e] as usize;
-            let wall = self.walls[k];
-            let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, self.x[i], self.r[i]);
-            let c = self.table.pair(wall.material, self.mat[i] as usize);
-            if !(geo.overlap > 0.0) {
-                energy.slip += release(c, Surface::Plane, Surface::Sphere(self.r[i]), h);
-                continue;
-            }
-            let bp = PairBody {
-                position: geo.point,
-                velocity: wall.velocity,
-                angular_velocity: Vec3::ZERO,
-                surface: Surface::Plane,
-                mass: f64::INFINITY,
-            };
-            let out = pair_force(c, &bp, &self.body(i, self.x[i]), &geo, h, dt);
-            if out.touching {
+            let out = self.wall_pair(e, h, dt);
+            self.apply_wall(e, out, counts, energy);
+        }
+        self.wl_h = hist;
+    }
+
+    /// The contact of wall-list entry `e` (the wall is p): the kernel's output when touching,
+    /// else the energy its history released.
+    #[inline]
+    pub(crate) fn wall_pair(
+        &self,
+        e: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+    ) -> Result<WallOut, f64> {
+        let k = self.wl_k[e] as usize;
+        let i = self.wl_i[e] as usize;
+        let wall = self.walls[k];
+        let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, self.x[i], self.r[i]);
+        let c = self.table.pair(wall.material, self.mat[i] as usize);
+        if !(geo.overlap > 0.0) {
+            return Err(release(c, Surface::Plane, Surface::Sphere(self.r[i]), h));
+        }
+        let bp = PairBody {
+            position: geo.point,
+            velocity: wall.velocity,
+            angular_velocity: Vec3::ZERO,
+            surface: Surface::Plane,
+            mass: f64::INFINITY,
+        };
+        let out = pair_force(c, &bp, &self.body(i, self.x[i]), &geo, h, dt);
+        if out.touching {
+            Ok(WallOut {
+                force_p: out.force_p,
+                torque_q: out.torque_q,
+                dissipation: out.dissipation,
+                sliding: out.sliding,
+                creeping: out.creep_displacement != creep_law::Vec2::ZERO,
+            })
+        } else {
+            Err(0.0)
+        }
+    }
+
+    /// Adds wall-list entry `e`'s output to its particle, its wall and the tallies.
+    #[inline]
+    pub(crate) fn apply_wall(
+        &mut self,
+        e: usize,
+        out: Result<WallOut, f64>,
+        counts: &mut DemCounts,
+        energy: &mut DemEnergy,
+    ) {
+        match out {
+            Ok(out) => {
+                let (k, i) = (self.wl_k[e] as usize, self.wl_i[e] as usize);
                 self.f[i] -= out.force_p;
                 self.t[i] += out.torque_q;
                 self.wall_force[k] += out.force_p;
-                tally(counts, energy, &out);
+                tally_parts(counts, energy, &out.dissipation, out.sliding, out.creeping);
                 counts.wall_contacts += 1;
             }
+            Err(released) => energy.slip += released,
         }
-        self.wl_h = hist;
     }
 }
 
@@ -207,12 +287,38 @@ pub(crate) fn tally(
     energy: &mut DemEnergy,
     out: &creep_law::pair::PairForces,
 ) {
-    let d = out.dissipation;
+    tally_parts(
+        counts,
+        energy,
+        &out.dissipation,
+        out.sliding,
+        out.creep_displacement != creep_law::Vec2::ZERO,
+    );
+}
+
+#[inline]
+fn tally_parts(
+    counts: &mut DemCounts,
+    energy: &mut DemEnergy,
+    d: &creep_law::pair::PairDissipation,
+    sliding: bool,
+    creeping: bool,
+) {
     energy.damping += d.damping;
     energy.slip += d.slip;
     energy.creep += d.creep;
     energy.rolling += d.rolling;
     energy.truncation += d.truncation;
-    counts.sliding += usize::from(out.sliding);
-    counts.creeping += usize::from(out.creep_displacement != creep_law::Vec2::ZERO);
+    counts.sliding += usize::from(sliding);
+    counts.creeping += usize::from(creeping);
+}
+
+/// What a touching wall contact adds: the kernel's outputs the engine uses.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct WallOut {
+    force_p: Vec3,
+    torque_q: Vec3,
+    dissipation: creep_law::pair::PairDissipation,
+    sliding: bool,
+    creeping: bool,
 }

@@ -386,3 +386,41 @@ fn inlined_rates_equal_kinematics_contact_rates_bit_for_bit() {
         assert_eq!(dd.to_bits(), dd0.to_bits());
     }
 }
+
+#[test]
+fn inlined_kuhn_creepage_equals_the_steady_law() {
+    // The cheap tier's inlined F_ss against SteadyLaw::creepage_for_force, bit for bit, over the
+    // force ratio (0 .. past the Coulomb limit), the edge cases (|Q| = 0, mu P = inf, a = 0, NaN)
+    // and the fitted law (which takes the general path).
+    use crate::steady_law::SteadyLaw;
+    let laws = [
+        SteadyLaw::with_c11(CreepModel::Kuhn, 0.25, kalker::c11(0.25)),
+        SteadyLaw::with_c11(CreepModel::Fitted, 0.25, kalker::c11(0.25)),
+    ];
+    let (g, a, mu_p) = (2.9e7, 3.1e-5, 0.7);
+    let mut cases = vec![
+        (0.0, mu_p, g, a),
+        (mu_p, mu_p, g, a),
+        (2.0 * mu_p, mu_p, g, a),
+        (0.3, f64::INFINITY, g, a),
+        (0.3, 0.0, g, a),
+        (0.3, mu_p, g, 0.0),
+        (f64::NAN, mu_p, g, a),
+        (0.3, f64::NAN, g, a),
+        (f64::INFINITY, mu_p, g, a),
+    ];
+    for k in 0..=1000 {
+        let s = f64::from(k) / 900.0;
+        cases.push((s * mu_p, mu_p, g, a * (1.0 + f64::from(k % 7))));
+    }
+    for law in &laws {
+        for &(q, m, g, a) in &cases {
+            let want = law.creepage_for_force(q, m, g, a);
+            let got = tiers::kuhn_creepage(law, q, m, g, a);
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{law:?} q {q} mu P {m} a {a}: {got} against {want}"
+            );
+        }
+    }
+}

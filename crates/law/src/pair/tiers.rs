@@ -4,9 +4,10 @@
 use super::PairConstants;
 use crate::LawError;
 use crate::creep::{CreepInput, CreepLaw, CreepState};
+use crate::kalker;
 use crate::material::PairMaterial;
 use crate::mindlin::{MINDLIN_FLAT_LEN, MindlinState};
-use crate::steady_law::CreepModel;
+use crate::steady_law::{CreepModel, SteadyLaw};
 use crate::vector::Vec2;
 
 /// What one tangential update did.
@@ -197,7 +198,7 @@ impl TangentialLaw for Cheap {
             // From the stored force alone: off the chain of divisions that runs through the
             // new `mu P` and `F_ss`.
             let inv_q = 1.0 / q_abs;
-            let f = c.steady.creepage_for_force(q_abs, mu_p, pm.g, a);
+            let f = kuhn_creepage(&c.steady, q_abs, mu_p, pm.g, a);
             let creep = (f * roll).min(q_abs / k);
             if creep.is_finite() && creep > 0.0 {
                 creep_vec = q_old * (creep * inv_q);
@@ -259,4 +260,27 @@ impl TangentialLaw for Cheap {
             k: v[2],
         })
     }
+}
+
+/// [`SteadyLaw::creepage_for_force`] inlined into the cheap tier: for Kuhn's law (Kalker's
+/// closed form, Kalker 2000) with a finite Coulomb limit `mu_p > 0` \[N\] and a finite contact
+/// `G a^2 > 0`, the same arithmetic, `3 mu P (1 - (1 - s)^(1/3)) / (G a^2 C11)` with
+/// `s = |Q|/(mu P)` clamped to `[0, 1]` (bit for bit: test
+/// `inlined_kuhn_creepage_equals_the_steady_law`), without the call and its checks on the hot
+/// path; every other case goes to the steady law.
+#[inline(always)]
+pub(super) fn kuhn_creepage(law: &SteadyLaw, q_abs: f64, mu_p: f64, g: f64, a: f64) -> f64 {
+    let denom = g * a * a;
+    if let SteadyLaw::Kuhn { c11 } = *law
+        && mu_p > 0.0
+        && mu_p < f64::INFINITY
+        && denom > 0.0
+        && denom < f64::INFINITY
+        && q_abs >= 0.0
+    {
+        let q = q_abs.min(mu_p);
+        let c = kalker::cbrt(1.0 - q / mu_p);
+        return 3.0 * mu_p * (1.0 - c) / (denom * c11);
+    }
+    law.creepage_for_force(q_abs, mu_p, g, a)
 }
