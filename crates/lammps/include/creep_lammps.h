@@ -26,6 +26,10 @@
 // Opaque per-pair-type constants.
 typedef struct CreepLammpsModel CreepLammpsModel;
 
+// Opaque store of contact histories (creep-law's structs, one per slot) of one tier; see
+// [`crate::store`]. Owned by one host object; not shared between threads while written.
+typedef struct CreepLammpsStore CreepLammpsStore;
+
 // Coefficients of one pair type (SI, like LAMMPS' `granular` style).
 typedef struct CreepLammpsSettings {
   // Young's modulus E (Pa).
@@ -94,6 +98,44 @@ typedef struct CreepLammpsWallContact {
   // The sphere (body q).
   struct CreepLammpsBody sphere;
 } CreepLammpsWallContact;
+
+// One rank's per-atom arrays, as LAMMPS keeps them: `x`, `v`, `omega`, `f`, `torque` are
+// `3 * n` contiguous doubles (LAMMPS' `x[0]`, ...), `radius`, `rmass`, `type` one value per
+// atom. Atoms `0..nall` are read; forces and torques are added to the owned atoms `0..nlocal`
+// only (`newton off`: a ghost's share is computed by its owner).
+typedef struct CreepLammpsAtoms {
+  // Owned atoms (they receive forces).
+  size_t nlocal;
+  // Owned and ghost atoms.
+  size_t nall;
+  // Centres (m).
+  const double *x;
+  // Velocities (m/s).
+  const double *v;
+  // Angular velocities (rad/s).
+  const double *omega;
+  // Radii (m).
+  const double *radius;
+  // Masses (kg).
+  const double *rmass;
+  // Atom types (`1..=ntypes`).
+  const int32_t *type_;
+  // Forces (N), added to.
+  double *f;
+  // Torques (N m), added to.
+  double *torque;
+} CreepLammpsAtoms;
+
+// One touching pair of a step: atom `p` (the normal points from p to q; the LAMMPS shim puts
+// the lower tag first), atom `q`, and the store slot of its history.
+typedef struct CreepLammpsPair {
+  // Atom index of body p (>= 0).
+  int32_t p;
+  // Atom index of body q (>= 0).
+  int32_t q;
+  // History slot (>= 0; a slot at or beyond the store's length is a new, virgin contact).
+  int32_t slot;
+} CreepLammpsPair;
 
 #ifdef __cplusplus
 extern "C" {
@@ -174,6 +216,81 @@ int32_t creep_lammps_compute_walls(const struct CreepLammpsModel *const *models,
                                    double *history,
                                    size_t stride,
                                    struct CreepLammpsOutput *out,
+                                   char *err,
+                                   size_t err_len);
+
+// A new, empty history store for `tier` (`CREEP_LAMMPS_TIER_*`); null for an unknown tier.
+// Free it with [`creep_lammps_store_free`].
+struct CreepLammpsStore *creep_lammps_store_new(uint32_t tier);
+
+// Frees a store (null is ignored).
+//
+// # Safety
+// `store` is null or was returned by [`creep_lammps_store_new`] and not freed yet.
+void creep_lammps_store_free(struct CreepLammpsStore *store);
+
+// Number of slots of a store (0 for null).
+//
+// # Safety
+// `store` is null or a live store from [`creep_lammps_store_new`].
+size_t creep_lammps_store_len(const struct CreepLammpsStore *store);
+
+// Replaces the store's contents with `n` histories in their flat form, slot `k` at
+// `history[k * stride ..][..stride]` (stride: [`creep_lammps_history_len`] of the store's
+// tier). Returns 0, or 1 with the reason in `err` (wrong stride, a corrupt history: the
+// store is then empty).
+//
+// # Safety
+// `store` is a live store; `history` points to `n * stride` doubles (may be null when
+// `n == 0`); `err` is null or valid for writes of `err_len` bytes.
+int32_t creep_lammps_store_load(struct CreepLammpsStore *store,
+                                size_t n,
+                                const double *history,
+                                size_t stride,
+                                char *err,
+                                size_t err_len);
+
+// Writes every slot's history in its flat form into `history` (slot `k` at
+// `k * stride`), which holds `history_len` doubles (at least
+// `creep_lammps_store_len(store) * stride`). Returns 0, or 1 with the reason in `err`.
+//
+// # Safety
+// `store` is a live store; `history` points to `history_len` writable doubles (may be null
+// when the store is empty); `err` is null or valid for writes of `err_len` bytes.
+int32_t creep_lammps_store_save(const struct CreepLammpsStore *store,
+                                double *history,
+                                size_t history_len,
+                                size_t stride,
+                                char *err,
+                                size_t err_len);
+
+// Steps the `n` touching pairs of one step by `dt` (s) with their histories in `store`
+// (which first grows to `nslots` slots, the new ones virgin), and adds each contact's force
+// and torques into the owned atoms' `f` and `torque` in the order of `pairs`. The model of
+// atom types `ti`, `tj` is `models[ti * (ntypes + 1) + tj]` (null: no `pair_coeff`, an error
+// if used). Optional outputs (null: not wanted): `force_p[3 k ..]`, the force on p of contact
+// `k` (N); `touching[k]`, 0 if contact `k` was dropped (its history is virgin again);
+// `dropped`, their number. Returns 0, or 1 with the reason in `err` (bad index, type, slot,
+// model, tier, radius or mass, a non-finite force: nothing after the failing contact is
+// evaluated).
+//
+// # Safety
+// `models` points to `(ntypes + 1)^2` model pointers (null or live); `store` is a live store;
+// `atoms` describes valid arrays as [`CreepLammpsAtoms`] says (`f` and `torque` writable and
+// overlapping no other buffer); `pairs` points to `n` pairs; `force_p` is null or holds `3 n`
+// doubles, `touching` null or `n` bytes, `dropped` null or one `size_t`; `err` is null or
+// valid for writes of `err_len` bytes. With `n == 0` only `store` is touched.
+int32_t creep_lammps_compute_pairs(const struct CreepLammpsModel *const *models,
+                                   size_t ntypes,
+                                   struct CreepLammpsStore *store,
+                                   const struct CreepLammpsAtoms *atoms,
+                                   double dt,
+                                   size_t n,
+                                   const struct CreepLammpsPair *pairs,
+                                   size_t nslots,
+                                   double *force_p,
+                                   uint8_t *touching,
+                                   size_t *dropped,
                                    char *err,
                                    size_t err_len);
 

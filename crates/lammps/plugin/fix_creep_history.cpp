@@ -60,7 +60,9 @@ int FixCreepHistory::setmask()
 void FixCreepHistory::sync_from_pair()
 {
   if (!pair_store) return;
-  if (auto *owner = dynamic_cast<CreepHistoryOwner *>(force->pair)) owner->sync_history_rows();
+  // The pair style itself, or its instance inside pair_style hybrid (one at most: init_style).
+  if (auto *owner = dynamic_cast<CreepHistoryOwner *>(force->pair_match("granular/creep", 1)))
+    owner->sync_history_rows();
 }
 
 // Atoms are about to migrate (and be sorted): the rows must hold the current histories.
@@ -88,7 +90,9 @@ void FixCreepHistory::post_run()
 void FixCreepHistory::grow_arrays(int nmax)
 {
   memory->grow(rows, nmax, rowlen, "creep/history:rows");
-  memory->grow(spare, nmax, rowlen, "creep/history:spare");
+  // The second buffer only for fix wall/creep (it rewrites its rows every step); the pair
+  // style's rows are rewritten in place (sync_history_rows).
+  if (!pair_store) memory->grow(spare, nmax, rowlen, "creep/history:spare");
 }
 
 void FixCreepHistory::copy_arrays(int i, int j, int /*delflag*/)
@@ -152,5 +156,5 @@ int FixCreepHistory::maxsize_restart()
 
 double FixCreepHistory::memory_usage()
 {
-  return 2.0 * static_cast<double>(atom->nmax) * rowlen * sizeof(double);
+  return (pair_store ? 1.0 : 2.0) * static_cast<double>(atom->nmax) * rowlen * sizeof(double);
 }

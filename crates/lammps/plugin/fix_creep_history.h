@@ -66,8 +66,8 @@ class FixCreepHistory : public Fix {
   int rowlen;
   // Per-atom rows, nmax x rowlen.
   double **rows;
-  // Second buffer of the same shape: the pair style writes the step's new rows here, then
-  // swap_rows() makes them current (no copy back).
+  // Second buffer of the same shape (fix wall/creep only; null for the pair style's fix): the
+  // wall fix writes the step's new rows here, then swap_rows() makes them current.
   double **spare;
 
   void swap_rows()

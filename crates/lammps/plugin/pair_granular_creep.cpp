@@ -43,18 +43,27 @@ static const char HISTORY_FIX_ID[] = "CREEP_HISTORY";
 PairGranularCreep::PairGranularCreep(LAMMPS *lmp) :
     Pair(lmp), maxpartners(24), tier(CREEP_LAMMPS_TIER_EXACT), creep(1), rolling(CREEP_LAMMPS_ROLLING_NONE),
     rolling_friction(0.0), rolling_damping(0.0),
-    models(nullptr), maxrad(0.0), fix_history(nullptr), nslots(0), rows_stale(false), rebuilt_at(-1),
-    maxrad_user(0.0)
+    models(nullptr), maxrad(0.0), fix_history(nullptr), built_nlocal(0), store(nullptr), nslots(0), rows_stale(false),
+    rebuilt_at(-1), maxrad_user(0.0), saved_contacts(0.0), restored_contacts(0.0), counting(false),
+    dropped_total(0.0)
 {
   single_enable = 0;
   restartinfo = 0;    // re-issue pair_style and pair_coeff after read_restart
   no_virial_fdotr_compute = 1;
   finitecutflag = 1;
   centroidstressflag = CENTROID_SAME;
+  // compute pair granular/creep: [1] touching contacts this step, [2] histories dropped at
+  // neighbour-list rebuilds during the current run (saved before and not found again after;
+  // each contact counted once, on the rank that owns its lower-tag atom; summed over ranks).
+  nextra = 2;
+  pvector = new double[nextra];
+  for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
 }
 
 PairGranularCreep::~PairGranularCreep()
 {
+  delete[] pvector;
+  creep_lammps_store_free(store);
   if (allocated) {
     const int n = atom->ntypes;
     for (int i = 1; i <= n; i++)
@@ -167,9 +176,31 @@ void PairGranularCreep::init_style()
   if (comm->ghost_velocity == 0) error->all(FLERR, "pair granular/creep requires comm_modify vel yes");
   if (force->newton_pair) error->all(FLERR, "pair granular/creep requires newton off (for pairs)");
 
+  // Inside pair_style hybrid: one instance only (its contact histories live in the one per-atom
+  // fix CREEP_HISTORY, which finds the pair by its style name).
+  if (force->pair_match("granular/creep", 1) != this)
+    error->all(FLERR, "pair granular/creep: pair_style hybrid may hold granular/creep once only (its contact "
+                      "histories are kept in one per-atom store); give all its type pairs to that one instance");
+
   neighbor->add_request(this, NeighConst::REQ_SIZE);
 
   const int hlen = static_cast<int>(creep_lammps_history_len(tier));
+  if (rows_stale)    // post_run / write_restart save them; a new init must not lose them
+    error->all(FLERR, "pair granular/creep: contact histories not saved before a new init");
+  creep_lammps_store_free(store);    // the rows hold every history now (post_run synced them)
+  store = creep_lammps_store_new(tier);
+  if (!store) error->all(FLERR, "pair granular/creep: could not create the history store");
+  nslots = 0;
+  slot.clear();
+  slot_first.clear();
+  dropped_total = 0.0;
+
+  // The model of each pair of types, symmetric, for the law's lookup (null: no pair_coeff,
+  // e.g. pairs that pair_style hybrid gives to another style).
+  const int nt = atom->ntypes;
+  model_table.assign(static_cast<size_t>(nt + 1) * (nt + 1), nullptr);
+  for (int i = 1; i <= nt; i++)
+    for (int j = 1; j <= nt; j++) model_table[i * (nt + 1) + j] = i <= j ? models[i][j] : models[j][i];
   fix_history = dynamic_cast<FixCreepHistory *>(modify->get_fix_by_id(HISTORY_FIX_ID));
   if (!fix_history) {
     fix_history = dynamic_cast<FixCreepHistory *>(modify->add_fix(
@@ -208,13 +239,15 @@ double PairGranularCreep::init_one(int i, int j)
 }
 
 // Reads the per-atom rows into one slot per neighbour entry that has a history, in the
-// neighbour list's order (so the pool is also compacted: contacts that opened since the last
-// build are gone). Runs after each neighbour-list build, when the rows are current.
+// neighbour list's order (so the store is also compacted: contacts that opened since the last
+// build are gone), and hands them to the law's store in one call. Runs after each
+// neighbour-list build, when the rows are current.
 void PairGranularCreep::rebuild_slots()
 {
   const int hlen = fix_history->hlen;
   double **rows = fix_history->rows;
   const tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
   const int inum = list->inum;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
@@ -227,65 +260,91 @@ void PairGranularCreep::rebuild_slots()
   }
   slot_first[inum] = total;
   slot.assign(total, -1);
+  partner_tag.resize(total);
+  built_nlocal = nlocal;
   nslots = 0;
-  pool.clear();
+  stage.clear();
+  double restored = 0.0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     double *rowi = rows[i];
     const int ni = static_cast<int>(rowi[0]);
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) partner_tag[slot_first[ii] + jj] = tag[jlist[jj] & NEIGHMASK];
     if (ni == 0) continue;
     const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
-    const int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
-      const double partner = static_cast<double>(tag[jlist[jj] & NEIGHMASK]);
+      const int j = jlist[jj] & NEIGHMASK;
+      const double partner = static_cast<double>(tag[j]);
       for (int e = 0; e < ni; e++)
         if (tagsi[e] == partner) {
           const double *h = fix_history->hist_of(rowi, e);
-          pool.insert(pool.end(), h, h + hlen);
+          stage.insert(stage.end(), h, h + hlen);
           slot[slot_first[ii] + jj] = nslots++;
+          if ((tag[i] < tag[j] ? i : j) < nlocal) restored += 1.0;
           break;
         }
     }
   }
+  char msg[512] = {0};
+  if (creep_lammps_store_load(store, static_cast<size_t>(nslots), stage.data(), static_cast<size_t>(hlen), msg,
+                              sizeof(msg)) != 0)
+    error->one(FLERR, "pair granular/creep: reading the contact histories back: {}", msg);
+  if (counting) dropped_total += saved_contacts - restored;
+  counting = false;
 }
 
 // Writes every live contact's history into the rows of its owned atoms (both, for a pair of
-// owned atoms, so that either may migrate), keyed by the partner's tag. Only when the pool is
-// newer than the rows; the neighbour list and the atom indices must still be those the slots
-// were built for (true before exchange, at the end of a run, when a restart is written).
+// owned atoms, so that either may migrate), keyed by the partner's tag. Only when the store is
+// newer than the rows. The owned atoms must still be those the slots were built for (true
+// before exchange, at the end of a run, when a restart is written); ghosts need not be: a fix
+// that inserts atoms in pre_exchange before this one (fix deposit, fix pour) writes the new
+// atom over the first ghost, so the partners' tags and the owned count are those recorded at
+// the neighbour-list build, not the arrays' current ones.
 void PairGranularCreep::sync_history_rows()
 {
-  if (!rows_stale || !fix_history || !list) return;
+  if (!rows_stale || !fix_history || !list || !store) return;
   const int hlen = fix_history->hlen;
   double **rows = fix_history->rows;
   const tagint *tag = atom->tag;
-  const int nlocal = atom->nlocal;
+  const int nlocal = built_nlocal;
   const int inum = list->inum;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  for (int i = 0; i < nlocal; i++) rows[i][0] = 0.0;
+  stage.resize(static_cast<size_t>(nslots) * hlen);
+  char msg[512] = {0};
+  if (creep_lammps_store_save(store, stage.data(), stage.size(), static_cast<size_t>(hlen), msg, sizeof(msg)) != 0)
+    error->one(FLERR, "pair granular/creep: saving the contact histories: {}", msg);
+  double saved = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) rows[i][0] = 0.0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int s = slot[slot_first[ii] + jj];
+      const int e = slot_first[ii] + jj;
+      const int s = slot[e];
       if (s < 0) continue;
       const int j = jlist[jj] & NEIGHMASK;
-      const double *h = &pool[static_cast<size_t>(s) * hlen];
+      const tagint tag_j = partner_tag[e];
+      const double *h = &stage[static_cast<size_t>(s) * hlen];
+      if ((tag[i] < tag_j ? i : j) < nlocal) saved += 1.0;
       for (int side = 0; side < 2; side++) {
-        const int a = side == 0 ? i : j, b = side == 0 ? j : i;
+        const int a = side == 0 ? i : j;
+        const tagint tag_a = side == 0 ? tag[i] : tag_j, tag_b = side == 0 ? tag_j : tag[i];
         if (a >= nlocal) continue;
         double *row = rows[a];
         const int cnt = static_cast<int>(row[0]);
         if (cnt >= maxpartners)
           error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
-                     tag[a], maxpartners);
-        *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag[b]);
+                     tag_a, maxpartners);
+        *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
         std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
         row[0] = cnt + 1;
       }
     }
   }
+  saved_contacts = saved;
+  counting = true;
   rows_stale = false;
 }
 
@@ -327,100 +386,74 @@ void PairGranularCreep::compute(int eflag, int vflag)
                  "cut-off was set up for (pair_style granular/creep maxradius R)", tag[i], radius[i], maxrad);
 
   batch.clear();
-  batch_off.clear();
-  batch_i.clear();
-  batch_j.clear();
   batch_e.clear();
-  batch_swap.clear();
-  batch_model.clear();
+  double touching_here = 0.0;
 
-  // 1. The touching pairs, in neighbour-list order; each history stays where it is.
+  // 1. The touching pairs, in neighbour-list order, body p the lower tag; each history stays
+  // where it is (a new contact gets a new, virgin slot).
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
     const int e0 = slot_first[ii];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2], ri = radius[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-      const double rsum = radius[i] + radius[j];
+      const double dx = x[j][0] - xi, dy = x[j][1] - yi, dz = x[j][2] - zi;
+      const double rsum = ri + radius[j];
       int &s = slot[e0 + jj];
       if (dx * dx + dy * dy + dz * dz >= rsum * rsum) {
         s = -1;    // apart: the history is dropped (its slot is reclaimed at the next build)
         continue;
       }
-      if (s < 0) {    // a new contact: a virgin (all-zero) history in a new slot
-        s = nslots++;
-        pool.resize(static_cast<size_t>(nslots) * hlen, 0.0);
-      }
+      if (s < 0) s = nslots++;
       const bool swap = tag[i] > tag[j];
-      const int p = swap ? j : i, q = swap ? i : j;
-      CreepLammpsContact c;
-      for (int k = 0; k < 3; k++) {
-        c.p.x[k] = x[p][k];
-        c.p.v[k] = v[p][k];
-        c.p.omega[k] = omega[p][k];
-        c.q.x[k] = x[q][k];
-        c.q.v[k] = v[q][k];
-        c.q.omega[k] = omega[q][k];
-      }
-      c.p.radius = radius[p];
-      c.p.mass = rmass[p];
-      c.q.radius = radius[q];
-      c.q.mass = rmass[q];
+      CreepLammpsPair c;
+      c.p = swap ? j : i;
+      c.q = swap ? i : j;
+      c.slot = s;
       batch.push_back(c);
-      batch_off.push_back(static_cast<size_t>(s) * hlen);
-      batch_i.push_back(i);
-      batch_j.push_back(j);
       batch_e.push_back(e0 + jj);
-      batch_swap.push_back(swap ? 1 : 0);
-      const int ti = type[i], tj = type[j];
-      batch_model.push_back(ti <= tj ? models[ti][tj] : models[tj][ti]);
+      if (c.p < nlocal) touching_here += 1.0;
     }
   }
 
-  // 2. One call into the law for all of them, on the histories in place.
+  // 2. One call into the law: it reads the atoms, steps the histories in place in its store and
+  // adds the forces and torques of the owned atoms.
   const size_t n = batch.size();
-  batch_out.resize(n);
-  if (n > 0) {
-    char msg[512] = {0};
-    const int rc = creep_lammps_compute_at(batch_model.data(), dt, n, batch.data(), pool.data(), pool.size(),
-                                           batch_off.data(), static_cast<size_t>(hlen), batch_out.data(), msg,
-                                           sizeof(msg));
-    if (rc != 0) error->one(FLERR, "pair granular/creep: {}", msg);
-  }
+  if (evflag) batch_force.resize(3 * n);
+  batch_touching.resize(n);
+  size_t dropped = 0;
+  CreepLammpsAtoms at;
+  at.nlocal = static_cast<size_t>(nlocal);
+  at.nall = static_cast<size_t>(nlocal + atom->nghost);
+  at.x = n ? x[0] : nullptr;
+  at.v = n ? v[0] : nullptr;
+  at.omega = n ? omega[0] : nullptr;
+  at.radius = radius;
+  at.rmass = rmass;
+  at.type_ = type;
+  at.f = nlocal ? f[0] : nullptr;
+  at.torque = nlocal ? torque[0] : nullptr;
+  char msg[512] = {0};
+  const int rc = creep_lammps_compute_pairs(model_table.data(), static_cast<size_t>(atom->ntypes), store, &at, dt, n,
+                                            batch.data(), static_cast<size_t>(nslots),
+                                            evflag ? batch_force.data() : nullptr, batch_touching.data(), &dropped,
+                                            msg, sizeof(msg));
+  if (rc != 0) error->one(FLERR, "pair granular/creep: {}", msg);
   rows_stale = true;
 
-  // 3. Forces, torques, virial.
-  for (size_t k = 0; k < n; k++) {
-    const int i = batch_i[k], j = batch_j[k];
-    const CreepLammpsOutput &o = batch_out[k];
-    double fi[3], ti[3], tj[3];
-    if (batch_swap[k]) {    // p = j, q = i
-      for (int d = 0; d < 3; d++) {
-        fi[d] = -o.force_p[d];
-        ti[d] = o.torque_q[d];
-        tj[d] = o.torque_p[d];
-      }
-    } else {
-      for (int d = 0; d < 3; d++) {
-        fi[d] = o.force_p[d];
-        ti[d] = o.torque_p[d];
-        tj[d] = o.torque_q[d];
-      }
+  // 3. The virial (on the steps that ask for it; symmetric in p and q), and contacts the law
+  // dropped (coincident centres): their slots are freed.
+  if (evflag)
+    for (size_t k = 0; k < n; k++) {
+      const int p = batch[k].p, q = batch[k].q;
+      const double *fp = &batch_force[3 * k];
+      ev_tally_xyz(p, q, nlocal, 0, 0.0, 0.0, fp[0], fp[1], fp[2], x[p][0] - x[q][0], x[p][1] - x[q][1],
+                   x[p][2] - x[q][2]);
     }
-    for (int d = 0; d < 3; d++) {
-      f[i][d] += fi[d];
-      torque[i][d] += ti[d];
-    }
-    if (j < nlocal) {
-      for (int d = 0; d < 3; d++) {
-        f[j][d] -= fi[d];
-        torque[j][d] += tj[d];
-      }
-    }
-    if (evflag)
-      ev_tally_xyz(i, j, nlocal, 0, 0.0, 0.0, fi[0], fi[1], fi[2], x[i][0] - x[j][0], x[i][1] - x[j][1],
-                   x[i][2] - x[j][2]);
-    if (!o.touching) slot[batch_e[k]] = -1;    // coincident centres: dropped, as the law says
-  }
+  if (dropped > 0)
+    for (size_t k = 0; k < n; k++)
+      if (!batch_touching[k]) slot[batch_e[k]] = -1;
+  pvector[0] = touching_here;
+  pvector[1] = dropped_total;
 }

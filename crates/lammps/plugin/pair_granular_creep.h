@@ -44,24 +44,34 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
 
   // Contact histories, each stored once, in place between neighbour-list builds (as LAMMPS'
   // fix neigh/history does): neighbour entry e (entry jj of list atom ii is
-  // slot_first[ii] + jj) has its history in pool[slot[e] * hlen ..] (slot -1: none). The law
-  // steps them there (creep_lammps_compute_at); the per-atom rows of fix creep/history are
-  // written from them only when atoms may move between ranks or a restart is written
-  // (sync_history_rows), and read back after each neighbour-list build (rebuild_slots).
+  // slot_first[ii] + jj) has its history in slot slot[e] of `store` (-1: none), creep-law's own
+  // structs kept by the Rust side; the law steps them there (creep_lammps_compute_pairs). The
+  // per-atom rows of fix creep/history are written from them only when atoms may move between
+  // ranks or a restart is written (sync_history_rows), and read back after each neighbour-list
+  // build (rebuild_slots); `stage` carries their flat form across the C ABI then.
   std::vector<int> slot_first, slot;
-  std::vector<double> pool;
+  std::vector<tagint> partner_tag;    // per neighbour entry: the partner's tag at the build
+  int built_nlocal;                   // owned atoms at the build
+  CreepLammpsStore *store;
+  std::vector<double> stage;
   int nslots;
-  bool rows_stale;            // the pool holds newer histories than the rows
+  bool rows_stale;            // the store holds newer histories than the rows
   bigint rebuilt_at;          // timestep of the last rebuild_slots() outside set-up
   double maxrad_user;         // pair_style ... maxradius R [m] (0: none)
+  std::vector<const CreepLammpsModel *> model_table;    // [ti * (ntypes + 1) + tj]
+
+  // Dropped-history accounting (pvector, `compute pair granular/creep`): each contact is
+  // counted once, on the rank that owns its lower-tag atom.
+  double saved_contacts;       // histories written to the rows at the last sync
+  double restored_contacts;    // histories found again at the rebuild that followed it
+  bool counting;               // a sync happened since the last rebuild
+  double dropped_total;        // sum of (saved - restored) over this run's rebuilds
 
   // Batch buffers (kept between steps: no allocation in the steady state).
-  std::vector<CreepLammpsContact> batch;
-  std::vector<size_t> batch_off;
-  std::vector<CreepLammpsOutput> batch_out;
-  std::vector<int> batch_i, batch_j, batch_e;
-  std::vector<char> batch_swap;
-  std::vector<const CreepLammpsModel *> batch_model;
+  std::vector<CreepLammpsPair> batch;
+  std::vector<int> batch_e;
+  std::vector<double> batch_force;
+  std::vector<uint8_t> batch_touching;
 };
 
 }    // namespace LAMMPS_NS

@@ -548,6 +548,75 @@ impl Sim {
         ))
     }
 
+    /// [`Sim::time_kernel`] through the plugin's hot path instead ([`crate::compute_pairs`] over
+    /// a [`crate::HistoryStore`], forces added into per-atom arrays; a pair across a periodic
+    /// boundary gets a ghost copy of q, as LAMMPS' ghosts): what the plugin's pair style pays
+    /// for the law with LAMMPS' neighbour loop, integration and communication taken away.
+    pub fn time_kernel_store(&mut self, steps: usize) -> Result<(f64, usize), DriverError> {
+        self.forces(false)?;
+        let p = &self.packing;
+        let n = p.tag.len();
+        let (mut x, mut v, mut w) = (p.x.clone(), p.v.clone(), p.omega.clone());
+        let (mut r, mut m) = (p.radius.clone(), p.mass.clone());
+        let mut pairs = Vec::with_capacity(self.pairs.len());
+        for (k, &(i, j, shift)) in self.pairs.iter().enumerate() {
+            let q = if shift == [0.0; 3] {
+                j
+            } else {
+                x.push(std::array::from_fn(|a| p.x[j][a] + shift[a]));
+                v.push(p.v[j]);
+                w.push(p.omega[j]);
+                r.push(p.radius[j]);
+                m.push(p.mass[j]);
+                x.len() - 1
+            };
+            let idx =
+                |a: usize| i32::try_from(a).map_err(|_| perr("too many atoms for i32 indices"));
+            pairs.push(crate::PairIndex {
+                p: idx(i)?,
+                q: idx(q)?,
+                slot: idx(k)?,
+            });
+        }
+        let kind = vec![1; x.len()];
+        let atoms = crate::Atoms {
+            x: &x,
+            v: &v,
+            omega: &w,
+            radius: &r,
+            mass: &m,
+            kind: &kind,
+        };
+        let (mut f, mut t) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
+        let mut store = crate::HistoryStore::new(self.model.tier());
+        let model = &self.model;
+        let table = crate::ModelTable {
+            ntypes: 1,
+            model_of: |k: usize| (k == 3).then_some(model),
+        };
+        let start = std::time::Instant::now();
+        for _ in 0..steps {
+            let mut acc = crate::Accumulators {
+                force: &mut f,
+                torque: &mut t,
+            };
+            crate::compute_pairs(
+                &table,
+                &mut store,
+                &atoms,
+                &mut acc,
+                &pairs,
+                pairs.len(),
+                self.dt,
+                crate::PairOutputs::default(),
+            )?;
+        }
+        Ok((
+            start.elapsed().as_secs_f64() / steps.max(1) as f64,
+            pairs.len(),
+        ))
+    }
+
     /// One velocity-Verlet step as LAMMPS' `fix nve/sphere` does it (inertia factor 0.4 of a
     /// solid sphere); returns the step's thermo.
     pub fn step(&mut self) -> Result<Thermo, DriverError> {

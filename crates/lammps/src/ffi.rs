@@ -12,6 +12,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use creep_law::rolling_torque::RollingModel;
 
 use crate::model::{Contact, ContactOutput, Model, ModelError, Settings, Tier, WallContact};
+use crate::store::{Accumulators, Atoms, HistoryStore, ModelTable, PairIndex, PairOutputs};
 
 /// Tangential tier: Cattaneo-Mindlin with exact load-history memory and Kuhn's creep.
 pub const CREEP_LAMMPS_TIER_EXACT: u32 = 0;
@@ -371,4 +372,325 @@ unsafe fn batch_ffi<C>(
     // SAFETY: `err` as the contract says.
     unsafe { write_error(err, err_len, &msg) };
     1
+}
+
+/// Opaque store of contact histories (creep-law's structs, one per slot) of one tier; see
+/// [`crate::store`]. Owned by one host object; not shared between threads while written.
+pub struct CreepLammpsStore(HistoryStore);
+
+/// A new, empty history store for `tier` (`CREEP_LAMMPS_TIER_*`); null for an unknown tier.
+/// Free it with [`creep_lammps_store_free`].
+#[unsafe(no_mangle)]
+pub extern "C" fn creep_lammps_store_new(tier: u32) -> *mut CreepLammpsStore {
+    let tier = match tier {
+        CREEP_LAMMPS_TIER_EXACT => Tier::Exact,
+        CREEP_LAMMPS_TIER_SPRING => Tier::Spring,
+        _ => return std::ptr::null_mut(),
+    };
+    Box::into_raw(Box::new(CreepLammpsStore(HistoryStore::new(tier))))
+}
+
+/// Frees a store (null is ignored).
+///
+/// # Safety
+/// `store` is null or was returned by [`creep_lammps_store_new`] and not freed yet.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn creep_lammps_store_free(store: *mut CreepLammpsStore) {
+    if !store.is_null() {
+        // SAFETY: created by Box::into_raw in creep_lammps_store_new, freed once.
+        drop(unsafe { Box::from_raw(store) });
+    }
+}
+
+/// Number of slots of a store (0 for null).
+///
+/// # Safety
+/// `store` is null or a live store from [`creep_lammps_store_new`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn creep_lammps_store_len(store: *const CreepLammpsStore) -> usize {
+    // SAFETY: null or live, by the contract.
+    unsafe { store.as_ref() }.map_or(0, |s| s.0.len())
+}
+
+/// Replaces the store's contents with `n` histories in their flat form, slot `k` at
+/// `history[k * stride ..][..stride]` (stride: [`creep_lammps_history_len`] of the store's
+/// tier). Returns 0, or 1 with the reason in `err` (wrong stride, a corrupt history: the
+/// store is then empty).
+///
+/// # Safety
+/// `store` is a live store; `history` points to `n * stride` doubles (may be null when
+/// `n == 0`); `err` is null or valid for writes of `err_len` bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn creep_lammps_store_load(
+    store: *mut CreepLammpsStore,
+    n: usize,
+    history: *const f64,
+    stride: usize,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    // SAFETY: live or null, by the contract.
+    let Some(store) = (unsafe { store.as_mut() }) else {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null store") };
+        return 1;
+    };
+    let want = store.0.tier().history_len();
+    let result = if stride != want {
+        Err(ModelError::Stride { got: stride, want })
+    } else if n == 0 {
+        store.0.load(&[])
+    } else if history.is_null() {
+        Err(ModelError::NullArray)
+    } else {
+        // SAFETY: `history` holds n * stride doubles, by the contract.
+        let flat = unsafe { std::slice::from_raw_parts(history, n.saturating_mul(stride)) };
+        store.0.load(flat)
+    };
+    // SAFETY: `err` as the contract says.
+    unsafe { status(result.map(|_| ()), err, err_len) }
+}
+
+/// Writes every slot's history in its flat form into `history` (slot `k` at
+/// `k * stride`), which holds `history_len` doubles (at least
+/// `creep_lammps_store_len(store) * stride`). Returns 0, or 1 with the reason in `err`.
+///
+/// # Safety
+/// `store` is a live store; `history` points to `history_len` writable doubles (may be null
+/// when the store is empty); `err` is null or valid for writes of `err_len` bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn creep_lammps_store_save(
+    store: *const CreepLammpsStore,
+    history: *mut f64,
+    history_len: usize,
+    stride: usize,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    // SAFETY: live or null, by the contract.
+    let Some(store) = (unsafe { store.as_ref() }) else {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null store") };
+        return 1;
+    };
+    let want = store.0.tier().history_len();
+    let result = if stride != want {
+        Err(ModelError::Stride { got: stride, want })
+    } else if store.0.is_empty() {
+        Ok(())
+    } else if history.is_null() {
+        Err(ModelError::NullArray)
+    } else {
+        // SAFETY: `history` holds history_len writable doubles, by the contract.
+        let out = unsafe { std::slice::from_raw_parts_mut(history, history_len) };
+        store.0.save(out)
+    };
+    // SAFETY: `err` as the contract says.
+    unsafe { status(result, err, err_len) }
+}
+
+/// One rank's per-atom arrays, as LAMMPS keeps them: `x`, `v`, `omega`, `f`, `torque` are
+/// `3 * n` contiguous doubles (LAMMPS' `x[0]`, ...), `radius`, `rmass`, `type` one value per
+/// atom. Atoms `0..nall` are read; forces and torques are added to the owned atoms `0..nlocal`
+/// only (`newton off`: a ghost's share is computed by its owner).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct CreepLammpsAtoms {
+    /// Owned atoms (they receive forces).
+    pub nlocal: usize,
+    /// Owned and ghost atoms.
+    pub nall: usize,
+    /// Centres (m).
+    pub x: *const f64,
+    /// Velocities (m/s).
+    pub v: *const f64,
+    /// Angular velocities (rad/s).
+    pub omega: *const f64,
+    /// Radii (m).
+    pub radius: *const f64,
+    /// Masses (kg).
+    pub rmass: *const f64,
+    /// Atom types (`1..=ntypes`).
+    pub type_: *const i32,
+    /// Forces (N), added to.
+    pub f: *mut f64,
+    /// Torques (N m), added to.
+    pub torque: *mut f64,
+}
+
+/// Steps the `n` touching pairs of one step by `dt` (s) with their histories in `store`
+/// (which first grows to `nslots` slots, the new ones virgin), and adds each contact's force
+/// and torques into the owned atoms' `f` and `torque` in the order of `pairs`. The model of
+/// atom types `ti`, `tj` is `models[ti * (ntypes + 1) + tj]` (null: no `pair_coeff`, an error
+/// if used). Optional outputs (null: not wanted): `force_p[3 k ..]`, the force on p of contact
+/// `k` (N); `touching[k]`, 0 if contact `k` was dropped (its history is virgin again);
+/// `dropped`, their number. Returns 0, or 1 with the reason in `err` (bad index, type, slot,
+/// model, tier, radius or mass, a non-finite force: nothing after the failing contact is
+/// evaluated).
+///
+/// # Safety
+/// `models` points to `(ntypes + 1)^2` model pointers (null or live); `store` is a live store;
+/// `atoms` describes valid arrays as [`CreepLammpsAtoms`] says (`f` and `torque` writable and
+/// overlapping no other buffer); `pairs` points to `n` pairs; `force_p` is null or holds `3 n`
+/// doubles, `touching` null or `n` bytes, `dropped` null or one `size_t`; `err` is null or
+/// valid for writes of `err_len` bytes. With `n == 0` only `store` is touched.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn creep_lammps_compute_pairs(
+    models: *const *const CreepLammpsModel,
+    ntypes: usize,
+    store: *mut CreepLammpsStore,
+    atoms: *const CreepLammpsAtoms,
+    dt: f64,
+    n: usize,
+    pairs: *const PairIndex,
+    nslots: usize,
+    force_p: *mut f64,
+    touching: *mut u8,
+    dropped: *mut usize,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    // SAFETY: null or valid, by the contract.
+    let (Some(store), Some(a)) = (unsafe { store.as_mut() }, unsafe { atoms.as_ref() }) else {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null store or atoms") };
+        return 1;
+    };
+    if n > 0
+        && (models.is_null()
+            || pairs.is_null()
+            || [a.x, a.v, a.omega, a.radius, a.rmass]
+                .iter()
+                .any(|p| p.is_null())
+            || a.type_.is_null()
+            || (a.nlocal > 0 && (a.f.is_null() || a.torque.is_null())))
+    {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null buffer") };
+        return 1;
+    }
+    if a.nlocal > a.nall {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, &ModelError::AtomArrays.to_string()) };
+        return 1;
+    }
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        if n == 0 {
+            // Nothing to step; the store still grows to nslots (new slots virgin).
+            let atoms = Atoms {
+                x: &[],
+                v: &[],
+                omega: &[],
+                radius: &[],
+                mass: &[],
+                kind: &[],
+            };
+            let mut acc = Accumulators {
+                force: &mut [],
+                torque: &mut [],
+            };
+            let table = ModelTable {
+                ntypes,
+                model_of: |_| None,
+            };
+            return crate::store::compute_pairs(
+                &table,
+                &mut store.0,
+                &atoms,
+                &mut acc,
+                &[],
+                nslots,
+                dt,
+                PairOutputs::default(),
+            );
+        }
+        let nm = ntypes
+            .checked_add(1)
+            .and_then(|t| t.checked_mul(t))
+            .ok_or(ModelError::AtomArrays)?;
+        // SAFETY: sizes and validity as the contract says; `[f64; 3]` has the layout of three
+        // doubles; the mutable slices overlap nothing else.
+        let (models, atoms, mut acc, pairs, outputs) = unsafe {
+            let v3 =
+                |p: *const f64, len: usize| std::slice::from_raw_parts(p.cast::<[f64; 3]>(), len);
+            let v3m = |p: *mut f64, len: usize| -> &mut [[f64; 3]] {
+                if len == 0 {
+                    &mut []
+                } else {
+                    std::slice::from_raw_parts_mut(p.cast::<[f64; 3]>(), len)
+                }
+            };
+            (
+                std::slice::from_raw_parts(models, nm),
+                Atoms {
+                    x: v3(a.x, a.nall),
+                    v: v3(a.v, a.nall),
+                    omega: v3(a.omega, a.nall),
+                    radius: std::slice::from_raw_parts(a.radius, a.nall),
+                    mass: std::slice::from_raw_parts(a.rmass, a.nall),
+                    kind: std::slice::from_raw_parts(a.type_, a.nall),
+                },
+                Accumulators {
+                    force: v3m(a.f, a.nlocal),
+                    torque: v3m(a.torque, a.nlocal),
+                },
+                std::slice::from_raw_parts(pairs, n),
+                PairOutputs {
+                    force_p: (!force_p.is_null()).then(|| v3m(force_p, n)),
+                    touching: (!touching.is_null())
+                        .then(|| std::slice::from_raw_parts_mut(touching, n)),
+                },
+            )
+        };
+        let table = ModelTable {
+            ntypes,
+            // SAFETY: each pointer is null or a live model, as the contract says.
+            model_of: |k: usize| {
+                models
+                    .get(k)
+                    .and_then(|m| unsafe { m.as_ref() })
+                    .map(|m| &m.0)
+            },
+        };
+        crate::store::compute_pairs(
+            &table,
+            &mut store.0,
+            &atoms,
+            &mut acc,
+            pairs,
+            nslots,
+            dt,
+            outputs,
+        )
+    }));
+    let result = match result {
+        Ok(r) => r,
+        Err(_) => {
+            // SAFETY: `err` as the contract says.
+            unsafe { write_error(err, err_len, "internal error (panic) in the pair law") };
+            return 1;
+        }
+    };
+    if let (Ok(d), false) = (&result, dropped.is_null()) {
+        // SAFETY: one writable size_t, by the contract.
+        unsafe { *dropped = *d };
+    }
+    // SAFETY: `err` as the contract says.
+    unsafe { status(result.map(|_| ()), err, err_len) }
+}
+
+/// 0, or 1 with the error's message in `err`.
+///
+/// # Safety
+/// `err` is null or valid for writes of `err_len` bytes.
+unsafe fn status(result: Result<(), ModelError>, err: *mut c_char, err_len: usize) -> i32 {
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            // SAFETY: as the contract says.
+            unsafe { write_error(err, err_len, &e.to_string()) };
+            1
+        }
+    }
 }

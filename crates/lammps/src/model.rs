@@ -121,6 +121,48 @@ pub enum ModelError {
     /// The time step is not finite and >= 0.
     #[error("time step must be finite and >= 0 s, got {0}")]
     TimeStep(f64),
+    /// An atom index outside the host's atom arrays.
+    #[error("contact {index}: atom index {atom} outside the {nall} atoms of the arrays")]
+    AtomIndex {
+        /// Index in the batch.
+        index: usize,
+        /// The atom index given.
+        atom: i32,
+        /// Atoms in the arrays (owned and ghost).
+        nall: usize,
+    },
+    /// An atom type outside `1..=ntypes`.
+    #[error("contact {index}: atom type {kind} outside 1..={ntypes}")]
+    AtomType {
+        /// Index in the batch.
+        index: usize,
+        /// The type found.
+        kind: i32,
+        /// Number of atom types of the model table.
+        ntypes: usize,
+    },
+    /// A history slot outside the store.
+    #[error("contact {index}: history slot {slot} outside the store's {len} slots")]
+    Slot {
+        /// Index in the batch.
+        index: usize,
+        /// The slot given.
+        slot: i32,
+        /// Slots in the store.
+        len: usize,
+    },
+    /// The per-atom arrays of one call have different lengths (or more owned atoms than atoms).
+    #[error("the per-atom arrays must all hold nall entries, and nlocal <= nall")]
+    AtomArrays,
+    /// A position, velocity or angular velocity that is NaN or infinite.
+    #[error("contact {index}: an atom's position, velocity or angular velocity is not finite")]
+    AtomState {
+        /// Index in the batch.
+        index: usize,
+    },
+    /// A null atom array where atoms are needed.
+    #[error("null per-atom array")]
+    NullArray,
     /// A contact's history could not be read (corrupt or from another build).
     #[error("contact {index}: {source}")]
     History {
@@ -222,6 +264,11 @@ impl Model {
     /// The tier.
     pub fn tier(&self) -> Tier {
         self.tier
+    }
+
+    /// The pair constants (creep-law's), built once per pair type.
+    pub(crate) fn constants(&self) -> &PairConstants {
+        &self.constants
     }
 
     /// One contact: reads its `history` (length [`Tier::history_len`]), steps it by `dt` and

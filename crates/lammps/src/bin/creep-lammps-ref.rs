@@ -15,9 +15,12 @@
 //!                                         PARAMS `variable zwalls equal 1`: plane walls at the
 //!                                         z faces, the upper one moving with velocity
 //!                                         (zhi_vx, 0, zhi_vz) m/s if those variables are set
-//! creep-lammps-ref kernel DATA PARAMS STEPS [exact|spring]
+//! creep-lammps-ref kernel DATA PARAMS STEPS [exact|spring] [store|flat]
 //!                                         the kernel alone on the packing's contacts: prints
-//!                                         `Loop time of S` (S = STEPS batches) and the batch size
+//!                                         `Loop time of S` (S = STEPS batches) and the batch size;
+//!                                         store: the plugin's path (compute_pairs, histories in
+//!                                         a HistoryStore, the default), flat: Model::compute on
+//!                                         flat histories (read and written per contact)
 //! ```
 
 use creep_lammps::driver::{Packing, Sim, lammps_variable};
@@ -299,11 +302,15 @@ fn main() -> ExitCode {
                 arg(2).ok_or("kernel DATA PARAMS STEPS")?,
                 Opts { tier, creep: true, rolling: None },
             )?;
-            let (per, n) = s.time_kernel(steps)?;
+            let (per, n) = match arg(5).unwrap_or("store") {
+                "store" => s.time_kernel_store(steps)?,
+                "flat" => s.time_kernel(steps)?,
+                w => return Err(format!("kernel path must be store or flat, not {w}").into()),
+            };
             println!("Loop time of {:.6} for {steps} batches of {n} contacts", per * steps as f64);
             Ok(())
         }
-        _ => Err("usage: creep-lammps-ref gen DIR [N] | shear IN OUT RATE | run DATA PARAMS STEPS [OPTIONS] | dem DATA PARAMS STEPS [exact|spring] | kernel DATA PARAMS STEPS [exact|spring]".into()),
+        _ => Err("usage: creep-lammps-ref gen DIR [N] | shear IN OUT RATE | run DATA PARAMS STEPS [OPTIONS] | dem DATA PARAMS STEPS [exact|spring] | kernel DATA PARAMS STEPS [exact|spring] [store|flat]".into()),
     }
     })();
     match r {

@@ -1,0 +1,399 @@
+//! The pair style's hot path: contact histories kept as creep-law's own structs between
+//! neighbour-list builds ([`HistoryStore`]), and one call per step that reads the host's atom
+//! arrays, steps every touching pair in place and adds the forces and torques into the host's
+//! arrays ([`compute_pairs`]).
+//!
+//! Why: the flat `[f64]` form of a history ([`ContactHistory::write`]/[`ContactHistory::read`])
+//! is what LAMMPS stores per atom, sends to other ranks and writes to restart files, but it
+//! only has to exist then (before atoms migrate, at the end of a run, for a restart). Between
+//! neighbour-list builds the histories stay here, one [`ContactHistory`] per slot, and the
+//! kernel steps them in place as creep-dem does: no per-contact conversion, no validation of a
+//! history the kernel itself wrote, no 22-double contact record gathered by the host and no
+//! per-contact output scattered back by it. The conversion to and from the flat form (with its
+//! validation) happens in [`HistoryStore::load`] and [`HistoryStore::save`], once per
+//! neighbour-list build. The law is the same function ([`pair_force`]), called on the same
+//! values in the same order, so the results are bit-identical to [`Model::compute_at`]'s.
+
+use creep_law::Vec3;
+use creep_law::pair::{
+    Cheap, ContactGeometry, ContactHistory, Exact, PairBody, TangentialLaw, pair_force,
+};
+use creep_law::{LawError, Surface};
+
+use crate::model::{Model, ModelError, Tier};
+
+/// Contact histories of one tier, one per slot, in creep-law's own form.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryStore(Slots);
+
+#[derive(Debug, Clone, PartialEq)]
+enum Slots {
+    Exact(Vec<ContactHistory<Exact>>),
+    Spring(Vec<ContactHistory<Cheap>>),
+}
+
+impl HistoryStore {
+    /// An empty store for `tier`.
+    pub fn new(tier: Tier) -> Self {
+        Self(match tier {
+            Tier::Exact => Slots::Exact(Vec::new()),
+            Tier::Spring => Slots::Spring(Vec::new()),
+        })
+    }
+
+    /// The tier of the histories.
+    pub fn tier(&self) -> Tier {
+        match self.0 {
+            Slots::Exact(_) => Tier::Exact,
+            Slots::Spring(_) => Tier::Spring,
+        }
+    }
+
+    /// Number of slots.
+    pub fn len(&self) -> usize {
+        match &self.0 {
+            Slots::Exact(v) => v.len(),
+            Slots::Spring(v) => v.len(),
+        }
+    }
+
+    /// Whether the store has no slots.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Replaces the contents with the histories of `flat` in their flat form
+    /// ([`ContactHistory::write`]), [`Tier::history_len`] doubles each: slot `k` is
+    /// `flat[k * stride ..][..stride]`. A corrupt history (non-finite, an invalid Mindlin
+    /// memory) is an error naming its slot, and leaves the store empty.
+    pub fn load(&mut self, flat: &[f64]) -> Result<(), ModelError> {
+        fn load_tier<T: TangentialLaw>(
+            v: &mut Vec<ContactHistory<T>>,
+            flat: &[f64],
+        ) -> Result<(), ModelError> {
+            let stride = ContactHistory::<T>::LEN;
+            v.clear();
+            if !flat.len().is_multiple_of(stride) {
+                return Err(ModelError::Stride {
+                    got: flat.len() % stride,
+                    want: stride,
+                });
+            }
+            v.reserve(flat.len() / stride);
+            for (index, row) in flat.chunks_exact(stride).enumerate() {
+                match ContactHistory::<T>::read(row) {
+                    Ok(h) => v.push(h),
+                    Err(source) => {
+                        v.clear();
+                        return Err(ModelError::History { index, source });
+                    }
+                }
+            }
+            Ok(())
+        }
+        match &mut self.0 {
+            Slots::Exact(v) => load_tier(v, flat),
+            Slots::Spring(v) => load_tier(v, flat),
+        }
+    }
+
+    /// Writes every slot's history in its flat form into `out[..len * stride]` (slot `k` at
+    /// `k * stride`, stride [`Tier::history_len`]); `out` must hold at least that many.
+    pub fn save(&self, out: &mut [f64]) -> Result<(), ModelError> {
+        fn save_tier<T: TangentialLaw>(
+            v: &[ContactHistory<T>],
+            out: &mut [f64],
+        ) -> Result<(), ModelError> {
+            let stride = ContactHistory::<T>::LEN;
+            let want = v.len() * stride;
+            let Some(out) = out.get_mut(..want) else {
+                return Err(ModelError::Output {
+                    got: out.len() / stride,
+                    want: v.len(),
+                });
+            };
+            for (index, (h, row)) in v.iter().zip(out.chunks_exact_mut(stride)).enumerate() {
+                h.write(row)
+                    .map_err(|source| ModelError::History { index, source })?;
+            }
+            Ok(())
+        }
+        match &self.0 {
+            Slots::Exact(v) => save_tier(v, out),
+            Slots::Spring(v) => save_tier(v, out),
+        }
+    }
+}
+
+/// One rank's per-atom arrays, as LAMMPS keeps them (owned atoms first, then ghosts; `nall`
+/// entries each). SI units.
+#[derive(Debug, Clone, Copy)]
+pub struct Atoms<'a> {
+    /// Centres (m).
+    pub x: &'a [[f64; 3]],
+    /// Velocities (m/s).
+    pub v: &'a [[f64; 3]],
+    /// Angular velocities (rad/s).
+    pub omega: &'a [[f64; 3]],
+    /// Radii (m).
+    pub radius: &'a [f64],
+    /// Masses (kg).
+    pub mass: &'a [f64],
+    /// Atom types, `1..=ntypes`.
+    pub kind: &'a [i32],
+}
+
+/// Where the pair forces go: the owned atoms' force and torque (the first `nlocal` atoms; a
+/// ghost receives nothing, as LAMMPS' pair styles do with `newton off`).
+#[derive(Debug)]
+pub struct Accumulators<'a> {
+    /// Forces (N), added to.
+    pub force: &'a mut [[f64; 3]],
+    /// Torques (N m), added to.
+    pub torque: &'a mut [[f64; 3]],
+}
+
+/// One touching pair of a step: atom `p` (the normal points from p to q; the LAMMPS shim puts
+/// the lower tag first), atom `q`, and the store slot of its history.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PairIndex {
+    /// Atom index of body p (>= 0).
+    pub p: i32,
+    /// Atom index of body q (>= 0).
+    pub q: i32,
+    /// History slot (>= 0; a slot at or beyond the store's length is a new, virgin contact).
+    pub slot: i32,
+}
+
+/// Optional per-contact outputs of [`compute_pairs`].
+#[derive(Debug, Default)]
+pub struct PairOutputs<'a> {
+    /// The force on p of each contact (N) (the host's virial), zero for a dropped contact.
+    pub force_p: Option<&'a mut [[f64; 3]]>,
+    /// 1 if the contact carries force, 0 if it was dropped (coincident centres, or found apart
+    /// by the kernel): its history is virgin again.
+    pub touching: Option<&'a mut [u8]>,
+}
+
+/// The model table of [`compute_pairs`]: `model_of(ti * (ntypes + 1) + tj)` is the model of
+/// atom types `ti`, `tj` (`None`: no `pair_coeff`), as LAMMPS' `[ntypes + 1][ntypes + 1]`
+/// arrays.
+#[derive(Debug, Clone, Copy)]
+pub struct ModelTable<F> {
+    /// Number of atom types.
+    pub ntypes: usize,
+    /// The lookup.
+    pub model_of: F,
+}
+
+/// Steps the touching pairs of one step by `dt` (s) with their histories in `store`, and adds
+/// each contact's force and torques into `acc` (force on p and `-force` on q; torques about
+/// each centre; owned atoms only, `index < acc.force.len()`), in the order of `pairs`. The
+/// store first grows to `nslots` slots (new ones virgin). Returns the number of dropped
+/// contacts (`touching == 0`).
+///
+/// Errors (the batch stops at the failing contact): a non-finite or negative `dt`; an atom index
+/// outside the arrays, a slot outside `nslots`, an atom type outside `1..=ntypes` or without a
+/// model, a model of another tier than the store's, a radius or mass not finite and > 0, an
+/// output buffer shorter than the batch, a position, velocity or angular velocity that is not
+/// finite, a force that comes out non-finite anyway, atom arrays of unequal lengths.
+#[allow(clippy::too_many_arguments)]
+pub fn compute_pairs<'a, F>(
+    table: &ModelTable<F>,
+    store: &mut HistoryStore,
+    atoms: &Atoms<'_>,
+    acc: &mut Accumulators<'_>,
+    pairs: &[PairIndex],
+    nslots: usize,
+    dt: f64,
+    outputs: PairOutputs<'_>,
+) -> Result<usize, ModelError>
+where
+    F: Fn(usize) -> Option<&'a Model>,
+{
+    if !(dt.is_finite() && dt >= 0.0) {
+        return Err(ModelError::TimeStep(dt));
+    }
+    let nall = atoms.x.len();
+    if [
+        atoms.v.len(),
+        atoms.omega.len(),
+        atoms.radius.len(),
+        atoms.mass.len(),
+        atoms.kind.len(),
+    ]
+    .iter()
+    .any(|&l| l != nall)
+        || acc.force.len() != acc.torque.len()
+        || acc.force.len() > nall
+    {
+        return Err(ModelError::AtomArrays);
+    }
+    for buf in [
+        outputs.force_p.as_ref().map(|b| b.len()),
+        outputs.touching.as_ref().map(|b| b.len()),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        if buf < pairs.len() {
+            return Err(ModelError::Output {
+                got: buf,
+                want: pairs.len(),
+            });
+        }
+    }
+    let tier = store.tier();
+    match &mut store.0 {
+        Slots::Exact(v) => {
+            v.resize(nslots, ContactHistory::default());
+            step_pairs(table, tier, v, atoms, acc, pairs, dt, outputs)
+        }
+        Slots::Spring(v) => {
+            v.resize(nslots, ContactHistory::default());
+            step_pairs(table, tier, v, atoms, acc, pairs, dt, outputs)
+        }
+    }
+}
+
+/// [`compute_pairs`] for one tier (monomorphised: the kernel is inlined into this loop).
+#[allow(clippy::too_many_arguments)]
+fn step_pairs<'a, T: TangentialLaw, F>(
+    table: &ModelTable<F>,
+    tier: Tier,
+    hist: &mut [ContactHistory<T>],
+    atoms: &Atoms<'_>,
+    acc: &mut Accumulators<'_>,
+    pairs: &[PairIndex],
+    dt: f64,
+    mut outputs: PairOutputs<'_>,
+) -> Result<usize, ModelError>
+where
+    F: Fn(usize) -> Option<&'a Model>,
+{
+    let nall = atoms.x.len();
+    let nlocal = acc.force.len();
+    let nslots = hist.len();
+    let stride = table.ntypes + 1;
+    let atom = |k: usize, a: i32| -> Result<usize, ModelError> {
+        usize::try_from(a)
+            .ok()
+            .filter(|&a| a < nall)
+            .ok_or(ModelError::AtomIndex {
+                index: k,
+                atom: a,
+                nall,
+            })
+    };
+    let kind = |k: usize, a: usize| -> Result<usize, ModelError> {
+        let t = atoms.kind[a];
+        usize::try_from(t)
+            .ok()
+            .filter(|&t| (1..=table.ntypes).contains(&t))
+            .ok_or(ModelError::AtomType {
+                index: k,
+                kind: t,
+                ntypes: table.ntypes,
+            })
+    };
+    let body = |a: usize| PairBody {
+        position: v3(atoms.x[a]),
+        velocity: v3(atoms.v[a]),
+        angular_velocity: v3(atoms.omega[a]),
+        surface: Surface::Sphere(atoms.radius[a]),
+        mass: atoms.mass[a],
+    };
+    let mut dropped = 0;
+    for (k, pr) in pairs.iter().enumerate() {
+        let (p, q) = (atom(k, pr.p)?, atom(k, pr.q)?);
+        let h = usize::try_from(pr.slot)
+            .ok()
+            .and_then(|s| hist.get_mut(s))
+            .ok_or(ModelError::Slot {
+                index: k,
+                slot: pr.slot,
+                len: nslots,
+            })?;
+        let m = (table.model_of)(kind(k, p)? * stride + kind(k, q)?)
+            .ok_or(ModelError::MissingModel(k))?;
+        if m.tier() != tier {
+            return Err(ModelError::MixedTiers);
+        }
+        check(k, atoms.radius[p], atoms.mass[p])?;
+        check(k, atoms.radius[q], atoms.mass[q])?;
+        let (bp, bq) = (body(p), body(q));
+        let finite = |b: &PairBody| {
+            b.position.is_finite() && b.velocity.is_finite() && b.angular_velocity.is_finite()
+        };
+        if !(finite(&bp) && finite(&bq)) {
+            return Err(ModelError::AtomState { index: k });
+        }
+        let non_finite = |value: f64| ModelError::History {
+            index: k,
+            source: LawError::OutOfRange {
+                name: "contact force (NaN or infinite history)",
+                value,
+                range: "finite",
+            },
+        };
+        let f = match ContactGeometry::sphere_sphere(
+            bp.position,
+            atoms.radius[p],
+            bq.position,
+            atoms.radius[q],
+        ) {
+            Some(g) => pair_force(m.constants(), &bp, &bq, &g, h, dt),
+            None => {
+                // Coincident centres: no normal; the contact is dropped (as Model::step).
+                *h = ContactHistory::default();
+                Default::default()
+            }
+        };
+        if !(f.force_p.is_finite() && f.torque_p.is_finite() && f.torque_q.is_finite()) {
+            return Err(non_finite(f.force_p.x));
+        }
+        if p < nlocal {
+            add(&mut acc.force[p], f.force_p);
+            add(&mut acc.torque[p], f.torque_p);
+        }
+        if q < nlocal {
+            add(&mut acc.force[q], -f.force_p);
+            add(&mut acc.torque[q], f.torque_q);
+        }
+        if let Some(out) = outputs.force_p.as_deref_mut() {
+            out[k] = [f.force_p.x, f.force_p.y, f.force_p.z];
+        }
+        if let Some(out) = outputs.touching.as_deref_mut() {
+            out[k] = u8::from(f.touching);
+        }
+        dropped += usize::from(!f.touching);
+    }
+    Ok(dropped)
+}
+
+#[inline(always)]
+fn v3(a: [f64; 3]) -> Vec3 {
+    Vec3::new(a[0], a[1], a[2])
+}
+
+#[inline(always)]
+fn add(acc: &mut [f64; 3], f: Vec3) {
+    acc[0] += f.x;
+    acc[1] += f.y;
+    acc[2] += f.z;
+}
+
+/// A sphere's radius and mass must be finite and > 0 (contact `k`).
+#[inline(always)]
+fn check(k: usize, radius: f64, mass: f64) -> Result<(), ModelError> {
+    if radius.is_finite() && radius > 0.0 && mass.is_finite() && mass > 0.0 {
+        Ok(())
+    } else {
+        Err(ModelError::Body {
+            index: k,
+            radius,
+            mass,
+        })
+    }
+}
