@@ -34,6 +34,9 @@ pub struct BedSpec {
     pub dt_fraction: f64,
     /// Seed of the lattice jitter, initial velocities and radii.
     pub seed: u64,
+    /// Periodic along z (no side walls at `z = 0` and `z = lz`): a slice of an infinitely wide
+    /// bed, e.g. under a wheel spanning the slice (plane strain).
+    pub periodic_z: bool,
 }
 
 impl Default for BedSpec {
@@ -50,6 +53,7 @@ impl Default for BedSpec {
             gravity: 9.81,
             dt_fraction: 0.2,
             seed: 12345,
+            periodic_z: false,
         }
     }
 }
@@ -125,7 +129,7 @@ impl BedSpec {
     }
 
     /// The engine with the grains on a lattice (random jitter, velocities and radii from the
-    /// seed), walls at `y = 0` and the four sides; material 0 the grains, material 1
+    /// seed), walls at `y = 0` and the four sides (two with [`BedSpec::periodic_z`]); material 0 the grains, material 1
     /// `boundary` (the rigid bodies' material).
     pub fn engine<T: TangentialLaw>(&self, boundary: Material) -> Result<Dem<T>, BedError> {
         let r = self.radius;
@@ -171,17 +175,23 @@ impl BedSpec {
             velocity: Vec3::ZERO,
             material: 0,
         };
-        let walls = [
+        let mut walls = vec![
             wall(Vec3::ZERO, Vec3::Y),
             wall(Vec3::ZERO, Vec3::X),
             wall(Vec3::new(lx, 0.0, 0.0), -Vec3::X),
-            wall(Vec3::ZERO, Vec3::Z),
-            wall(Vec3::new(0.0, 0.0, lz), -Vec3::Z),
         ];
+        let mut periodic = [None; 3];
+        if self.periodic_z {
+            periodic[2] = Some((0.0, lz));
+        } else {
+            walls.push(wall(Vec3::ZERO, Vec3::Z));
+            walls.push(wall(Vec3::new(0.0, 0.0, lz), -Vec3::Z));
+        }
         let cfg = DemConfig {
             dt: self.dt()?,
             skin: 0.2 * r,
             gravity: Vec3::new(0.0, -self.gravity, 0.0),
+            periodic,
             ..Default::default()
         };
         Ok(Dem::new(cfg, table, &ps, &walls)?)

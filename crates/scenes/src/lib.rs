@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod bed;
 pub mod cue_ball;
 pub mod free_rolling;
 pub mod friction_drive;
