@@ -8,6 +8,7 @@ mod plot;
 mod progress;
 mod ref_cmd;
 mod report_cmd;
+mod repose_cmd;
 mod run_cmd;
 mod triaxial_cmd;
 mod wheel_cmd;

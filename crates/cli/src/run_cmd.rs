@@ -78,6 +78,10 @@ pub enum RunCommand {
     /// A driven rigid wheel (Rapier cylinder) on a granular bed (creep-dem), coupled both ways
     /// (creep-bed); CSV on stdout: `t,slip,sinkage,drawbar_pull,torque` (s, -, m, N, N m).
     WheelOnSand(crate::wheel_cmd::WheelArgs),
+    /// The angle of repose of a collapsed column of spheres (creep-dem) for Coulomb only, creep
+    /// only and creep + rolling torque, against Zhou et al.'s (2002) DEM correlation; CSV on
+    /// stdout: `mu,rolling,creep,angle_deg,correlation_deg`.
+    Repose(crate::repose_cmd::ReposeArgs),
 }
 
 /// Built-in materials (creep-law's presets).
@@ -273,6 +277,7 @@ pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
             }
         }
         RunCommand::WheelOnSand(a) => crate::wheel_cmd::run(a, out)?,
+        RunCommand::Repose(a) => crate::repose_cmd::run(a, out)?,
         RunCommand::CueBall => {
             let r = cue_ball::run(Material::steel(), 2.0, 1.0 / 240.0)?;
             writeln!(out, "cue ball from 2 m/s, mu = 0.3, dt = 1/240 s")?;

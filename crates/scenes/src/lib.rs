@@ -15,6 +15,7 @@ pub mod impact;
 pub mod incline;
 mod measure;
 pub mod pile;
+pub mod repose;
 pub mod rolling_ball;
 pub mod rolling_effect;
 pub mod stats;
