@@ -22,6 +22,7 @@
 
 pub mod compliant;
 mod convert;
+mod creep3d;
 mod error;
 mod gap;
 mod hooks;
@@ -30,6 +31,7 @@ mod registry;
 mod rigid;
 mod rolling;
 mod store;
+mod wheel;
 mod world;
 
 pub use compliant::{

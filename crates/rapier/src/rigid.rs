@@ -68,18 +68,19 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use creep_law::kinematics::contact_rates;
-use creep_law::root::illinois;
 use creep_law::steady_law::SteadyLaw;
 use creep_law::{PairMaterial, Surface, Vec3, hertz, kalker};
 use rapier3d::geometry::NEW_CONTACT_BIT;
 use rapier3d::prelude::*;
 
 use crate::convert::{inverse_mass, motion, v3, vf};
+use crate::creep3d::{LawCache, RollFrame, solve_translation};
 use crate::error::PluginError;
 use crate::gap::rotation_gap_correction;
 use crate::registry::{Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of};
 use crate::rolling::{apply_rolling_impulse, rolling_torque};
 use crate::store::{ContactKey, ContactRecord, ContactStore};
+use crate::wheel::{Crowns, WheelContact, carter_creepage, line_half_width};
 
 /// Checks that Rapier's integration parameters suit the plugin.
 pub fn check_parameters(params: &IntegrationParameters) -> Result<(), PluginError> {
@@ -198,7 +199,18 @@ pub struct StepCounts {
 struct Inner {
     store: ContactStore,
     counts: StepCounts,
+    /// The 3-D creep laws by contact shape (crate::creep3d).
+    laws: LawCache,
+    /// The wheels' crown radii (crate::wheel).
+    crowns: Crowns,
 }
+
+/// Rounding ulps of the bodies' angular speeds below which a relative spin about the normal is
+/// taken as f32 noise (no spin creep): the solver resolves angular velocities to about
+/// `eps_f32 |w|`; 16 as for the tangential load's floor (crate::gap). Without it the noise
+/// spin of straight rolling drove the spin terms and the hard-case matrix's mass-ratio case
+/// exceeded its paired energy bound by 1.2 %.
+const SPIN_NOISE_ULPS: f64 = 16.0;
 
 /// The mark of a collider in its clearing step (see [`CreepHooks::update_activation`]): kept on
 /// the collider itself, not in the hooks, so that a copied world (`clone_physics` with fresh
@@ -245,6 +257,8 @@ impl CreepHooks {
             inner: Mutex::new(Inner {
                 store: ContactStore::default(),
                 counts: StepCounts::default(),
+                laws: LawCache::default(),
+                crowns: Crowns::default(),
             }),
         })
     }
@@ -260,6 +274,19 @@ impl CreepHooks {
     /// The settings.
     pub fn settings(&self) -> &CreepSettings {
         &self.settings
+    }
+
+    /// Gives a cylinder collider (a wheel) a crown radius `crown` \[m\] (finite, > 0), or
+    /// none (`None`: a line contact, Carter's law). A crowned wheel's contact is Hertz's ellipse
+    /// with the curvature sums `1/R` and `1/crown` (module `wheel` of this crate's sources;
+    /// README "Wheels"). A bad radius is [`PluginError::Setting`].
+    pub fn set_wheel_crown(
+        &mut self,
+        collider: ColliderHandle,
+        crown: Option<f64>,
+    ) -> Result<(), PluginError> {
+        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+        inner.crowns.set(collider, crown)
     }
 
     /// Prepares a step with its parameters (checks them). Called by [`crate::CreepPipeline`]
@@ -358,7 +385,9 @@ impl CreepHooks {
         let dt = self.dt;
         let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
         for (_, rec) in inner.store.records.iter() {
-            if rec.torque == Vec3::ZERO || rec.generation != inner.store.generation {
+            if (rec.torque == Vec3::ZERO && rec.spin_torque == Vec3::ZERO)
+                || rec.generation != inner.store.generation
+            {
                 continue;
             }
             apply_rolling_impulse(bodies, rec, dt);
@@ -455,7 +484,12 @@ fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
 impl PhysicsHooks for CreepHooks {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
         let mut inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
-        let Inner { store, counts } = &mut *inner;
+        let Inner {
+            store,
+            counts,
+            laws,
+            crowns,
+        } = &mut *inner;
         let (c1, c2) = (context.collider1, context.collider2);
         let (h1, h2) = (context.rigid_body1, context.rigid_body2);
         let bodies = context.bodies;
@@ -486,9 +520,11 @@ impl PhysicsHooks for CreepHooks {
             counts.quiet += n_contacts;
             return;
         }
+        // For Rapier's rotation gap a wheel (cylinder) turns about its axle like a sphere of its
+        // radius (crate::wheel); the contact law below sees its real shape.
         let surfaces = (
-            colliders.get(c1).and_then(rigid_surface_of),
-            colliders.get(c2).and_then(rigid_surface_of),
+            colliders.get(c1).and_then(gap_surface_of),
+            colliders.get(c2).and_then(gap_surface_of),
         );
         if self.settings.anchor_drift_correction {
             // Every registered pair, whatever its shapes and fidelity: Rapier's rotation gap
@@ -504,6 +540,30 @@ impl PhysicsHooks for CreepHooks {
                     rotation_gap_correction(&p_motion, a1, &q_motion, a2, n, dt, self.substeps);
                 sc.dist -= c as f32;
                 sc.tangent_velocity += vf(n * b);
+            }
+        }
+        let surfaces = (
+            colliders.get(c1).and_then(rigid_surface_of),
+            colliders.get(c2).and_then(rigid_surface_of),
+        );
+        // A cylinder on a flat collider: a wheel (crate::wheel).
+        let wheel_side = match surfaces {
+            (None, Some(Surface::Plane)) => Some(0),
+            (Some(Surface::Plane), None) => Some(1),
+            _ => None,
+        };
+        if let Some(side) = wheel_side {
+            let ctx = WheelCtx {
+                colliders: (c1, c2),
+                handles: (h1, h2),
+                materials: (m1, m2),
+                bodies,
+                colliders_set: colliders,
+                dt: self.dt,
+                settings: &self.settings,
+            };
+            if wheel_manifold(&ctx, rigid, side, store, counts, laws, crowns) {
+                return;
             }
         }
         let (Some(s1), Some(s2)) = surfaces else {
@@ -555,6 +615,7 @@ impl PhysicsHooks for CreepHooks {
 
             // Contact-torque rolling resistance (computed here, applied in end_step).
             rec.torque = Vec3::ZERO;
+            rec.spin_torque = Vec3::ZERO;
             if let Some(model) = rolling {
                 counts.rolling_torque += 1;
                 rec.torque = rolling_torque(
@@ -616,31 +677,74 @@ impl PhysicsHooks for CreepHooks {
                 q_meas
             };
             let noise = crate::gap::solver_noise_force(&p_motion, &q_motion, c, inv_m, dt);
-            let Some(q_hat) = q_star.try_normalize().filter(|_| q_star.length() > noise) else {
-                rec.q_used = Vec3::ZERO;
-                rec.target = Vec3::ZERO;
-                counts.coulomb_auto += 1;
-                continue;
-            };
             let k = if inv_m > 0.0 {
                 roll / (inv_m * dt)
             } else {
                 0.0
             };
             let law = SteadyLaw::with_c11(self.settings.creep_model, pair.nu, pair.c11);
-            let creepage = |q: f64| law.creepage_for_force(q, mu_p, pair.g, a);
-            let q_abs = solve_creep_force(q_star.length(), k, mu_p, &creepage);
-            let dq = 1e-6 * mu_p;
-            let gain = k * (creepage((q_abs + dq).min(mu_p)) - creepage((q_abs - dq).max(0.0)))
-                / (2.0 * dq);
+            // 3-D creep (crate::creep3d): the rolling frame, the spin's lateral force, the
+            // anisotropic implicit solve of the translation, the twisting moment.
+            let (Some(frame), Some(law3)) = (
+                RollFrame::new(rates.v_roll, n),
+                laws.get(1.0, pair.nu.clamp(0.0, 0.5)),
+            ) else {
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
+                counts.coulomb_auto += 1;
+                continue;
+            };
+            let coef = law3.coefficients();
+            // A relative spin within the f32 rounding of the bodies' angular velocities is
+            // noise, not spin (as the tangential load's floor, crate::gap): no spin creep.
+            let w_scale = p_motion.angular_velocity.length() + q_motion.angular_velocity.length();
+            let w_twist =
+                if rates.w_twist.abs() > SPIN_NOISE_ULPS * f64::from(f32::EPSILON) * w_scale {
+                    rates.w_twist
+                } else {
+                    0.0
+                };
+            let phi_n = w_twist / roll * pair.g * a * a * a / mu_p;
+            let spin = if phi_n != 0.0 {
+                law3.loads(0.0, 0.0, phi_n)
+            } else {
+                Default::default()
+            };
+            let q_s = frame.y * (spin.fy * mu_p);
+            let q_star_t = q_star - q_s;
+            if !(q_star_t.length() > noise) {
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
+                counts.coulomb_auto += 1;
+                continue;
+            }
+            let mu_t = (mu_p - spin.fy.abs() * mu_p).max(0.0);
+            let creepage = |q: f64| law.creepage_for_force(q, mu_t, pair.g, a);
+            let slope0 = law.creepage_for_force(1.0, f64::INFINITY, pair.g, a);
+            let r = coef.c11 / coef.c22;
+            let (q_t, ux, uy) =
+                solve_translation(frame.split(q_star_t), k, r, mu_t, slope0, &creepage);
+            let dq = 1e-6 * mu_t;
+            let gain =
+                k * (creepage((q_t + dq).min(mu_t)) - creepage((q_t - dq).max(0.0))) / (2.0 * dq);
             counts.max_loop_gain = counts.max_loop_gain.max(gain);
-            let q_used = q_hat * q_abs;
+            let f = creepage(q_t);
+            let (cx, cy) = (f * ux, f * r * uy);
+            let q_used = frame.join(q_t * ux, q_t * uy) + q_s;
             rec.q_used = q_used;
-            let slip = creepage(q_abs) * roll;
-            let target = q_hat * slip;
+            let target = frame.join(cx, cy) * roll;
             rec.target = target;
+            // Twisting moment on p about n (Kalker's Mz), applied after the step as an angular
+            // impulse that never reverses the relative spin (crate::rolling).
+            let mz = if phi_n != 0.0 || cy != 0.0 {
+                let scale = pair.g * a * a / mu_p;
+                law3.loads(cx * scale, cy * scale, phi_n).mz * mu_p * a
+            } else {
+                0.0
+            };
+            rec.spin_torque = n * (-mz);
             counts.creep += 1;
-            counts.creep_power += q_used.dot(target).max(0.0);
+            counts.creep_power += (q_used.dot(target) + mz * w_twist).max(0.0);
             sc.tangent_velocity += vf(target);
         }
     }
@@ -658,23 +762,207 @@ fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
     (t1, d.cross(t1))
 }
 
-/// Solves `q + k F(q) = q_star` for `0 <= q <= mu P` by the Illinois variant of regula falsi
-/// (bracketed, superlinear), with `F(q)` the steady creepage of the chosen law at force `q`
-/// and `k = m_t |v_roll| / dt` \[N\]: the force a rolling contact of effective mass `m_t`
-/// transmits when its slip target follows the force it transmits. `F` increases, so the root is
-/// unique; beyond `mu P` the contact slides at `mu P`.
-fn solve_creep_force(q_star: f64, k: f64, mu_p: f64, creepage: &dyn Fn(f64) -> f64) -> f64 {
-    let hi0 = q_star.min(mu_p);
-    if !(k > 0.0) || !(hi0 > 0.0) {
-        return hi0.max(0.0);
-    }
-    let h = |q: f64| q + k * creepage(q) - q_star;
-    let (fa, fb) = (h(0.0), h(hi0));
-    if fb <= 0.0 {
-        return hi0;
-    }
-    illinois(h, (0.0, fa), (hi0, fb), 100, |_, fc, k| {
-        (k.b - k.a).abs() <= 1e-13 * hi0 || fc == 0.0
+/// The surface of a collider for the rotation-gap correction: [`rigid_surface_of`], and a
+/// cylinder as a sphere of its radius (a wheel turning about its axle).
+fn gap_surface_of(co: &Collider) -> Option<Surface> {
+    rigid_surface_of(co).or_else(|| {
+        co.shape()
+            .as_cylinder()
+            .map(|c| Surface::Sphere(f64::from(c.radius)))
     })
-    .root_or_midpoint()
+}
+
+/// What the wheel path needs of the hook's call.
+struct WheelCtx<'a> {
+    colliders: (ColliderHandle, ColliderHandle),
+    handles: (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
+    materials: (
+        &'a crate::registry::CreepMaterial,
+        &'a crate::registry::CreepMaterial,
+    ),
+    bodies: &'a RigidBodySet,
+    colliders_set: &'a ColliderSet,
+    dt: f64,
+    settings: &'a CreepSettings,
+}
+
+/// The wheel path of the hook (crate::wheel): one record and one slip target for the whole
+/// manifold of a cylinder (`side` 0: collider 1, 1: collider 2) on a flat collider. Returns
+/// false when the collider is not a wheel (the caller then falls back to Coulomb).
+fn wheel_manifold(
+    ctx: &WheelCtx,
+    rigid: &mut ModifiableManifold,
+    side: usize,
+    store: &mut ContactStore,
+    counts: &mut StepCounts,
+    laws: &mut LawCache,
+    crowns: &mut Crowns,
+) -> bool {
+    let (c1, c2) = ctx.colliders;
+    let (h1, h2) = ctx.handles;
+    let (m1, m2) = ctx.materials;
+    let wc = if side == 0 { c1 } else { c2 };
+    let n_contacts = rigid.solver_contacts.len();
+    let Some(co) = ctx.colliders_set.get(wc) else {
+        return false;
+    };
+    let Some(cyl) = co.shape().as_cylinder() else {
+        return false;
+    };
+    let radius = f64::from(cyl.radius);
+    let wheel_surface = Surface::Sphere(radius);
+    let (s1, s2) = if side == 0 {
+        (wheel_surface, Surface::Plane)
+    } else {
+        (Surface::Plane, wheel_surface)
+    };
+    let mu = f64::from(*rigid.friction);
+    let Ok(pair) =
+        PairMaterial::new(&m1.material, &m2.material, s1, s2).and_then(|p| p.with_friction(mu))
+    else {
+        counts.coulomb_unsupported += n_contacts;
+        return true;
+    };
+    let Some(wheel) = crowns.wheel(wc, co, pair.e_star) else {
+        return false;
+    };
+    let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
+    if fidelity == Fidelity::Coulomb {
+        counts.coulomb_requested += n_contacts;
+        return true;
+    }
+    let dt = ctx.dt;
+    let n = v3(*rigid.normal);
+    // The whole manifold: total normal force, contact centre.
+    let key = ContactKey {
+        collider1: c1,
+        collider2: c2,
+        feature1: u32::MAX,
+        feature2: u32::MAX,
+    };
+    let rec = store.touch(key);
+    let n_prev = if rec.normal == Vec3::ZERO {
+        n
+    } else {
+        rec.normal
+    };
+    let (t1, t2) = solver_tangents(n_prev);
+    let (mut impulse, mut tangent, mut centre, mut count) = (0.0, Vec3::ZERO, Vec3::ZERO, 0.0);
+    for sc in rigid.solver_contacts.iter() {
+        let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+        let Some(point) = rigid.manifold.points.get(cid) else {
+            continue;
+        };
+        impulse += f64::from(point.data.impulse);
+        let ti = point.data.tangent_impulse;
+        tangent += t1 * f64::from(ti.x) + t2 * f64::from(ti.y);
+        centre += (v3(sc.anchor1) + v3(sc.anchor2)) * 0.5;
+        count += 1.0;
+    }
+    rec.bodies = (h1, h2);
+    rec.torque = Vec3::ZERO;
+    rec.spin_torque = Vec3::ZERO;
+    rec.normal = n;
+    let p_force = impulse / dt;
+    rec.p = p_force;
+    if !(count > 0.0) {
+        rec.q_used = Vec3::ZERO;
+        rec.target = Vec3::ZERO;
+        return true;
+    }
+    let c = centre * (1.0 / count);
+    let p_motion = motion(ctx.bodies, h1, c - n, s1);
+    let q_motion = motion(ctx.bodies, h2, c + n, s2);
+    let rates = contact_rates(&p_motion, &q_motion, c, n);
+    // The wheel's frame: x along the heading n x axle, with the rolling.
+    let heading = n.cross(wheel.axle).try_normalize();
+    let frame = heading.map(|h| {
+        let x = if h.dot(rates.v_roll) > 0.0 { -h } else { h };
+        RollFrame { x, y: n.cross(x) }
+    });
+    let roll = frame.map_or(0.0, |f| rates.v_roll.dot(f.x).abs());
+    let Some(frame) = frame.filter(|_| p_force > 0.0 && roll > 0.0 && mu > 0.0) else {
+        rec.q_used = Vec3::ZERO;
+        rec.target = Vec3::ZERO;
+        counts.coulomb_auto += n_contacts;
+        return true;
+    };
+    let mu_p = mu * p_force;
+    let g = pair.g;
+    // The law along x and the lateral ratio (module docs of crate::wheel).
+    let (law3, line) = match wheel.contact {
+        WheelContact::Crowned { a1, b1 } => {
+            let s = p_force.cbrt();
+            let (a, b) = (a1 * s, b1 * s);
+            let Some(law3) = laws.get(a / b, pair.nu.clamp(0.0, 0.5)).copied() else {
+                counts.coulomb_unsupported += n_contacts;
+                rec.q_used = Vec3::ZERO;
+                rec.target = Vec3::ZERO;
+                return true;
+            };
+            (Some((law3, a * b)), None)
+        }
+        WheelContact::Line { width } => (
+            None,
+            Some(line_half_width(p_force, width, radius, pair.e_star)),
+        ),
+    };
+    let creepage = |q: f64| -> f64 {
+        match (law3, line) {
+            (Some((law3, c2)), _) => {
+                let f = (q / mu_p).clamp(0.0, 1.0 - 1e-9);
+                law3.creepages_for_force(f, 0.0).map_or(0.0, |(x, _)| x) * mu_p / (g * c2)
+            }
+            (None, Some(a)) => carter_creepage(q, mu_p, p_force, a, radius),
+            _ => 0.0,
+        }
+    };
+    let (slope0, r) = match (law3, line) {
+        (Some((law3, c2)), _) => {
+            let k = law3.coefficients();
+            (1.0 / (g * c2 * k.c11), k.c11 / k.c22)
+        }
+        (None, Some(a)) => (a / (2.0 * radius * p_force), 1.0 / (1.0 - pair.nu)),
+        _ => (0.0, 1.0),
+    };
+    if fidelity == Fidelity::Auto && creepage(mu_p) * roll < ctx.settings.auto_tolerance {
+        counts.coulomb_auto += n_contacts;
+        rec.q_used = Vec3::ZERO;
+        rec.target = Vec3::ZERO;
+        return true;
+    }
+    let q_meas = tangent.reject(n) * (1.0 / dt);
+    let tau_prev = rec.target.reject(n);
+    let probe = (q_meas + tau_prev).try_normalize().unwrap_or(frame.x);
+    let inv_m = inverse_mass(ctx.bodies, [h1, h2], vf(c), vf(probe), vf(probe));
+    let q_star = if inv_m > 0.0 {
+        q_meas + tau_prev * (1.0 / (inv_m * dt))
+    } else {
+        q_meas
+    };
+    let noise = crate::gap::solver_noise_force(&p_motion, &q_motion, c, inv_m, dt);
+    if !(q_star.length() > noise) {
+        rec.q_used = Vec3::ZERO;
+        rec.target = Vec3::ZERO;
+        counts.coulomb_auto += n_contacts;
+        return true;
+    }
+    let k = if inv_m > 0.0 {
+        roll / (inv_m * dt)
+    } else {
+        0.0
+    };
+    let (q_t, ux, uy) = solve_translation(frame.split(q_star), k, r, mu_p, slope0, &creepage);
+    let f = creepage(q_t);
+    let (cx, cy) = (f * ux, f * r * uy);
+    let q_used = frame.join(q_t * ux, q_t * uy);
+    let target = frame.join(cx, cy) * roll;
+    rec.q_used = q_used;
+    rec.target = target;
+    counts.creep += n_contacts;
+    counts.creep_power += q_used.dot(target).max(0.0);
+    for sc in rigid.solver_contacts.iter_mut() {
+        sc.tangent_velocity += vf(target);
+    }
+    true
 }

@@ -8,10 +8,18 @@ use rapier3d::prelude::*;
 use crate::convert::{inverse_rotational_inertia, v3, vf};
 use crate::store::ContactRecord;
 
-/// Applies `M dt` on body 2 and `-M dt` on body 1, shortened so that it brings the relative
-/// rolling angular velocity at most to zero, never past it.
+/// Applies the contact's rolling torque and its spin-creep moment ([`apply_capped_impulse`]
+/// each).
 pub(crate) fn apply_rolling_impulse(bodies: &mut RigidBodySet, rec: &ContactRecord, dt: f64) {
-    let Some(axis) = rec.torque.try_normalize() else {
+    apply_capped_impulse(bodies, rec, rec.torque, dt);
+    apply_capped_impulse(bodies, rec, rec.spin_torque, dt);
+}
+
+/// Applies `M dt` on body 2 and `-M dt` on body 1, shortened so that it brings the relative
+/// angular velocity along `M` at most to zero, never past it (a torque that would speed the
+/// relative rotation up is not applied).
+fn apply_capped_impulse(bodies: &mut RigidBodySet, rec: &ContactRecord, torque: Vec3, dt: f64) {
+    let Some(axis) = torque.try_normalize() else {
         return;
     };
     let handles = [rec.bodies.0, rec.bodies.1];
@@ -26,7 +34,7 @@ pub(crate) fn apply_rolling_impulse(bodies: &mut RigidBodySet, rec: &ContactReco
             .unwrap_or_default()
     };
     let w_rel = (w_of(rec.bodies.1, bodies) - w_of(rec.bodies.0, bodies)).dot(axis);
-    let mut impulse = rec.torque.length() * dt;
+    let mut impulse = torque.length() * dt;
     if w_rel < 0.0 {
         impulse = impulse.min(-w_rel / inv_i);
     } else {

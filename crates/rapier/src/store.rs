@@ -30,6 +30,9 @@ pub struct ContactRecord {
     pub rolling: RollingState,
     /// Torque on body 2 computed this step by the rolling model [N m] (`-torque` on body 1).
     pub torque: Vec3,
+    /// Twisting moment on body 2 about the normal computed this step by the 3-D creep law
+    /// [N m] (spin creep, crate module `creep3d`; `-spin_torque` on body 1).
+    pub spin_torque: Vec3,
     /// Bodies of the contact, for applying the torque.
     pub bodies: (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
     /// Normal force of the previous step, total normal impulse / dt \[N\].

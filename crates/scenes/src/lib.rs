@@ -20,5 +20,7 @@ pub mod rolling_ball;
 pub mod rolling_effect;
 pub mod stats;
 pub mod triaxial;
+pub mod wheels;
+pub mod wheels_spin;
 
 pub use measure::{RollingMeter, SceneError, sphere_mass};

@@ -1,0 +1,238 @@
+//! Three-dimensional creep of one rigid contact: the rolling frame, the anisotropic implicit
+//! solve (longitudinal and lateral creep with their own coefficients) and the spin's lateral
+//! force and twisting moment (issue #17, part 3).
+//!
+//! # Frame and creepages (Kalker 1967; Kalker 1990, *Three-dimensional elastic bodies in rolling
+//! contact*, §1.2; signs of creep-reference's `bem` module)
+//!
+//! `z = n` (from p to q); `x` is the direction in which the contact moves over both surfaces,
+//! `x = -v_roll/|v_roll|` (Kuhn & Bagi's `v_roll` is the mean surface velocity relative to the
+//! contact point); `y = z × x`. With `V = |v_roll|`:
+//!
+//! `xi = v_disp . x / V`, `eta = v_disp . y / V` (creepage of q relative to p, \[-\]),
+//! `phi = (w_q - w_p) . n / V` (spin creepage \[1/m\]).
+//!
+//! Linear theory (Kalker 1967, project signs: force on p, moment on p about `n`):
+//! `Fx = G c^2 C11 xi`, `Fy = G c^2 C22 eta + G c^3 C23 phi`, `Mz = -G c^3 C23 eta + G c^4 C33 phi`,
+//! `c = sqrt(a b)`.
+//!
+//! # The law the rigid regime uses
+//!
+//! * **Translation** (`Q_t`, the force less the spin's): at zero spin Kalker's simplified theory
+//!   (Kalker 1982, "A fast algorithm for the simplified theory of rolling contact", Vehicle
+//!   System Dynamics 11; FASTSIM) builds the traction from the flexibilities `L1 = 8a/(3 G C11)`,
+//!   `L2 = 8a/(3 G C22)`, so the force is parallel to `(xi/L1, eta/L2)` and saturates in its
+//!   magnitude alone. The creepage for a force `Q_t` is therefore
+//!   `(xi, eta) = F(|Q_t|) (u_x, (C11/C22) u_y)`, `u = Q_t/|Q_t|`, with `F` the pair's steady law
+//!   along the rolling direction (`SteadyLaw`: Kalker's `F_ss` or the fitted law, circular
+//!   contacts) or, for a wheel, its own law (crate module `wheel`). It is Kalker's linear theory
+//!   at small force in every direction and the configured law exactly along `x`.
+//! * **Spin**: the lateral force of pure spin `f_s(phi_n)` and the moment come from creep-law's
+//!   fast 3-D law (`Steady3d`, a fit to the boundary elements, Kalker's `C23`, `C33` at small
+//!   spin); the spin's force takes its share of the friction capacity (`mu P - |Q_s|` is left to
+//!   the translation), and the moment `Mz(xi_n, eta_n, phi_n)` is applied after the step as an
+//!   angular impulse about `n` that never reverses the relative spin (as the rolling torque).
+//!
+//! # The implicit solve
+//!
+//! As for the circular law (crate module `rigid`), the force the solver would transmit for a
+//! target `tau` is `Q* - (m_t/dt) tau`; with `tau = V (xi, eta)` in the frame and
+//! `K = m_t V/dt`, the translation force solves `Q_t + K F(|Q_t|) A u = Q*_t`, `A = diag(1, r)`,
+//! `r = C11/C22`, `Q*_t = Q* - Q_s`. Written with `q = |Q_t|`: `u = (X/e_x, Y/e_y)/q`,
+//! `e_x = 1 + K F(q)/q`, `e_y = 1 + r K F(q)/q`, and `|u| = 1` is the scalar equation
+//! `q = sqrt((X/e_x)^2 + (Y/e_y)^2)`, whose right side falls as `q` grows (`F(q)/q` rises:
+//! the creepage is convex in the force), so the root is unique; in steady state it returns the
+//! measured force, and for `r = 1` it is the circular solve `q + K F(q) = |Q*|`.
+
+use creep_law::Vec3;
+use creep_law::root::illinois;
+use creep_law::steady3d::Steady3d;
+
+/// The rolling frame of a contact: `x` (the contact's travel over the surfaces) and `y = n × x`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct RollFrame {
+    /// Unit vector along the rolling direction.
+    pub x: Vec3,
+    /// Unit vector across it, `n × x`.
+    pub y: Vec3,
+}
+
+impl RollFrame {
+    /// The frame from Kuhn & Bagi's rolling velocity (non-zero, tangent) and the normal.
+    pub fn new(v_roll: Vec3, n: Vec3) -> Option<Self> {
+        let x = (-v_roll).try_normalize()?;
+        Some(Self { x, y: n.cross(x) })
+    }
+    /// Components of a tangent vector in the frame.
+    #[inline]
+    pub fn split(&self, v: Vec3) -> (f64, f64) {
+        (v.dot(self.x), v.dot(self.y))
+    }
+    /// The world vector of frame components.
+    #[inline]
+    pub fn join(&self, x: f64, y: f64) -> Vec3 {
+        self.x * x + self.y * y
+    }
+}
+
+/// The translation force of the implicit solve (module docs): returns `(q, u_x, u_y)`, the
+/// magnitude `q` in `[0, q_max]` and the unit direction in the frame, for the force estimate
+/// `(x_star, y_star)` \[N\], `k = m_t V/dt` \[N\], the creepage law `creepage(q)` \[-\] along
+/// the rolling direction with initial slope `slope0 = dF/dq(0)` \[1/N\], the lateral ratio
+/// `r = C11/C22` (in `(0, 1]` for `nu >= 0`) and the capacity `q_max` \[N\] (beyond it the
+/// contact slides at `q_max`).
+pub(crate) fn solve_translation(
+    (x_star, y_star): (f64, f64),
+    k: f64,
+    r: f64,
+    q_max: f64,
+    slope0: f64,
+    creepage: &dyn Fn(f64) -> f64,
+) -> (f64, f64, f64) {
+    let q_star = x_star.hypot(y_star);
+    if !(q_star > 0.0) {
+        return (0.0, 1.0, 0.0);
+    }
+    let hi0 = q_star.min(q_max);
+    if !(k > 0.0) || !(hi0 > 0.0) {
+        return (hi0.max(0.0), x_star / q_star, y_star / q_star);
+    }
+    // F(q)/q, continuous at 0 with the law's slope.
+    let ratio = |q: f64| {
+        if q > 0.0 { creepage(q) / q } else { slope0 }
+    };
+    let dir = |q: f64| {
+        let f = k * ratio(q);
+        (x_star / (1.0 + f), y_star / (1.0 + r * f))
+    };
+    let h = |q: f64| {
+        let (ux, uy) = dir(q);
+        q - ux.hypot(uy)
+    };
+    let (fa, fb) = (h(0.0), h(hi0));
+    let q = if fb <= 0.0 {
+        hi0
+    } else {
+        illinois(h, (0.0, fa), (hi0, fb), 100, |_, fc, kb| {
+            (kb.b - kb.a).abs() <= 1e-13 * hi0 || fc == 0.0
+        })
+        .root_or_midpoint()
+    };
+    let (ux, uy) = dir(q);
+    let norm = ux.hypot(uy);
+    if norm > 0.0 {
+        (q, ux / norm, uy / norm)
+    } else {
+        (q, x_star / q_star, y_star / q_star)
+    }
+}
+
+/// The per-shape 3-D laws of a step, looked up by `(a/b, nu)` in a short list (no hashing, no
+/// allocation once every shape has been seen): building a [`Steady3d`] interpolates Kalker's
+/// table and the fitted constants and costs far more than one evaluation.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LawCache {
+    entries: Vec<(f64, f64, Steady3d)>,
+    next: usize,
+}
+
+/// Largest number of distinct `(a/b, nu)` laws kept (replaced round-robin beyond).
+const LAW_CACHE_LEN: usize = 32;
+
+impl LawCache {
+    /// The law at `(ab, nu)`, built on first use; `None` outside Kalker's table.
+    pub fn get(&mut self, ab: f64, nu: f64) -> Option<&Steady3d> {
+        let found = self
+            .entries
+            .iter()
+            .position(|(a, n, _)| *a == ab && *n == nu);
+        let i = match found {
+            Some(i) => i,
+            None => {
+                let law = Steady3d::new(ab, nu).ok()?;
+                if self.entries.len() < LAW_CACHE_LEN {
+                    self.entries.push((ab, nu, law));
+                    self.entries.len() - 1
+                } else {
+                    let i = self.next;
+                    self.next = (self.next + 1) % LAW_CACHE_LEN;
+                    self.entries[i] = (ab, nu, law);
+                    i
+                }
+            }
+        };
+        Some(&self.entries[i].2)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kalker(q: f64) -> f64 {
+        // F_ss of a circle with mu P = 1, G a^2 C11 = 1: 3 (1 - (1 - q)^(1/3)).
+        3.0 * (1.0 - (1.0 - q.min(1.0)).cbrt())
+    }
+
+    #[test]
+    fn frame_is_right_handed_with_x_against_v_roll() {
+        let n = Vec3::new(0.0, -1.0, 0.0);
+        let f = RollFrame::new(Vec3::new(-2.0, 0.0, 0.0), n).unwrap();
+        assert_eq!(f.x, Vec3::new(1.0, 0.0, 0.0));
+        assert!((f.x.cross(f.y) - n).length() < 1e-15);
+        let v = Vec3::new(0.3, 0.0, -0.7);
+        let (a, b) = f.split(v);
+        assert!((f.join(a, b) - v).length() < 1e-15);
+        assert!(RollFrame::new(Vec3::ZERO, n).is_none());
+    }
+
+    #[test]
+    fn isotropic_solve_is_the_circular_one() {
+        // r = 1: q + k F(q) = |Q*| along Q*.
+        let (k, qs) = (2.0, (0.3, -0.4));
+        let (q, ux, uy) = solve_translation(qs, k, 1.0, 1.0, 1.0, &kalker);
+        assert!((q + k * kalker(q) - 0.5).abs() < 1e-12, "{q}");
+        assert!((ux - 0.6).abs() < 1e-12 && (uy + 0.8).abs() < 1e-12);
+    }
+
+    #[test]
+    fn anisotropic_solve_satisfies_its_equation_and_its_fixed_point() {
+        let (k, r) = (3.0, 3.40 / 3.98);
+        for qs in [(0.2, 0.1), (-0.05, 0.3), (0.0, 0.6), (0.9, 0.9)] {
+            let (q, ux, uy) = solve_translation(qs, k, r, 1.0, 1.0, &kalker);
+            assert!((ux.hypot(uy) - 1.0).abs() < 1e-12);
+            if q < 1.0 {
+                // Q + K F A u = Q*.
+                let f = kalker(q);
+                let ex = q * ux + k * f * ux - qs.0;
+                let ey = q * uy + k * f * r * uy - qs.1;
+                assert!(ex.abs() < 1e-10 && ey.abs() < 1e-10, "{qs:?}: {ex} {ey}");
+            } else {
+                assert_eq!(q, 1.0);
+            }
+        }
+        // Fixed point: a force Q with its own target gives Q back.
+        let (q0, u0) = (0.4, (0.6, 0.8));
+        let f = kalker(q0);
+        let qs = (q0 * u0.0 + k * f * u0.0, q0 * u0.1 + k * f * r * u0.1);
+        let (q, ux, uy) = solve_translation(qs, k, r, 1.0, 1.0, &kalker);
+        assert!((q - q0).abs() < 1e-10 && (ux - 0.6).abs() < 1e-9 && (uy - 0.8).abs() < 1e-9);
+        // The lateral direction creeps less per force (r < 1): the force turns towards y.
+        let (_, ux, uy) = solve_translation((0.3, 0.3), k, r, 1.0, 1.0, &kalker);
+        assert!(uy > ux, "{ux} {uy}");
+    }
+
+    #[test]
+    fn law_cache_reuses_and_refuses() {
+        let mut c = LawCache::default();
+        let a = *c.get(1.0, 0.25).unwrap();
+        let b = *c.get(1.0, 0.25).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(c.entries.len(), 1);
+        assert!(c.get(20.0, 0.25).is_none());
+        for i in 0..40 {
+            c.get(0.2 + 0.01 * f64::from(i), 0.3).unwrap();
+        }
+        assert_eq!(c.entries.len(), LAW_CACHE_LEN);
+    }
+}

@@ -1,0 +1,188 @@
+//! Wheels in the rigid regime (issue #17, part 3): a cylinder collider rolling on its round face
+//! on a flat collider (cuboid, half-space, mesh, heightfield, convex polyhedron) gets the creep
+//! law of its contact, longitudinal and lateral, through the implicit solve of crate module
+//! `creep3d`.
+//!
+//! # Geometry
+//!
+//! Rapier's cylinder has its axis along the collider's local `y`; the wheel's radius `R` is the
+//! cylinder's, its width `L` twice the half-height. The rolling frame is the wheel's own: `x`
+//! along the heading `n × e` (`e` the axle), oriented with the rolling, `y = n × x`; the rolling
+//! speed is `V = |v_roll . x|` (Kuhn & Bagi's `v_roll` at the contact centre, the mean of the
+//! manifold's solver contacts), so a wheel at slip angle `alpha` has `eta = tan(alpha)`.
+//!
+//! * **Crowned wheel** (a crown radius `R_c` given with [`crate::CreepHooks::set_wheel_crown`]):
+//!   Hertz's elliptic contact with the curvature sums `kx = 1/R`, `ky = 1/R_c` (Hertz 1882;
+//!   Johnson 1985, §4.2; creep-law's `elliptic`), semi-axes `a` (rolling direction) and `b`, both
+//!   `~ P^(1/3)`; the law along `x` is creep-law's fast 3-D law at zero spin (`Steady3d`, fitted
+//!   to the boundary elements of Kalker's exact theory, Kalker 1967/1990), normalised with
+//!   `c = sqrt(a b)`; the lateral ratio is Kalker's `C11/C22` at `a/b` (Kalker 1990, Table E.3).
+//! * **Line contact** (no crown): Carter's two-dimensional solution (Carter 1926; Johnson
+//!   1985, §8.2): half-width `a = sqrt(4 (P/L) R/(pi E*))` (Johnson 1985, eq. 4.43) and
+//!   `xi = (mu a/R)(1 - sqrt(1 - Q/(mu P)))`; laterally the antiplane compliance of the same
+//!   strip, `C11/C22 = 1/(1 - nu)` (Johnson 1985, §8.3: the transverse creep of a line contact
+//!   is `1/(1 - nu)` times softer; Kalker's table tends to it as `a/b -> 0`: 1.31 and 1.92 at
+//!   `a/b = 0.1`, `nu = 0.25, 0.5`, against 1.33 and 2).
+//!
+//! The same target slip is set on every solver contact of the manifold (a rigid wheel without
+//! spin slips alike at both ends of its line), so Rapier's two-point friction still resists a
+//! twist of the wheel about the normal as Coulomb would: spin creep of wheels is not modelled.
+//! Rapier's rotation gap (crate module `gap`) is corrected for balls only; a fast wheel at long
+//! steps sinks and loses energy as in plain Rapier.
+
+use creep_law::elliptic::elliptic_hertz;
+use rapier3d::prelude::*;
+
+use crate::error::PluginError;
+
+/// The shape of a wheel's contact law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum WheelContact {
+    /// Crowned wheel: elliptic semi-axes at unit load, `a = a1 P^(1/3)`, `b = b1 P^(1/3)` \[m\].
+    Crowned {
+        /// `a` at 1 N.
+        a1: f64,
+        /// `b` at 1 N.
+        b1: f64,
+    },
+    /// Line contact of width `width` \[m\].
+    Line {
+        /// Contact length along the axle \[m\].
+        width: f64,
+    },
+}
+
+/// A wheel: a cylinder collider's radius, width and crown.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Wheel {
+    /// Rolling radius \[m\].
+    pub radius: f64,
+    /// Axle direction in the world (unit).
+    pub axle: creep_law::Vec3,
+    /// Its contact law's shape.
+    pub contact: WheelContact,
+}
+
+/// Crown radii of the wheels, by collider index (no hashing).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Crowns {
+    slots: Vec<Option<(ColliderHandle, f64)>>,
+    /// Elliptic Hertz at unit load by `(kx, ky, E*)`: `(a1, b1)` (a short list).
+    hertz: Vec<([f64; 3], (f64, f64))>,
+}
+
+impl Crowns {
+    /// Sets (or clears) a collider's crown radius \[m\] (finite, > 0).
+    pub fn set(&mut self, collider: ColliderHandle, crown: Option<f64>) -> Result<(), PluginError> {
+        if let Some(rc) = crown
+            && !(rc.is_finite() && rc > 0.0)
+        {
+            return Err(PluginError::Setting {
+                name: "wheel crown radius",
+                value: rc,
+                why: "must be finite and > 0 [m]",
+            });
+        }
+        let i = collider.into_raw_parts().0 as usize;
+        if i >= self.slots.len() {
+            self.slots.resize(i + 1, None);
+        }
+        self.slots[i] = crown.map(|rc| (collider, rc));
+        Ok(())
+    }
+
+    /// The crown radius of a collider, if set.
+    pub fn get(&self, collider: ColliderHandle) -> Option<f64> {
+        match self.slots.get(collider.into_raw_parts().0 as usize) {
+            Some(Some((h, rc))) if *h == collider => Some(*rc),
+            _ => None,
+        }
+    }
+
+    /// The wheel of a cylinder collider (`None` for other shapes), with the contact modulus
+    /// `e_star` \[Pa\] of its pair for the elliptic contact.
+    pub fn wheel(&mut self, handle: ColliderHandle, co: &Collider, e_star: f64) -> Option<Wheel> {
+        let cyl = co.shape().as_cylinder()?;
+        let radius = f64::from(cyl.radius);
+        let axle = crate::convert::v3(co.rotation() * Vector::Y);
+        let contact = match self.get(handle) {
+            Some(rc) => {
+                let key = [1.0 / radius, 1.0 / rc, e_star];
+                let (a1, b1) = match self.hertz.iter().find(|(k, _)| *k == key) {
+                    Some((_, v)) => *v,
+                    None => {
+                        let h = elliptic_hertz(key[0], key[1], 1.0, e_star).ok()?;
+                        if self.hertz.len() >= 32 {
+                            self.hertz.remove(0);
+                        }
+                        self.hertz.push((key, (h.a, h.b)));
+                        (h.a, h.b)
+                    }
+                };
+                WheelContact::Crowned { a1, b1 }
+            }
+            None => WheelContact::Line {
+                width: 2.0 * f64::from(cyl.half_height),
+            },
+        };
+        Some(Wheel {
+            radius,
+            axle,
+            contact,
+        })
+    }
+}
+
+/// Carter's creepage \[-\] at force `q` \[N\] below `mu_p` \[N\] for a line contact of
+/// half-width `a` \[m\] and rolling radius `r` \[m\]: `(mu a/R)(1 - sqrt(1 - q/(mu P)))` (Carter
+/// 1926; Johnson 1985, eq. 8.38), written without cancellation as
+/// `(a/R) (q/P) / (1 + sqrt(1 - q/(mu P)))`, `q` clamped to `[0, mu P]`.
+pub(crate) fn carter_creepage(q: f64, mu_p: f64, p: f64, a: f64, r: f64) -> f64 {
+    if !(mu_p > 0.0 && p > 0.0) {
+        return 0.0;
+    }
+    let q = q.clamp(0.0, mu_p);
+    (a / r) * (q / p) / (1.0 + (1.0 - q / mu_p).sqrt())
+}
+
+/// Hertz's half-width \[m\] of a line contact: `a = sqrt(4 (P/L) R/(pi E*))` (Johnson 1985,
+/// eq. 4.43) for the load `p` \[N\] over the length `width` \[m\], radius `r` \[m\], contact
+/// modulus `e_star` \[Pa\].
+pub(crate) fn line_half_width(p: f64, width: f64, r: f64, e_star: f64) -> f64 {
+    (4.0 * (p / width) * r / (std::f64::consts::PI * e_star)).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn carter_matches_its_closed_form() {
+        let (mu_p, p, a, r) = (0.9, 1.0, 1e-3, 0.05);
+        for s in [0.0, 0.1, 0.5, 0.9, 1.0] {
+            let want = (0.9 * a / r) * (1.0 - (1.0 - s).sqrt());
+            let got = carter_creepage(s * mu_p, mu_p, p, a, r);
+            assert!(
+                (got - want).abs() <= 1e-15 + 1e-12 * want,
+                "{s}: {got} {want}"
+            );
+        }
+        // Linear slope: xi = a q/(2 R P).
+        let q = 1e-9;
+        assert!((carter_creepage(q, mu_p, p, a, r) / (a * q / (2.0 * r * p)) - 1.0).abs() < 1e-8);
+        assert_eq!(carter_creepage(0.5, 0.0, p, a, r), 0.0);
+    }
+
+    #[test]
+    fn crowns_are_validated_and_found() {
+        let mut c = Crowns::default();
+        let h = ColliderHandle::from_raw_parts(3, 0);
+        assert!(c.set(h, Some(-1.0)).is_err());
+        assert!(c.set(h, Some(f64::NAN)).is_err());
+        c.set(h, Some(0.2)).unwrap();
+        assert_eq!(c.get(h), Some(0.2));
+        assert_eq!(c.get(ColliderHandle::from_raw_parts(3, 1)), None);
+        c.set(h, None).unwrap();
+        assert_eq!(c.get(h), None);
+    }
+}

@@ -1,0 +1,370 @@
+//! Wheels in the rigid regime (issue #17, part 4): a cylinder collider rolling on a floor, with
+//! a line contact (Carter 1926) or crowned (Hertz's ellipse, Kalker's theory).
+//!
+//! * [`driven`]: a wheel driven by a torque `T` about its axle and held back at the axle by the
+//!   force `T/R`, so that in steady state the floor's traction is `Q = T/R` at any speed
+//!   (Rapier's lever arm is shortened by the contact's overlap: `Q` is measured from the
+//!   contact impulses). The creepage `xi = v_disp . x / V` (module `creep3d` of creep-rapier:
+//!   slip of the floor's surface relative to the wheel's along the travel, over Kuhn & Bagi's
+//!   rolling speed) is measured from the bodies' velocities, less the creepage of a Coulomb run
+//!   of the same scene (the engine's spurious slip, Rapier's rolling about a point inside the
+//!   overlap, not creep). Closed forms: Carter's `Q/(mu P) = 1 - (1 - xi/(mu a/R))^2` (Carter
+//!   1926; Johnson 1985, §8.2; creep-reference `carter`) for the line contact; for the crowned
+//!   wheel, Kalker's exact theory (creep-reference's boundary elements, `steady3d::table`).
+//! * [`lateral`]: see below.
+//!   speed `V` and angle `alpha` to the wheel's heading: lateral creepage `eta = tan(alpha)`, and
+//!   the lateral force against it; Kalker's linear theory gives the slope `G a b C22` (Kalker
+//!   1967; Kalker 1990, Table E.3) and the force saturates at `mu P`.
+
+use std::f64::consts::FRAC_PI_2;
+
+use creep_law::elliptic::elliptic_hertz;
+use creep_law::{Material, PairMaterial, Surface, Vec3};
+use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld, Fidelity};
+use rapier3d::prelude::*;
+
+use crate::measure::{SceneError, positive};
+
+/// Parameters of a wheel on a floor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelParams {
+    /// Wheel radius \[m\].
+    pub radius: f64,
+    /// Wheel width (cylinder length) \[m\].
+    pub width: f64,
+    /// Crown radius \[m\] (`None`: a line contact).
+    pub crown: Option<f64>,
+    /// Material of the wheel and the floor.
+    pub material: Material,
+    /// Speed [m/s].
+    pub speed: f64,
+    /// Time step \[s\].
+    pub dt: f64,
+    /// Duration \[s\]; measured over the second half.
+    pub duration: f64,
+}
+
+/// A rubber-like material at a node of the 3-D law's table (`nu = 0.5`): G = 1 MPa,
+/// nu = 0.5, mu = 0.9, rho = 1100 kg/m^3.
+pub fn wheel_rubber() -> Material {
+    Material::new(1.0e6, 0.5, 0.9, 1100.0).unwrap_or_else(|_| Material::rubber())
+}
+
+impl Default for WheelParams {
+    fn default() -> Self {
+        Self {
+            radius: 0.05,
+            width: 0.04,
+            crown: None,
+            material: wheel_rubber(),
+            speed: 0.1,
+            dt: 1.0 / 240.0,
+            duration: 1.0,
+        }
+    }
+}
+
+/// The crown radius \[m\] that gives a wheel of radius `radius` an elliptic contact of axis
+/// ratio `ab = a/b` (`a` along the rolling direction; `ab < 1`: a crown flatter than the wheel)
+/// on a plane: Hertz's ratio depends on the curvature ratio alone (Johnson 1985, eq. 4.39), found
+/// by bisection on `ln(R_c)`.
+pub fn crown_for_ratio(radius: f64, ab: f64) -> Result<f64, SceneError> {
+    positive("radius", radius)?;
+    if !(ab > 0.05 && ab < 1.0) {
+        return Err(SceneError::Parameter(format!(
+            "axis ratio a/b must be in (0.05, 1), got {ab}"
+        )));
+    }
+    let ratio = |rc: f64| -> Result<f64, SceneError> {
+        let h = elliptic_hertz(1.0 / radius, 1.0 / rc, 1.0, 1.0e9)?;
+        Ok(h.a / h.b)
+    };
+    let (mut lo, mut hi) = (radius.ln(), (radius * 1e4).ln());
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        // a/b falls as the crown radius grows.
+        if ratio(mid.exp())? > ab {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok((0.5 * (lo + hi)).exp())
+}
+
+/// Gauss-Seidel iterations per substep of the wheel scenes.
+pub const PGS_ITERATIONS: usize = 16;
+
+/// Averages over the measured steps of one run.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WheelMeasure {
+    /// Normal force \[N\].
+    pub p: f64,
+    /// Tangential force on the wheel along the travel `x` \[N\].
+    pub qx: f64,
+    /// Tangential force on the wheel across the travel `y = n × x` \[N\].
+    pub qy: f64,
+    /// Creepage along `x` [-].
+    pub xi: f64,
+    /// Creepage along `y` [-].
+    pub eta: f64,
+    /// Mean number of contact points of the pair.
+    pub points: f64,
+}
+
+/// The friction basis of Rapier's Coulomb contact for the normal `n` (rapier3d 0.36
+/// `compute_tangent_contact_directions`: `t1 = orthonormal_vector(-n)`, `t2 = -n x t1`), in which
+/// `ContactData::tangent_impulse` is given.
+fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
+    let d = -n;
+    let sign = 1f64.copysign(d.z);
+    let a = -1.0 / (sign + d.z);
+    let b = d.x * d.y * a;
+    let t1 = Vec3::new(b, sign + d.y * d.y * a, -d.y);
+    (t1, d.cross(t1))
+}
+
+fn v3(v: Vector) -> Vec3 {
+    Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
+}
+
+thread_local! {
+    /// Contact points counted by the last [`contact_forces`].
+    static POINTS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// Normal force and tangential force on `wheel` \[N\] of the last step, from the contact
+/// impulses of its pair with `floor`.
+pub(crate) fn contact_forces(
+    w: &CreepWorld,
+    wheel: ColliderHandle,
+    floor: ColliderHandle,
+    dt: f64,
+) -> (f64, Vec3) {
+    let Some(pair) = w.physics.narrow_phase.contact_pair(wheel, floor) else {
+        return (0.0, Vec3::ZERO);
+    };
+    let sign = if pair.collider1 == wheel { 1.0 } else { -1.0 };
+    let (mut p, mut q) = (0.0, Vec3::ZERO);
+    POINTS.with(|c| c.set(0));
+    for m in pair.manifolds() {
+        POINTS.with(|c| c.set(c.get() + m.points.len()));
+        let n = v3(m.data.normal);
+        let (t1, t2) = solver_tangents(n);
+        for pt in &m.points {
+            p += f64::from(pt.data.impulse);
+            let ti = pt.data.tangent_impulse;
+            q += t1 * f64::from(ti.x) + t2 * f64::from(ti.y);
+        }
+    }
+    (p / dt, q * (sign / dt))
+}
+
+/// The world of one wheel run: the floor and the wheel (axle along `z`, rolling along `x`; its
+/// centre held in `z` with `lock_axial`), with the given fidelity.
+struct WheelWorld {
+    w: CreepWorld,
+    wheel: RigidBodyHandle,
+    wheel_co: ColliderHandle,
+    floor: RigidBodyHandle,
+    floor_co: ColliderHandle,
+}
+
+fn build(
+    params: &WheelParams,
+    fidelity: Fidelity,
+    lock_axial: bool,
+) -> Result<WheelWorld, SceneError> {
+    positive("radius", params.radius)?;
+    positive("width", params.width)?;
+    positive("speed", params.speed)?;
+    positive("dt", params.dt)?;
+    positive("duration", params.duration)?;
+    if let Some(rc) = params.crown {
+        positive("crown", rc)?;
+    }
+    let mut w = CreepWorld::new(params.dt as f32, CreepSettings::default())?;
+    // One substep (the rotation-gap correction is exact there) with enough Gauss-Seidel
+    // iterations for the line contact's two or three coupled friction points (one iteration
+    // leaves the Coulomb twin slipping by up to 10 % at 0.9 mu P).
+    w.physics.integration_parameters.num_solver_iterations = 1;
+    w.physics.integration_parameters.num_internal_pgs_iterations = PGS_ITERATIONS;
+    // Rapier's allowed overlap is 1e-3 length units: with 1 m the wheel sinks by ~2 mm, a
+    // rolling-radius error (2-4 %) larger than the rubber's creepage; the wheel's radius as the
+    // unit leaves ~0.05 mm.
+    w.physics.integration_parameters.length_unit = params.radius as f32;
+    let mu = params.material.friction() as f32;
+    let mat = CreepMaterial::new(params.material).with_fidelity(fidelity);
+    let (floor, floor_co) = w.insert(
+        RigidBodyBuilder::kinematic_velocity_based().translation(Vector::new(0.0, -0.5, 0.0)),
+        ColliderBuilder::cuboid(1.0e3, 0.5, 1.0e3).friction(mu),
+        Some(mat),
+    );
+    let r = params.radius as f32;
+    let v = params.speed as f32;
+    let (wheel, wheel_co) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, r, 0.0))
+            .rotation(Vector::new(FRAC_PI_2 as f32, 0.0, 0.0))
+            .linvel(Vector::new(v, 0.0, 0.0))
+            .angvel(Vector::new(0.0, 0.0, -v / r))
+            // No yaw (the heading is held); tilting stays free: with the tilt locked as well
+            // the line contact's three friction points no longer hold a Coulomb twin in stick.
+            .enabled_rotations(true, false, true)
+            .enabled_translations(true, true, !lock_axial)
+            .can_sleep(false),
+        ColliderBuilder::cylinder(0.5 * params.width as f32, r).friction(mu),
+        Some(mat),
+    );
+    w.hooks.set_wheel_crown(wheel_co, params.crown)?;
+    Ok(WheelWorld {
+        w,
+        wheel,
+        wheel_co,
+        floor,
+        floor_co,
+    })
+}
+
+/// Steps a wheel world and averages the contact's forces and creepages over the second half
+/// (wheel = body p, floor = q, `n = -y`; the frame of creep-rapier's `creep3d`).
+fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, SceneError> {
+    let steps = (params.duration / params.dt).round() as usize;
+    let mut sum = WheelMeasure::default();
+    let mut count = 0.0;
+    let n = Vec3::new(0.0, -1.0, 0.0);
+    for i in 0..steps {
+        ww.w.step()?;
+        if i < steps / 2 {
+            continue;
+        }
+        let (p, q) = contact_forces(&ww.w, ww.wheel_co, ww.floor_co, params.dt);
+        let rb = &ww.w.physics.bodies[ww.wheel];
+        let fl = &ww.w.physics.bodies[ww.floor];
+        let (v, om) = (v3(rb.linvel()), v3(rb.angvel()));
+        let centre = v3(rb.translation());
+        let contact = Vec3::new(centre.x, 0.0, centre.z);
+        let u_wheel = v + om.cross(contact - centre);
+        let u_floor = v3(fl.linvel());
+        let v_disp = (u_floor - u_wheel).reject(n);
+        let v_roll = ((u_floor + u_wheel) * 0.5 - v).reject(n);
+        // x along the heading (the wheel's axle stays along z), with the rolling.
+        let x = if v_roll.x > 0.0 {
+            Vec3::new(-1.0, 0.0, 0.0)
+        } else {
+            Vec3::new(1.0, 0.0, 0.0)
+        };
+        let y = n.cross(x);
+        let speed = v_roll.dot(x).abs();
+        sum.p += p;
+        sum.qx += q.dot(x);
+        sum.qy += q.dot(y);
+        sum.xi += v_disp.dot(x) / speed;
+        sum.eta += v_disp.dot(y) / speed;
+        sum.points += POINTS.with(|c| c.get()) as f64;
+        count += 1.0;
+    }
+    let k = 1.0 / count;
+    Ok(WheelMeasure {
+        p: sum.p * k,
+        qx: sum.qx * k,
+        qy: sum.qy * k,
+        xi: sum.xi * k,
+        eta: sum.eta * k,
+        points: sum.points * k,
+    })
+}
+
+/// One driven-wheel run pair (creep and its Coulomb twin).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrivenRow {
+    /// Drive torque over `mu m g R` [-].
+    pub share: f64,
+    /// The creep run.
+    pub creep: WheelMeasure,
+    /// The Coulomb twin.
+    pub coulomb: WheelMeasure,
+}
+
+impl DrivenRow {
+    /// The creep run's traction over `mu P` [-].
+    pub fn force_ratio(&self, mu: f64) -> f64 {
+        self.creep.qx / (mu * self.creep.p)
+    }
+    /// The creepage of creep, the creep run's less the twin's [-].
+    pub fn creepage(&self) -> f64 {
+        self.creep.xi - self.coulomb.xi
+    }
+}
+
+/// A wheel rolling at `params.speed` along `x` on a fixed floor, driven by the torque
+/// `T = share mu m g R` and held back at the axle by `T/R` (module docs), with its Coulomb twin.
+pub fn driven(params: &WheelParams, share: f64) -> Result<DrivenRow, SceneError> {
+    if !(share.is_finite() && (0.0..1.0).contains(&share)) {
+        return Err(SceneError::Parameter(format!(
+            "share must be in [0, 1), got {share}"
+        )));
+    }
+    let run = |fidelity| -> Result<WheelMeasure, SceneError> {
+        let mut ww = build(params, fidelity, true)?;
+        let rb = &mut ww.w.physics.bodies[ww.wheel];
+        let m = f64::from(rb.mass());
+        let t = share * params.material.friction() * m * crate::incline::G * params.radius;
+        rb.add_torque(Vector::new(0.0, 0.0, -t as f32), true);
+        rb.add_force(Vector::new((-t / params.radius) as f32, 0.0, 0.0), true);
+        measure(&mut ww, params)
+    };
+    Ok(DrivenRow {
+        share,
+        creep: run(Fidelity::Creep)?,
+        coulomb: run(Fidelity::Coulomb)?,
+    })
+}
+
+/// A wheel rolling at `params.speed` along `x` on a fixed floor and pushed sideways at its axle
+/// by the force `share mu m g` along the axle: it settles at the lateral creepage (slip angle
+/// `atan(eta)`) whose lateral force balances the push, or, beyond `share = 1`, slides sideways
+/// with the floor's force at `mu P` (module docs).
+pub fn lateral(params: &WheelParams, share: f64) -> Result<WheelMeasure, SceneError> {
+    if !(share.is_finite() && share >= 0.0) {
+        return Err(SceneError::Parameter(format!(
+            "share must be finite and >= 0, got {share}"
+        )));
+    }
+    let mut ww = build(params, Fidelity::Creep, false)?;
+    let rb = &mut ww.w.physics.bodies[ww.wheel];
+    let m = f64::from(rb.mass());
+    let f = share * params.material.friction() * m * crate::incline::G;
+    // The push acts at the contact's height (a force at the centre and its moment about it),
+    // so that it does not tip the wheel over its line contact.
+    rb.add_force(Vector::new(0.0, 0.0, f as f32), true);
+    rb.add_torque(Vector::new((-params.radius * f) as f32, 0.0, 0.0), true);
+    measure(&mut ww, params)
+}
+
+/// The elliptic Hertz contact of a crowned wheel on the floor at the normal force `p` \[N\]:
+/// `(a, b)` \[m\] (Johnson 1985, §4.2).
+pub fn crowned_contact(params: &WheelParams, p: f64) -> Result<(f64, f64), SceneError> {
+    let rc = params
+        .crown
+        .ok_or_else(|| SceneError::Parameter("crowned_contact needs a crown radius".to_string()))?;
+    let pair = PairMaterial::new(
+        &params.material,
+        &params.material,
+        Surface::Sphere(params.radius),
+        Surface::Plane,
+    )?;
+    let h = elliptic_hertz(1.0 / params.radius, 1.0 / rc, p, pair.e_star)?;
+    Ok((h.a, h.b))
+}
+
+/// The pair's combined shear modulus and contact modulus `(G, E*)` \[Pa\].
+pub fn moduli(params: &WheelParams) -> Result<(f64, f64), SceneError> {
+    let pair = PairMaterial::new(
+        &params.material,
+        &params.material,
+        Surface::Sphere(params.radius),
+        Surface::Plane,
+    )?;
+    Ok((pair.g, pair.e_star))
+}
