@@ -528,6 +528,7 @@ enum Onset {
 /// `integral (F_on + kappa s) / 2 (e . u_trial - kappa s) dx` [m^3] (see [`Onset`] for `F_on`):
 /// the slip work divided by `8 G*` (the force density is `4 G*` times the displacement-valued
 /// `F`, and there are two halves).
+#[inline(always)]
 fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> (Vec2, f64) {
     let is = int_s(a, x1, x2);
     let is2 = int_s2(a, x1, x2);
