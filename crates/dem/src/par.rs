@@ -68,6 +68,7 @@ impl<T: TangentialLaw> Dem<T> {
         }
         let mut fill = b.rev_start.clone();
         b.rev_k.clear();
+        b.rev_k.reserve_exact(self.nl_j.len());
         b.rev_k.resize(self.nl_j.len(), 0);
         for (k, &j) in self.nl_j.iter().enumerate() {
             let s = &mut fill[j as usize];
@@ -77,7 +78,14 @@ impl<T: TangentialLaw> Dem<T> {
         b.built_for = self.nl_j.len();
         b.built_rebuilds = self.counts.rebuilds;
         b.out.clear();
+        // Exactly the list's length (`resize` alone would double the capacity as the list
+        // grows); give back more than an eighth over it, as the lists do.
+        b.out.reserve_exact(self.nl_j.len());
         b.out.resize(self.nl_j.len(), Entry::default());
+        let len = b.out.len();
+        if b.out.capacity() > len + len / 4 {
+            b.out.shrink_to(len + len / 8);
+        }
     }
 
     pub(crate) fn pair_forces_parallel(
