@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Side-by-side (interleaved) throughput of the plugin before and after the in-place history
-# (issue #16): OLD = crates/lammps/plugin at eb627c0 (gather + scatter of every history per
-# step), NEW = this branch, both linked to the same libcreep_lammps.a (same kernel), and LAMMPS'
-# granular, on the exported 4,096-sphere packing with LAMMPS' walls, 1 rank.
+# Side-by-side (interleaved) throughput of two plugin builds (issue #16) and LAMMPS' granular,
+# on the exported 4,096-sphere packing with LAMMPS' walls, 1 rank. Each creepplugin.so is
+# self-contained (the Rust kernel is linked in statically), so OLD may be any earlier build:
+# e.g. the in-place shim of 2c0955e (creep_lammps_compute_at, a 22-double contact record
+# gathered and the output scattered by the shim, each history read and written in its flat
+# form per contact) against NEW, the store path (creep_lammps_compute_pairs).
 #   crates/lammps/bench-ab.sh OLD.so NEW.so EXPORT_DIR [ROUNDS=5] [STEPS=300]
 set -euo pipefail
 OLD=$1 NEW=$2 PK=$3 ROUNDS=${4:-5} STEPS=${5:-300}
