@@ -103,13 +103,21 @@
 //!
 //! No `powf`. Without spin one translation (two square roots, two divisions); with spin per
 //! row one division for the spin utilisation and the spin force's shapes, five square roots and
-//! two to three more divisions. COST_SUMMARY
+//! two to three more divisions. Measured (`cargo bench -p creep-law --bench steady3d`, its
+//! first table: the thread's CPU time, variants interleaved, medians of 11 rounds, on a
+//! shared 2-core Xeon under a load of about 19; `F_ss`, Kalker's closed form with
+//! [`crate::kalker::cbrt`], 9.7 ns there): without spin about 34 ns (3.5x `F_ss`); with spin
+//! about 55 ns at a row of the table (5.7x; the law before the row blend: 53 ns) and about
+//! 105 ns between rows (11x; two rows evaluated; before: 65 ns). **Issue #17's 50 ns with spin
+//! is not met**: at a row it is missed by about 10 %, between rows by a factor of two, the
+//! price of the accuracy between rows (the former single interpolated law cost 65 ns there
+//! and put the spin force 13 % off).
 
 use crate::elliptic::complete_elliptic;
 use crate::error::LawError;
 use crate::kalker3d::{self, KalkerCoefficients};
 
-/// Fitted shape constants of the law at one node `(g, nu)` (module documentation, steps 1-5).
+/// Fitted shape constants of the law at one node `(a/b, nu)` (module documentation, steps 1-5).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Node {
     /// Saturation point of the longitudinal force (`S(x; kx)`), in `[2, 3]`.
