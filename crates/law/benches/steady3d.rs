@@ -2,13 +2,19 @@
 //! (Kalker's closed form, `creep_law::kalker`), each timed over the same batch of 64 inputs per
 //! iteration (so the reported time is per 64 evaluations).
 //!
-//! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md).
+//! Before criterion's groups, a load-robust table: every variant's CPU time per evaluation
+//! (the thread's CPU time from `/proc/thread-self/schedstat`, as the `cbrt` bench does), the
+//! variants interleaved in every round, medians over the rounds and their ratios to `F_ss`.
+//!
+//! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md);
+//! `-- --rounds-only` prints the table alone.
 
 use std::hint::black_box;
+use std::time::Instant;
 
 use creep_law::steady3d::Steady3d;
 use creep_law::{SteadyLaw, kalker};
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_group};
 
 const BATCH: usize = 64;
 
@@ -95,5 +101,116 @@ fn bench_steady3d(c: &mut Criterion) {
     g.finish();
 }
 
+/// CPU time of this thread \[ns\] (Linux: `/proc/thread-self/schedstat`, whose first field is
+/// the time on a CPU), so that other jobs' load does not enter; wall-clock time elsewhere.
+fn cpu_ns(start: Instant) -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .unwrap_or_else(|| start.elapsed().as_secs_f64() * 1e9)
+}
+
+/// CPU nanoseconds per evaluation of `f` over `xs`, `reps` passes (summed, so no call can be
+/// skipped).
+fn ns_per_call(xs: &[[f64; 3]], reps: usize, f: &dyn Fn(&[f64; 3]) -> f64) -> f64 {
+    let origin = Instant::now();
+    let t0 = cpu_ns(origin);
+    let mut acc = 0.0;
+    for _ in 0..reps {
+        for x in xs {
+            acc += f(black_box(x));
+        }
+    }
+    black_box(acc);
+    (cpu_ns(origin) - t0) / (reps * xs.len()) as f64
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// The interleaved CPU-time table (module documentation).
+fn cpu_table(rounds: usize) {
+    let nu = 0.25;
+    let kuhn = SteadyLaw::Kuhn {
+        c11: kalker::c11(nu),
+    };
+    // 4096 inputs of the bench's distribution (creepages up to full slip, spins both ways).
+    let xs: Vec<[f64; 3]> = (0..4096)
+        .map(|i| {
+            let t = i as f64 * 0.37;
+            [0.4 * t.sin(), 0.3 * (1.3 * t).cos(), 0.8 * (0.7 * t).sin()]
+        })
+        .collect();
+    let laws = [
+        ("a/b 0.5, nu 0.25 (a node)", Steady3d::new(0.5, nu).unwrap()),
+        (
+            "a/b 0.5, nu 0.125 (a row)",
+            Steady3d::new(0.5, 0.125).unwrap(),
+        ),
+        (
+            "a/b 0.35, nu 0.125 (between rows)",
+            Steady3d::new(0.35, 0.125).unwrap(),
+        ),
+        (
+            "a/b 3, nu 0.375 (between rows)",
+            Steady3d::new(3.0, 0.375).unwrap(),
+        ),
+    ];
+    let reps = 200;
+    let fss = |v: &[f64; 3]| kuhn.creepage_n(v[0].abs().min(0.99));
+    let mut t_fss = vec![];
+    let mut t_tr = vec![vec![]; laws.len()];
+    let mut t_sp = vec![vec![]; laws.len()];
+    let mut t_inv = vec![];
+    for _ in 0..rounds {
+        t_fss.push(ns_per_call(&xs, reps, &fss));
+        for (k, (_, law)) in laws.iter().enumerate() {
+            t_tr[k].push(ns_per_call(&xs, reps, &|v| {
+                let l = law.loads(v[0], v[1], 0.0);
+                l.fx + l.fy + l.mz
+            }));
+            t_sp[k].push(ns_per_call(&xs, reps, &|v| {
+                let l = law.loads(v[0], v[1], v[2]);
+                l.fx + l.fy + l.mz
+            }));
+        }
+        let law = &laws[0].1;
+        t_inv.push(ns_per_call(&xs, reps, &|v| {
+            let (p, q) = law
+                .creepages_for_force(0.9 * v[0], 0.9 * v[1])
+                .unwrap_or((0.0, 0.0));
+            p + q
+        }));
+    }
+    let f = median(t_fss);
+    println!(
+        "steady3d: CPU ns per evaluation, medians of {rounds} interleaved rounds (ratio to F_ss)"
+    );
+    println!("  F_ss (Kuhn, kalker::cbrt)            {f:7.2}");
+    for (k, (name, _)) in laws.iter().enumerate() {
+        let (a, b) = (median(t_tr[k].clone()), median(t_sp[k].clone()));
+        println!(
+            "  {name:34} no spin {a:7.2} ({:.2}x)   with spin {b:7.2} ({:.2}x)",
+            a / f,
+            b / f
+        );
+    }
+    let i = median(t_inv);
+    println!(
+        "  inverse at zero spin (a node)        {i:7.2} ({:.2}x)",
+        i / f
+    );
+}
+
 criterion_group!(benches, bench_steady3d);
-criterion_main!(benches);
+
+fn main() {
+    let rounds_only = std::env::args().any(|a| a == "--rounds-only");
+    cpu_table(11);
+    if !rounds_only {
+        benches();
+        Criterion::default().configure_from_args().final_summary();
+    }
+}

@@ -3,7 +3,8 @@
 //!
 //! `cargo run --release -p creep-reference --example steady3d_bem > crates/reference/data/steady3d_bem.csv`
 //!
-//! Optional arguments: `AB NU` pairs to restrict the cases (default: all 9).
+//! Optional arguments: `AB NU` pairs to restrict the cases (default: all 15, the rows
+//! `a/b = 1, 0.5, 0.2, 2, 5` x `nu = 0, 0.25, 0.5`).
 use creep_reference::steady3d::{HEADER, POISSON, RATIOS, csv_line, default_grid, solve_case};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

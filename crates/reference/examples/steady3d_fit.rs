@@ -1,5 +1,5 @@
 //! Fits the shape constants of creep-law's fast 3-D steady law (`creep_law::steady3d::Node`,
-//! one per node `a/b = 1, 0.5, 0.2` x `nu = 0, 0.25, 0.5`) to the boundary-element table
+//! one per node `a/b = 0.2, 0.5, 1, 2, 5` x `nu = 0, 0.25, 0.5`) to the boundary-element table
 //! `data/steady3d_bem.csv` (module `creep_reference::steady3d`), and prints them as the Rust
 //! table `creep_law::steady3d::NODES` (stdout) with each node's largest errors (stderr).
 //!
@@ -10,9 +10,11 @@
 //! combined creepages without spin, `ma, mb` on the pure spin moment, `p1 .. q3` on the pure
 //! spin force, then `p1 .. am` jointly on pure spin (force errors over 1.5 %) and the combined
 //! creepages (force and moment errors over 4 %), with a penalty unless the lateral force of pure
-//! spin decreases from `phi_n = 3` on and is below 1 % of `mu P` at `phi_n = 3e4`. Inadmissible constants
+//! spin decreases from `phi_n = 3` on and is below 1 % of `mu P` at `phi_n = 3e4`. The spin force
+//! alone is fitted from three uniform starts, and for `a > b` also from the previous `nu` node's
+//! shape (continuation). Arguments select rows (`-- 2 5`: the rows a/b = 2 and 5). Inadmissible constants
 //! (`Node::is_admissible`) are rejected by a penalty. Deterministic.
-use creep_law::steady3d::{NODE_G, NODE_NU, Node, Steady3d};
+use creep_law::steady3d::{NODE_AB, NODE_NU, Node, Steady3d};
 use creep_reference::steady3d::{Kind, Point, table};
 
 /// Nelder-Mead minimisation from `x0` (initial simplex steps `scale |x_i|`, or `0.1 scale`
@@ -142,7 +144,7 @@ fn spin_tail_penalty(ab: f64, nu: f64, x: &[f64]) -> f64 {
 }
 
 /// Fits one node.
-fn fit(points: &[Point], ab: f64, nu: f64) -> [f64; 18] {
+fn fit(points: &[Point], ab: f64, nu: f64, prev: Option<[f64; 18]>) -> [f64; 18] {
     let sel = |k: Kind| -> Vec<Point> {
         points
             .iter()
@@ -220,9 +222,13 @@ fn fit(points: &[Point], ab: f64, nu: f64) -> [f64; 18] {
     // Pure spin force alone (no saturating share, no softening, no lateral capacity term),
     // from three starts.
     let mut best: Option<(Vec<f64>, f64)> = None;
-    for start in [0.3, 1.0, 3.0] {
+    // For a > b (rows 2, 5) also a start from the previous nu node's shape (continuation in
+    // nu: the spin force peaks at small spin there, far from the uniform starts).
+    let cont = prev.filter(|_| ab > 1.0).map(|p| p[5..10].to_vec());
+    let starts = [0.3, 1.0, 3.0].iter().map(|&v| vec![v; 5]).chain(cont);
+    for start in starts {
         let mut y = x.clone();
-        y[5..10].fill(start);
+        y[5..10].copy_from_slice(&start);
         y[10] = 0.0;
         y[12] = 0.0;
         y[13] = 0.0;
@@ -264,13 +270,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "b8", "am", "beta",
     ];
     println!("[");
-    for g in NODE_G {
+    for g in NODE_AB {
         if !only.is_empty() && !only.contains(&g) {
             continue;
         }
         println!("    [");
+        let mut prev = None;
         for nu in NODE_NU {
-            let x = fit(&points, g, nu);
+            let x = fit(&points, g, nu, prev);
+            prev = Some(x);
             let fields: Vec<String> = names
                 .iter()
                 .zip(x.iter())

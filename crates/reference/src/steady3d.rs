@@ -1,5 +1,5 @@
 //! Boundary-element reference curves of steady rolling with longitudinal, lateral and spin
-//! creepage for elliptic contacts (`a/b = 1, 0.5, 0.2`, `nu = 0, 0.25, 0.5`), the table the
+//! creepage for elliptic contacts (`a/b = 1, 0.5, 0.2, 2, 5`, `nu = 0, 0.25, 0.5`), the table the
 //! fast 3-D steady law of creep-law (`creep_law::steady3d`) is graded against.
 //!
 //! Each case is solved on two grids `N/2` and `N` (elements across the shorter axis; see
@@ -74,7 +74,7 @@ pub struct Point {
 }
 
 /// Axis ratios of the table.
-pub const RATIOS: [f64; 3] = [1.0, 0.5, 0.2];
+pub const RATIOS: [f64; 5] = [1.0, 0.5, 0.2, 2.0, 5.0];
 /// Poisson ratios of the table.
 pub const POISSON: [f64; 3] = [0.0, 0.25, 0.5];
 /// Pure longitudinal and lateral creepages of the table.
@@ -109,7 +109,8 @@ pub fn cases() -> Vec<(Kind, [f64; 3])> {
     v
 }
 
-/// The fine grid used for an axis ratio: 32 elements across the shorter axis for `a/b >= 0.5`,
+/// The fine grid used for an axis ratio: 32 elements across the shorter axis for
+/// `min(a/b, b/a) >= 0.5`,
 /// 20 below (the element count grows as `N^2 b/a`).
 pub fn default_grid(ab: f64) -> usize {
     if ab.min(1.0 / ab) >= 0.5 { 32 } else { 20 }

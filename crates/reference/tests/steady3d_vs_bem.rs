@@ -89,12 +89,13 @@ fn table_is_complete_and_reproducible() {
     }
 }
 
-/// Largest force and moment errors of the law over the table, per family.
+/// Largest force and moment errors of the law over the table's rows `a/b = 1, 0.5, 0.2` (the
+/// issue's stated cases), per family.
 fn worst(kind: Kind) -> (f64, f64) {
     law_errors(&table().unwrap())
         .unwrap()
         .iter()
-        .filter(|e| e.kind == kind)
+        .filter(|e| e.kind == kind && e.ab <= 1.0)
         .fold((0.0f64, 0.0f64), |(f, m), e| {
             (f.max(e.force), m.max(e.moment))
         })
@@ -128,31 +129,24 @@ fn fast_law_combined_creepage_meets_the_issue_target() {
     assert!(fc < 0.05 && mc < 0.05, "{fc} {mc}");
 }
 
-#[test]
-fn fast_law_off_the_fitted_nodes_measured_errors() {
-    // The validation table (data/steady3d_bem_validation.csv: the same creepages, solved like
-    // the fitted table, at a/b and nu the fit never saw). Between the nodes (a/b = 0.35,
-    // nu = 0.125 and a/b = 0.7, nu = 0.375) the pure translation stays within 0.5 % and the
-    // moments within 3.5 %, but the lateral force of pure spin is off by up to 13 % and the
-    // combined force by up to 10.4 %: the issue's targets are NOT met between the nodes (three
-    // rows in a/b are too few for the spin force's shape). Beyond them, a/b = 2 (a > b, never
-    // fitted), translation is within 1.3 % (moment 2.1 %) but every spin load is wrong (force
-    // up to 77 %). These are the measured errors, pinned so that any change is noticed.
-    let v = read_csv(include_str!("../data/steady3d_bem_validation.csv")).unwrap();
-    assert_eq!(v.len(), 4 * 39);
-    for x in law_errors(&v).unwrap() {
-        let between = x.ab < 1.0;
-        let (f, m) = match (x.kind, between) {
-            (Kind::Longitudinal | Kind::Lateral, true) => (0.005, 0.005),
-            (Kind::Longitudinal | Kind::Lateral, false) => (0.013, 0.021),
-            (Kind::Spin, true) => (0.130, 0.011),
-            (Kind::Combined, true) => (0.105, 0.035),
-            (Kind::Spin, false) => (0.770, 0.066),
-            (Kind::Combined, false) => (0.468, 0.165),
+/// Asserts every `(a/b, nu, kind)` of `errors` against `limits` (force, moment over `mu P`,
+/// `mu P c`; measured values rounded up), and that `limits` covers every row of `errors`.
+fn check_pinned(errors: &[creep_reference::steady3d::LawError3d], limits: &[(f64, f64, [f64; 8])]) {
+    for x in errors {
+        let (_, _, l) = limits
+            .iter()
+            .find(|(ab, nu, _)| *ab == x.ab && *nu == x.nu)
+            .unwrap_or_else(|| panic!("no limits for a/b={} nu={}", x.ab, x.nu));
+        let k = match x.kind {
+            Kind::Longitudinal => 0,
+            Kind::Lateral => 1,
+            Kind::Spin => 2,
+            Kind::Combined => 3,
         };
+        let (f, m) = (l[2 * k], l[2 * k + 1]);
         assert!(
             x.force <= f && x.moment <= m,
-            "a/b={} nu={} {:?}: {} {}",
+            "a/b={} nu={} {:?}: {} {} (limits {f} {m})",
             x.ab,
             x.nu,
             x.kind,
@@ -161,3 +155,107 @@ fn fast_law_off_the_fitted_nodes_measured_errors() {
         );
     }
 }
+
+#[test]
+fn fast_law_a_greater_than_b_rows_measured_errors() {
+    // The rows a/b = 2 and 5 (a > b: wheels, whose contact is long along the rolling
+    // direction). The law's form, fitted there like the other rows, does NOT meet the issue's
+    // targets with spin: the
+    // translation is within 0.5 %, but the lateral force of pure spin is off by up to 12 % and
+    // the combined force by up to 35 % (a/b = 2, nu = 0.5; a/b = 5: 7-11 % and 19-31 %), the
+    // moments by up to 15 %. Before these rows (a/b > 1 used the constants of b/a) the spin
+    // force was off by up to 84 % and the combined force by up to 93 %.
+    // Pinned (measured, rounded up; per family: force, moment for long., lat., spin, combined).
+    let e = law_errors(&table().unwrap()).unwrap();
+    let rows: Vec<_> = e.into_iter().filter(|x| x.ab > 1.0).collect();
+    assert_eq!(rows.len(), 2 * 3 * 4);
+    check_pinned(&rows, ROWS_A_GT_B_LIMITS);
+}
+
+#[test]
+fn fast_law_off_the_fitted_nodes_measured_errors() {
+    // The validation table (data/steady3d_bem_validation.csv: the same creepages, solved like
+    // the fitted table, at a/b and nu the fit never saw: between the rows and between the
+    // columns). Pure translation stays within 0.8 %; between
+    // the rows a/b = 0.2, 0.5, 1 the lateral force of pure spin within 4.7 % (13 % before the
+    // row blend) and combined creepage within 5.4 % (force; before: 1.6 % at a/b = 0.35 but
+    // 10.4 % at 0.7) / 3.7 % (moment): the issue's
+    // 2 % (pure) is NOT met there, its 5 % (combined) nearly. Between a/b = 1 and 5 (a/b = 1.4,
+    // 3) the spin loads are off by up to 24 % (force) and the combined force by up to 25 %
+    // (46-80 % before the rows a/b = 2, 5).
+    // Pinned (measured, rounded up), so that a regression fails.
+    let v = read_csv(include_str!("../data/steady3d_bem_validation.csv")).unwrap();
+    assert_eq!(v.len(), 6 * 39);
+    check_pinned(&law_errors(&v).unwrap(), VALIDATION_LIMITS);
+}
+
+/// Limits of [`fast_law_a_greater_than_b_rows_measured_errors`]: `(a/b, nu, [long. F, long. M,
+/// lat. F, lat. M, spin F, spin M, comb. F, comb. M])` over `mu P` (`mu P c`), the measured
+/// errors rounded up (`steady3d_errors`).
+const ROWS_A_GT_B_LIMITS: &[(f64, f64, [f64; 8])] = &[
+    (
+        2.0,
+        0.0,
+        [0.004, 0.001, 0.004, 0.004, 0.019, 0.015, 0.059, 0.059],
+    ),
+    (
+        2.0,
+        0.25,
+        [0.004, 0.001, 0.004, 0.003, 0.023, 0.020, 0.073, 0.073],
+    ),
+    (
+        2.0,
+        0.5,
+        [0.004, 0.001, 0.005, 0.006, 0.121, 0.024, 0.350, 0.083],
+    ),
+    (
+        5.0,
+        0.0,
+        [0.005, 0.001, 0.005, 0.005, 0.072, 0.034, 0.196, 0.138],
+    ),
+    (
+        5.0,
+        0.25,
+        [0.004, 0.001, 0.004, 0.004, 0.089, 0.042, 0.245, 0.152],
+    ),
+    (
+        5.0,
+        0.5,
+        [0.004, 0.001, 0.005, 0.004, 0.114, 0.053, 0.314, 0.147],
+    ),
+];
+
+/// Limits of [`fast_law_off_the_fitted_nodes_measured_errors`], as [`ROWS_A_GT_B_LIMITS`]
+/// (`steady3d_errors -- --table crates/reference/data/steady3d_bem_validation.csv`).
+const VALIDATION_LIMITS: &[(f64, f64, [f64; 8])] = &[
+    (
+        0.35,
+        0.125,
+        [0.005, 0.001, 0.005, 0.005, 0.047, 0.009, 0.055, 0.020],
+    ),
+    (
+        0.7,
+        0.375,
+        [0.004, 0.001, 0.003, 0.005, 0.045, 0.012, 0.050, 0.038],
+    ),
+    (
+        0.27,
+        0.375,
+        [0.007, 0.001, 0.003, 0.007, 0.034, 0.014, 0.034, 0.017],
+    ),
+    (
+        0.85,
+        0.125,
+        [0.006, 0.001, 0.008, 0.005, 0.026, 0.017, 0.039, 0.035],
+    ),
+    (
+        1.4,
+        0.125,
+        [0.005, 0.001, 0.005, 0.007, 0.091, 0.020, 0.145, 0.048],
+    ),
+    (
+        3.0,
+        0.375,
+        [0.005, 0.001, 0.006, 0.010, 0.241, 0.094, 0.252, 0.129],
+    ),
+];
