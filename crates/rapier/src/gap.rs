@@ -9,13 +9,42 @@
 //! * One substep: two instants, which a constant and a rate follow **exactly**
 //!   ([`rotation_gap_correction`]; it also never exceeds the gap, so it never pushes bodies
 //!   apart and adds no energy). The fast-rolling matrix passes there.
-//! * More substeps: a line cannot follow the parabola. The line kept below the gap (no energy
-//!   added) only halves the sinking, and it makes the hard-case matrix fail its paired energy
-//!   bound (the 1/30 s V-incline by 5.1e-6 of E0, the column of ten spinning spheres by 1.2e-5;
-//!   with no correction the column fails by 3.1e-4). So with substeps the correction stays the
-//!   gap's mean over the substep midpoints, which keeps the hard-case matrix passing but can lift
-//!   a fast ball (measured 2.2 mm at 5 m/s and 1/60 s) and add energy (7e-3 of E0 at 2 m/s and
-//!   1/30 s). For fast-rolling balls at game steps use one substep.
+//! * More substeps (Rapier's default is 4): no correction a hook can write meets the
+//!   fast-rolling bounds (issue 14; measured on the 108-case matrix of creep-scenes'
+//!   `hard_cases::fast_rolling`, 10 s, spin cap lifted where stated). What a hook can write
+//!   into a `SolverContact` reaches the gap reading only as `dist` (a constant) and the normal
+//!   part of `tangent_velocity` (a rate); the anchors cannot help, because Rapier derives from
+//!   them one point per contact that is both the tracked point and the lever arm of the
+//!   normal and friction rows (`ContactData::solver_dp1`, the midpoint of the two surfaces),
+//!   and a rolling ball's lever arm must be `R' n`. The readings `e_j` at `t_j = j h`,
+//!   `j = 0..=n`, grow like `R' (omega t)^2 / 2` (at 5 m/s and 1/60 s: 2.2 mm a substep), so
+//!   every line misses by millimetres somewhere. Lines tried (plain Rapier: worst loss 0.99 of
+//!   E0, sinking 8.6 mm): the gap's mean over the substep midpoints (the one kept; worst
+//!   gain 7.7e-3 of E0, rise 45 mm with the cap; loss 0.16 and rise 41 mm with it lifted);
+//!   the line kept below every reading (cap lifted: no rise, a gain only at 20 m/s and 1/30 s,
+//!   1.67 rad a substep, where the readings stop being convex; but sinking 0.1..13 mm and a
+//!   loss up to 7e-3, and at 20 m/s and 1/30 s a loss of 0.33 and 0.15 m of sinking on the
+//!   plane, a fall through the mesh); a minimax line through all five readings and one
+//!   through the four biased readings (rises up to 33 mm with the cap lifted, 55 mm with it
+//!   kept). None meets the bounds in more than 3 of 108 cases, and every one but the mean
+//!   fails the hard-case matrix's paired energy bound, cap lifted or not (the line below: the
+//!   1/30 s V-incline by 5.1e-6 of E0, the column of ten spinning spheres by 1.2e-5; the
+//!   minimax lines: 5.8e-6..1.1e-5 and 6.7e-6..1.5e-5; no correction: the column by 3.1e-4),
+//!   so the mean stays, and the spin cap stays on (`lift_rotation_cap` acts at one substep
+//!   only). For fast-rolling balls at game steps use one substep.
+//! * What would meet them at 4 substeps: one unilateral row per secant of the readings (the
+//!   largest of `n` lines follows a convex sequence of `n + 1` readings exactly), i.e. the
+//!   solver contact duplicated `n` times with the lines `(c_k, b_k)` through `(t_k, e_k)` and
+//!   `(t_{k+1}, e_{k+1})`, each lowered below all readings. Measured with the spin cap lifted:
+//!   loss and height bounds met in 54 of the 72 plane and mesh cases (no rise, sinking at most
+//!   65 um, wherever the turn per substep is at most 0.42 rad), the gain bound in 15 (gains up
+//!   to 1.2e-3 of E0, the warm start below). Not shipped: the duplicates share
+//!   one manifold point, where Rapier keeps the warm start and the step's impulses (the last
+//!   row written wins), so the `P` and `Q` the creep hook reads are one row's and the warm
+//!   start is applied `n` times: the hard-case matrix fails (creep 0.02..0.34 of Kalker's
+//!   `F_ss`, a column of spheres drifting 0.29 m). It needs Rapier to keep impulses per solver
+//!   contact, or a hook that may add manifold points (the experiment is
+//!   `notes/substep-experiment.patch` in the repository).
 //!
 //! With one substep the correction is also not what limits a free ball's energy: Rapier
 //! clamps the relaxed reading at zero overlap, so scaling the correction by 1.001 changes
@@ -31,7 +60,8 @@ use creep_law::kinematics::BodyMotion;
 use creep_law::{Surface, Vec3};
 
 /// Mean spurious change of the separation along `n` caused by a body's contact anchor riding
-/// with the body's rotation through the solver substeps: the anchor `a` (world, at the start
+/// with the body's rotation through the solver substeps (the correction used with more than
+/// one substep: module docs): the anchor `a` (world, at the start
 /// of the step) turns about the centre of mass by `w t`; its normal component changes by
 /// `(Rot(w t) r - r) . n`, `r = a - x` (Rodrigues' rotation formula), which the solver reads as
 /// a gap (or overlap) although the surface of a sphere does not move. Averaged over the

@@ -73,16 +73,31 @@ fn the_engine_limits_are_the_ignored_cases() {
     assert_eq!(limits, [HardCase::Rubber60, HardCase::HeavyBallLightSlab]);
 }
 
-/// Runs fast-rolling cases at the matrix's substeps, prints the plugin's and plain Rapier's
-/// figures and asserts the bounds on the plugin's.
-fn assert_fast_rolling(cases: &[creep_scenes::hard_cases::fast_rolling::Case]) {
+/// Substeps of the full fast-rolling matrix: `CREEP_SUBSTEPS` if set (e.g. 4, Rapier's
+/// default), else the matrix's own ([`SUBSTEPS`](creep_scenes::hard_cases::fast_rolling::SUBSTEPS)).
+fn matrix_substeps() -> usize {
     use creep_scenes::hard_cases::fast_rolling::SUBSTEPS;
+    std::env::var("CREEP_SUBSTEPS")
+        .ok()
+        .map(|s| s.parse().expect("CREEP_SUBSTEPS: a positive integer"))
+        .unwrap_or(SUBSTEPS)
+}
+
+/// Whether a run meets every bound but the energy-gain one.
+fn bounds_met_but_gain(s: &creep_scenes::rolling_ball::Summary) -> bool {
+    use creep_scenes::hard_cases::fast_rolling::{MAX_HEIGHT_ERROR, MAX_LOSS};
+    s.loss <= MAX_LOSS && s.max_rise <= MAX_HEIGHT_ERROR && s.max_sink <= MAX_HEIGHT_ERROR
+}
+
+/// Runs fast-rolling cases at `substeps`, prints the plugin's and plain Rapier's figures and
+/// asserts the bounds on the plugin's.
+fn assert_fast_rolling(cases: &[creep_scenes::hard_cases::fast_rolling::Case], substeps: usize) {
     let mut failed = Vec::new();
     for case in cases {
-        let o = case.run(SUBSTEPS).unwrap();
+        let o = case.run(substeps).unwrap();
         let (p, q) = (o.plugin, o.plain);
         println!(
-            "{}: plugin gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m | plain gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m",
+            "{} ({substeps} substeps): plugin gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m | plain gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m",
             case.label(),
             p.max_gain,
             p.loss,
@@ -94,73 +109,47 @@ fn assert_fast_rolling(cases: &[creep_scenes::hard_cases::fast_rolling::Case]) {
             q.max_sink
         );
         if !o.passed() {
+            if bounds_met_but_gain(&p) {
+                match case.engine_drift(substeps) {
+                    Ok(d) => println!(
+                        "  only the gain bound: plain Rapier's own drift here {:.2e} m/s over the run (measured at {:.3} m/s), {:.2e} of E0 at {} m/s",
+                        d.velocity_drift(),
+                        d.speed,
+                        d.gain_at(case.speed),
+                        case.speed
+                    ),
+                    Err(e) => println!("  only the gain bound; engine drift not measured: {e}"),
+                }
+            }
             failed.push(case.label());
         }
     }
-    assert!(failed.is_empty(), "outside the bounds: {failed:?}");
+    assert!(
+        failed.is_empty(),
+        "outside the bounds ({} of {}): {failed:?}",
+        failed.len(),
+        cases.len()
+    );
 }
 
+/// The CI subset of the fast-rolling matrix against every bound of issue 14, strictly, on the
+/// plugin's own run (creep fidelity, the matrix's substeps): energy never above its start by
+/// more than 1e-6 of it, loss <= 1e-3 of it, centre within 0.1 mm of rest. Fast steel, which
+/// gains 2e-6..2e-5 of E0 through Rapier's own f32 drift, is in the full matrix, where that
+/// drift is measured apart and printed beside it.
 #[test]
-#[ignore = "engine limit: Rapier's own energy drift in free rolling (see plain_rapier_gains_energy_in_slow_free_rolling) exceeds the 1e-6 gain bound in steel 20 m/s 1/30 s plane (2.2e-6); fast_rolling_ci_subset_plugin_share checks the plugin's part"]
 fn fast_rolling_ci_subset() {
-    assert_fast_rolling(&creep_scenes::hard_cases::fast_rolling::ci_subset());
-}
-
-/// The CI subset against every bound the plugin answers for: the loss and height bounds of
-/// the matrix as they stand, and no energy added by creep-friction (the creep run's largest
-/// gain at most 1e-6 of E0 above its Coulomb-fidelity twin's, whose drift is Rapier's own).
-#[test]
-fn fast_rolling_ci_subset_plugin_share() {
-    use creep_scenes::hard_cases::fast_rolling::{
-        DURATION, MAX_GAIN, MAX_HEIGHT_ERROR, MAX_LOSS, SUBSTEPS, ci_subset, material,
-    };
-    use creep_scenes::rolling_ball::{FidelityChoice, RollingBall, Stepper};
-    for case in ci_subset() {
-        let run = |f| {
-            RollingBall {
-                material: material(case.material).unwrap(),
-                speed: case.speed,
-                dt: case.dt,
-                ground: case.ground,
-                stepper: Stepper::Plugin(f),
-                steps: (DURATION / case.dt).round() as usize,
-                substeps: SUBSTEPS,
-            }
-            .run(|_| {})
-            .unwrap()
-        };
-        let (p, c) = (run(FidelityChoice::Creep), run(FidelityChoice::Coulomb));
-        println!(
-            "{}: creep gain {:.1e} loss {:.1e} rise {:.1e} m sink {:.1e} m | coulomb gain {:.1e}",
-            case.label(),
-            p.max_gain,
-            p.loss,
-            p.max_rise,
-            p.max_sink,
-            c.max_gain
-        );
-        assert!(p.loss <= MAX_LOSS, "{}: loss {:.2e}", case.label(), p.loss);
-        assert!(
-            p.max_rise <= MAX_HEIGHT_ERROR && p.max_sink <= MAX_HEIGHT_ERROR,
-            "{}: rise {:.2e} sink {:.2e}",
-            case.label(),
-            p.max_rise,
-            p.max_sink
-        );
-        assert!(
-            p.max_gain <= c.max_gain + MAX_GAIN,
-            "{}: creep gain {:.2e}, Coulomb {:.2e}",
-            case.label(),
-            p.max_gain,
-            c.max_gain
-        );
-    }
+    use creep_scenes::hard_cases::fast_rolling::{SUBSTEPS, ci_subset};
+    assert_fast_rolling(&ci_subset(), SUBSTEPS);
 }
 
 #[test]
-#[ignore = "the full fast-rolling matrix (108 cases; also in `creep report`)"]
+#[ignore = "the full fast-rolling matrix (108 cases; also in `creep report`); CREEP_SUBSTEPS=4 runs it at Rapier's default"]
 fn fast_rolling_full_matrix() {
-    assert_fast_rolling(&creep_scenes::hard_cases::fast_rolling::matrix());
+    assert_fast_rolling(
+        &creep_scenes::hard_cases::fast_rolling::matrix(),
+        matrix_substeps(),
+    );
 }
 
 /// Creep-friction in free rolling adds no work: for the fast rubber balls where a creep target
