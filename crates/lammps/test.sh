@@ -157,8 +157,8 @@ check "with maxradius 1.05e-3 the growing packing runs and its pair pressure ris
 # No atoms at init: fix pour's radius sizes the cut-off; the poured spheres must all be in and
 # touching (pair pressure > 0 at the end).
 lmp_run 1 "$R/pour.log" -in "$T/in.pour"
-check "spheres poured into an empty box (cut-off from fix pour): 100 atoms in, touching at the end" \
-  bash -c 'tail -n 30 "$0" | awk '"'"'$1 == 20000 && $2 == 100 && $3 > 0 { ok = 1 } END { exit !ok }'"'"'' "$R/pour.log"
+check "spheres poured into an empty box (cut-off from fix pour): 100 atoms in, touching at the end, no history dropped" \
+  "$PY" "$T/thermo.py" "$R/pour.log" 'rows[-1]["Step"] == 20000 and rows[-1]["Atoms"] == 100 and rows[-1]["c_ppair"] > 0 and rows[-1]["c_cp[1]"] > 0 and all(r["c_cp[2]"] == 0 for r in rows)'
 
 # fix deposit: grains inserted one by one onto a fix wall/creep floor, 1 and 2 ranks: all in,
 # touching, no history dropped at the rebuilds, every thermo value finite, settled (kinetic
