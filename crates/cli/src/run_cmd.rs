@@ -6,7 +6,7 @@ use crate::output::CsvWriter;
 
 use clap::Subcommand;
 use creep_law::Material;
-use creep_scenes::{cue_ball, free_rolling, friction_drive, incline};
+use creep_scenes::{cue_ball, free_rolling, friction_drive, incline, wheels, wheels_spin};
 
 type Res = Result<(), Box<dyn std::error::Error>>;
 
@@ -82,6 +82,10 @@ pub enum RunCommand {
     /// only and creep + rolling torque, against Zhou et al.'s (2002) DEM correlation; CSV on
     /// stdout: `mu,rolling,creep,angle_deg,correlation_deg`.
     Repose(crate::repose_cmd::ReposeArgs),
+    /// 3-D creep in the rigid regime (issue #17): a rubber ball spun about the normal while it
+    /// rolls (spin decay vs Kalker's linear theory) and driven rubber wheels (line contact vs
+    /// Carter, crowned with a/b = 0.5 vs the boundary elements): traction against creepage.
+    Wheels,
 }
 
 /// Built-in materials (creep-law's presets).
@@ -212,6 +216,45 @@ pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
                         r.creepage_expected,
                         100.0 * (r.creepage_measured / r.creepage_expected - 1.0),
                         r.creepage_engine
+                    )?;
+                }
+            }
+        }
+        RunCommand::Wheels => {
+            let sp = wheels_spin::SpinParams::default();
+            let (rate, expected) = wheels_spin::decay_rates(&sp)?;
+            writeln!(
+                out,
+                "spinning ball (rubber, R {} m, {} m/s, spin {} rad/s, dt {:.5} s): decay rate {rate:.4} 1/s, Kalker's linear theory {expected:.4} 1/s ({:+.2} %)",
+                sp.radius,
+                sp.speed,
+                sp.spin,
+                sp.dt,
+                100.0 * (rate / expected - 1.0)
+            )?;
+            let line = wheels::WheelParams::default();
+            let crowned = wheels::WheelParams {
+                crown: Some(wheels::crown_for_ratio(line.radius, 0.5)?),
+                ..line
+            };
+            for (name, p) in [
+                ("line contact, Carter", line),
+                ("crowned a/b = 0.5, BEM", crowned),
+            ] {
+                writeln!(
+                    out,
+                    "driven wheel ({name}; R {} m, {} m wide, {} m/s): share,Q/(mu P),creepage,reference Q/(mu P),error",
+                    p.radius, p.width, p.speed
+                )?;
+                for share in [0.1, 0.3, 0.5, 0.7, 0.8, 0.9] {
+                    let row = wheels::driven(&p, share)?;
+                    let s = row.force_ratio(p.material.friction());
+                    let s_ref = wheels::reference_force_ratio(&p, &row)?;
+                    writeln!(
+                        out,
+                        "{share},{s:.4},{:.4e},{s_ref:.4},{:+.4}",
+                        row.creepage(),
+                        s - s_ref
                     )?;
                 }
             }

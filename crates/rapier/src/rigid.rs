@@ -14,6 +14,20 @@
 //! step (total impulses of the step divided by `dt`), and the contact radius from Hertz. Below
 //! the Coulomb limit the implicit friction solve enforces that slip; at the limit it slides.
 //!
+//! # Three-dimensional creep (crate module `creep3d`, issue #17)
+//! The slip target is built in Kalker's rolling frame (`x = -v_roll/|v_roll|`, `y = n × x`):
+//! along `x` the configured law `F_ss` as above, across it Kalker's `C22` (the force direction
+//! of Kalker's simplified theory: the creepage for a force `Q` is `F_ss(|Q|/(mu P)) (u_x,
+//! (C11/C22) u_y)`, `u = Q/|Q|`), plus spin creep for balls: the spin creepage
+//! `phi = (w_q - w_p).n / |v_roll|` gives a lateral force (`C23`) that takes its share of the
+//! friction capacity and a twisting moment (`C33`, both from creep-law's `Steady3d`), the
+//! moment applied after the step as an angular impulse that never reverses the relative spin
+//! (as the rolling torque). A relative spin within 16 f32 ulps of the bodies' angular speeds
+//! counts as none. With `C22 = C11` (`nu = 0`) and no spin this is the circular law below.
+//! Cylinder colliders on a flat collider are wheels (crate module `wheel`: Carter's line
+//! contact, or Hertz's ellipse for a crown radius set with [`CreepHooks::set_wheel_crown`]):
+//! one slip target for the whole manifold.
+//!
 //! # Stability of the feedback Q -> slip -> Q
 //! The slip target depends on the force the solver then transmits. Explicitly (target from the
 //! last force), one step maps a force error `e` to `-g e` with the loop gain
@@ -170,8 +184,8 @@ pub struct StepCounts {
     /// Contacts with a collider the registry does not know: left to Coulomb.
     pub coulomb_unregistered: usize,
     /// Contacts with a shape the rigid regime does not model (not a ball, cuboid, half-space,
-    /// triangle mesh, heightfield or convex polyhedron: capsules, cylinders, compounds, ...):
-    /// Coulomb.
+    /// triangle mesh, heightfield or convex polyhedron, nor a cylinder on one of the flat
+    /// shapes (a wheel): capsules, cones, compounds, ...): Coulomb.
     pub coulomb_unsupported: usize,
     /// Contacts between two flat shapes (no ball on either side; Hertz's contact needs a
     /// curved side): Coulomb.

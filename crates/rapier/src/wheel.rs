@@ -19,10 +19,12 @@
 //!   `c = sqrt(a b)`; the lateral ratio is Kalker's `C11/C22` at `a/b` (Kalker 1990, Table E.3).
 //! * **Line contact** (no crown): Carter's two-dimensional solution (Carter 1926; Johnson
 //!   1985, §8.2): half-width `a = sqrt(4 (P/L) R/(pi E*))` (Johnson 1985, eq. 4.43) and
-//!   `xi = (mu a/R)(1 - sqrt(1 - Q/(mu P)))`; laterally the antiplane compliance of the same
-//!   strip, `C11/C22 = 1/(1 - nu)` (Johnson 1985, §8.3: the transverse creep of a line contact
-//!   is `1/(1 - nu)` times softer; Kalker's table tends to it as `a/b -> 0`: 1.31 and 1.92 at
-//!   `a/b = 0.1`, `nu = 0.25, 0.5`, against 1.33 and 2).
+//!   `xi = (mu a/R)(1 - sqrt(1 - Q/(mu P)))`; laterally the same law scaled by
+//!   `C11/C22 = 1/(1 - nu)`: the ratio of the plane-strain to the antiplane shear compliance of
+//!   the strip (this crate's assumption for the slender limit, not a quoted solution); Kalker's
+//!   table tends to it as `a/b -> 0` (Kalker 1990, Table E.3: `C11/C22` = 1.31 and 1.92 at
+//!   `a/b = 0.1`, `nu = 0.25, 0.5`, against 1.33 and 2). Not checked by a scene (the wheel's
+//!   lateral scene is engine-limited, creep-scenes `wheels`).
 //!
 //! The same target slip is set on every solver contact of the manifold (a rigid wheel without
 //! spin slips alike at both ends of its line), so Rapier's two-point friction still resists a

@@ -368,3 +368,51 @@ pub fn moduli(params: &WheelParams) -> Result<(f64, f64), SceneError> {
     )?;
     Ok((pair.g, pair.e_star))
 }
+
+/// The closed form a driven-wheel row is measured against, as `Q/(mu P)` at the row's
+/// creepage (the creep run's less its Coulomb twin's): Carter's `1 - (1 - xi/(mu a/R))^2`
+/// (Carter 1926; creep-reference `carter`) for a line contact; for a crowned wheel, Kalker's
+/// exact theory (creep-reference's boundary elements, `steady3d::table`, linear between its
+/// points), which is tabulated at `a/b = 1, 0.5, 0.2` and `nu = 0, 0.25, 0.5` only (another
+/// shape or material is [`SceneError::Parameter`]).
+pub fn reference_force_ratio(params: &WheelParams, row: &DrivenRow) -> Result<f64, SceneError> {
+    let (g, e_star) = moduli(params)?;
+    let mu = params.material.friction();
+    let p = row.creep.p;
+    let xi = row.creepage();
+    let refer = |e: creep_reference::RefError| SceneError::Parameter(e.to_string());
+    if params.crown.is_none() {
+        let carter =
+            creep_reference::carter::Carter::from_load(p / params.width, params.radius, e_star, mu)
+                .map_err(refer)?;
+        return carter.force_ratio(xi).map_err(refer);
+    }
+    let (a, b) = crowned_contact(params, p)?;
+    let nu = params.material.poisson_ratio();
+    let xi_n = xi.abs() * g * a * b / (mu * p);
+    let table = creep_reference::steady3d::table().map_err(refer)?;
+    let mut pts: Vec<(f64, f64)> = table
+        .iter()
+        .filter(|q| {
+            q.kind == creep_reference::steady3d::Kind::Longitudinal
+                && (q.ab - a / b).abs() < 1e-6
+                && (q.nu - nu).abs() < 1e-12
+        })
+        .map(|q| (q.creepage[0], q.load[0]))
+        .collect();
+    if pts.is_empty() {
+        return Err(SceneError::Parameter(format!(
+            "no boundary-element table at a/b = {:.4}, nu = {nu} (nodes: a/b 1, 0.5, 0.2; nu 0, 0.25, 0.5)",
+            a / b
+        )));
+    }
+    pts.insert(0, (0.0, 0.0));
+    pts.sort_by(|x, y| x.0.total_cmp(&y.0));
+    for w in pts.windows(2) {
+        if xi_n <= w[1].0 {
+            let t = (xi_n - w[0].0) / (w[1].0 - w[0].0);
+            return Ok((w[0].1 + t * (w[1].1 - w[0].1)).copysign(xi));
+        }
+    }
+    Ok(pts[pts.len() - 1].1.copysign(xi))
+}

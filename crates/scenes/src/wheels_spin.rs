@@ -310,3 +310,12 @@ pub struct LateralPush {
     /// Lateral creepage `eta` [-].
     pub eta: f64,
 }
+
+/// The spin's decay rate of a creep run [1/s] (fitted over `t >= 0.1 s`) and Kalker's linear
+/// rate at the run's mean speed [1/s] (module documentation).
+pub fn decay_rates(params: &SpinParams) -> Result<(f64, f64), SceneError> {
+    let th = params.theory()?;
+    let run = run(params, Fidelity::Creep)?;
+    let (rate, speed) = run.decay_rate(0.1);
+    Ok((rate, th.decay_rate * params.speed / speed))
+}

@@ -76,6 +76,7 @@ fn line_wheel_error(shares: &[f64]) -> f64 {
         let s = row.force_ratio(mu);
         let carter = Carter::from_load(row.creep.p / p.width, p.radius, e_star, mu).unwrap();
         let s_ref = carter.force_ratio(row.creepage()).unwrap();
+        assert_eq!(s_ref, wheels::reference_force_ratio(&p, &row).unwrap());
         eprintln!(
             "line: share {share}: Q/(mu P) {s:.4}, xi {:.5e} (creep {:.5e}, coulomb {:.5e}), Carter {s_ref:.4}, err {:+.4}, points {:.2}",
             row.creepage(),
@@ -104,6 +105,7 @@ fn crowned_wheel_error(shares: &[f64]) -> f64 {
         let (a, b) = crowned_contact(&p, row.creep.p).unwrap();
         let xi_n = row.creepage() * g * a * b / (mu * row.creep.p);
         let s_ref = bem_curve(Kind::Longitudinal, 0.5, 0.5, xi_n);
+        assert!((s_ref - wheels::reference_force_ratio(&p, &row).unwrap()).abs() < 1e-12);
         eprintln!(
             "crowned: share {share}: Q/(mu P) {s:.4}, xi_n {xi_n:.4} (a/b {:.4}; creep {:.4e}, coulomb {:.4e}), BEM {s_ref:.4}, err {:+.4}",
             a / b,
