@@ -446,7 +446,8 @@ impl Steady3d {
         self.c
     }
 
-    /// The shape constants in use.
+    /// The shape constants interpolated in `ln(a/b)` and `nu` (the translation uses these; with
+    /// spin, the rows' own constants, module documentation).
     pub fn node(&self) -> Node {
         self.n
     }
