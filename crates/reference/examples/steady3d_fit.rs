@@ -12,8 +12,7 @@
 //! creepages (force and moment errors over 4 %), with a penalty unless the lateral force of pure
 //! spin decreases from `phi_n = 3` on and is below 1 % of `mu P` at `phi_n = 3e4`. The spin force
 //! alone is fitted from three uniform starts, and for `a > b` also from the previous `nu` node's
-//! shape (continuation), and the whole fit is repeated from the previous `nu` node's constants,
-//! keeping the better by the joint targets. Arguments select rows (`-- 2 5`: the rows a/b = 2 and 5). Inadmissible constants
+//! shape (continuation). Arguments select rows (`-- 2 5`: the rows a/b = 2 and 5). Inadmissible constants
 //! (`Node::is_admissible`) are rejected by a penalty. Deterministic.
 use creep_law::steady3d::{NODE_AB, NODE_NU, Node, Steady3d};
 use creep_reference::steady3d::{Kind, Point, table};
@@ -145,7 +144,7 @@ fn spin_tail_penalty(ab: f64, nu: f64, x: &[f64]) -> f64 {
 }
 
 /// Fits one node.
-fn fit(points: &[Point], ab: f64, nu: f64, prev: Option<[f64; 18]>, from_prev: bool) -> [f64; 18] {
+fn fit(points: &[Point], ab: f64, nu: f64, prev: Option<[f64; 18]>) -> [f64; 18] {
     let sel = |k: Kind| -> Vec<Point> {
         points
             .iter()
@@ -164,13 +163,9 @@ fn fit(points: &[Point], ab: f64, nu: f64, prev: Option<[f64; 18]>, from_prev: b
         .filter(|p| p.creepage[2] == 0.0)
         .copied()
         .collect();
-    let mut x = match prev.filter(|_| from_prev) {
-        Some(p) => p.to_vec(),
-        None => vec![
-            2.4, 2.4, 0.05, 0.5, 1.2, 0.5, 0.5, 0.5, 0.5, 0.5, 0.4, 0.95, 1.0, 1.2, 0.2, 0.0, 0.0,
-            0.0,
-        ],
-    };
+    let mut x = vec![
+        2.4, 2.4, 0.05, 0.5, 1.2, 0.5, 0.5, 0.5, 0.5, 0.5, 0.4, 0.95, 1.0, 1.2, 0.2, 0.0, 0.0, 0.0,
+    ];
     // Stage objective: vary the indices `idx` of x.
     let stage = |x: &mut Vec<f64>,
                  idx: &[usize],
@@ -282,28 +277,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("    [");
         let mut prev = None;
         for nu in NODE_NU {
-            let mut x = fit(&points, g, nu, prev, false);
-            if g > 1.0 && prev.is_some() {
-                // For a > b also the whole fit started from the previous nu node's constants;
-                // the better of the two by the joint targets (spin force over 1.5 %, combined
-                // force and moment over 4 %) is kept.
-                let score = |x: &[f64; 18]| {
-                    let sel = |k: Kind| -> Vec<Point> {
-                        points
-                            .iter()
-                            .filter(|p| p.ab == g && p.nu == nu && p.kind == k)
-                            .copied()
-                            .collect()
-                    };
-                    let (fs, _) = errors(g, nu, x, &sel(Kind::Spin));
-                    let (fc, mc) = errors(g, nu, x, &sel(Kind::Combined));
-                    (fs / 0.015).max(fc / 0.04).max(mc / 0.04)
-                };
-                let y = fit(&points, g, nu, prev, true);
-                if score(&y) < score(&x) {
-                    x = y;
-                }
-            }
+            let x = fit(&points, g, nu, prev);
             prev = Some(x);
             let fields: Vec<String> = names
                 .iter()
