@@ -3,8 +3,8 @@
 //! the grain contacts.
 //!
 //! **The test.** The wheel's spin `w` and forward speed `v = w R (1 - s)` are prescribed each
-//! game step (`s` the slip ratio of a driven wheel, Wong 2008, *Theory of Ground Vehicles*,
-//! 4th ed., §2.3 eq. 2.49: `i = 1 - v/(r w)`), its vertical motion is free (its weight against
+//! game step (`s = 1 - v/(w R)` the slip ratio of a driven wheel, Wong 2008, *Theory of Ground
+//! Vehicles*, 4th ed., ch. 2), its vertical motion is free (its weight against
 //! the bed): the slip-controlled single-wheel test of the terramechanics laboratories (Wong &
 //! Reece 1967, *J. Terramech.* 4(1) 81-98; 4(2) 7-25), so the sinkage is the scene's answer.
 //! Drawbar pull: the grains' force on the wheel along the travel (+x) \[N\]; driving torque: the
@@ -17,7 +17,7 @@
 //! of the track; the wheel spans the slice (its cylinder is 4 grain radii longer than the
 //! period, so no grain sees an end cap): a wheel infinitely wide against a grain-scale bed,
 //! plane strain, no side walls. Gravity is raised to `100 m/s^2` ("centrifuge" scaling, which
-//! keeps the grains rigid, `rho g d / G ~ 3e-5`, and lets the bed settle and the wheel run
+//! keeps the grains rigid, `rho g d / G ~ 2e-4` with the default 5 MPa grains, and lets the bed settle and the wheel run
 //! fast at a small Froude number `Fr = w^2 R / g`); forces are reported in newtons and as the
 //! dimensionless coefficients `DP/W` and `T/(W R)` the literature plots.
 //!
@@ -65,8 +65,8 @@ const COLUMN: usize = 80;
 impl WheelOnSand {
     /// A bed of about `grains` grains (10 layers before settling, 8 across the periodic slice,
     /// the rest along the travel), radius 2 mm (uniform in `[1.6, 2]` mm), shear modulus 5 MPa
-    /// (soft, for a long DEM step, `dt = 2.4e-5 s`: overlaps stay below ~4 % of a radius under
-    /// the wheel), a wheel of 10 grain radii (20 mm), density 1000 kg/m^3, spin 5 rad/s
+    /// (soft, for a long DEM step, `dt = 2.46e-5 s`; Hertz's overlap for 0.5 N on a grain
+    /// under the wheel is ~4 % of its radius), a wheel of 10 grain radii (20 mm), density 1000 kg/m^3, spin 5 rad/s
     /// (`Fr = 0.005`), 20 DEM steps per game step, 200 game steps sinking in, 1000 driven
     /// (0.49 s). At least 8 columns: `grains` below 640 give 640.
     pub fn with_grains(grains: usize) -> Result<Self, BedError> {
@@ -216,7 +216,9 @@ struct Wheel {
 
 impl Wheel {
     /// Prescribes the forward speed `v` \[m/s\] and the spin `w` \[rad/s\] (about -z); the
-    /// vertical speed is left to the bed and gravity.
+    /// vertical speed is left to the bed and gravity. Called before the bed's step (the grains
+    /// see the prescribed motion) and after it (Rapier integrates the prescribed motion, the
+    /// bed's impulse moving the wheel only vertically).
     fn drive(&mut self, v: f64, w: f64) {
         let rb = &mut self.world.bodies[self.body];
         let vy = rb.linvel().y;
@@ -328,6 +330,8 @@ impl<T: TangentialLaw> SettledBed<T> {
         for _ in 0..s.sink_steps {
             wheel.drive(0.0, 0.0);
             bed.step(dt_rigid, &mut wheel.world.bodies)?;
+            // The carriage and the motor hold the prescribed motion against the bed's impulse.
+            wheel.drive(0.0, 0.0);
             wheel.world.step();
         }
         let rb = &wheel.world.bodies[wheel.body];
@@ -401,6 +405,10 @@ pub struct WheelSteady {
     pub duration: f64,
     /// Wall-clock seconds the drive took.
     pub seconds: f64,
+    /// Prescribed spin \[rad/s\].
+    pub spin: f64,
+    /// Prescribed forward speed `w R (1 - s)` \[m/s\].
+    pub speed: f64,
 }
 
 impl WheelSteady {
@@ -411,6 +419,14 @@ impl WheelSteady {
     /// Torque coefficient `T / (W R)` [-].
     pub fn torque_coefficient(&self) -> f64 {
         self.torque / (self.weight * self.radius)
+    }
+    /// Mean power the wheel puts into the bed \[W\]: the motor's `T w`, the carriage's
+    /// `-DP v` (it holds the speed against the pull `DP`) and gravity's `W dz/dt` (the wheel
+    /// sinking at the sinkage rate). In a steady state the bed dissipates it: it must be
+    /// `>= 0`. A negative torque (the bed turning the wheel forward) is allowed when the
+    /// carriage pushes the wheel (`DP < 0`): the towed-wheel part of the power.
+    pub fn power(&self) -> f64 {
+        self.torque * self.spin - self.drawbar_pull * self.speed + self.weight * self.sinkage_rate
     }
 }
 
@@ -473,6 +489,12 @@ impl<T: TangentialLaw> Landed<T> {
         for k in 0..s.drive_steps {
             wheel.drive(v, s.spin);
             bed.step(dt_rigid, &mut wheel.world.bodies)?;
+            // The carriage and the motor hold the prescribed speed and spin: the bed's impulse
+            // along x and its torque impulse are theirs to absorb (the pull and the torque the
+            // scene reports); only the vertical part moves the wheel. Without this Rapier
+            // would integrate `v + J/m`, and the wheel would travel slower than prescribed
+            // (at slip 0 and a pull of -0.36 W, 16 % slower: an actual slip of 0.16).
+            wheel.drive(v, s.spin);
             let e = bed.boundaries().exchange(0).unwrap_or_default();
             wheel.world.step();
             let r = WheelRow {
@@ -504,6 +526,8 @@ impl<T: TangentialLaw> Landed<T> {
             travel: x1 - x0,
             duration: s.drive_steps as f64 * dt_rigid,
             seconds: clock.elapsed().as_secs_f64(),
+            spin: s.spin,
+            speed: v,
         })
     }
 }

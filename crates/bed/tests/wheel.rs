@@ -52,6 +52,13 @@ fn the_landed_state_is_reused_exactly_and_slip_raises_pull_and_torque() {
     );
     assert!(c.torque > a.torque, "torque {} vs {}", c.torque, a.torque);
     assert!(c.torque > 0.0, "a slipping wheel needs a driving torque");
+    // The bed dissipates what the motor, the carriage and gravity put in.
+    assert!(
+        c.power() > 0.0 && a.power() > 0.0,
+        "{} {}",
+        a.power(),
+        c.power()
+    );
 }
 
 #[test]

@@ -174,7 +174,7 @@ pub fn run(a: &WheelArgs, out: &mut dyn Write) -> Res {
     Ok(())
 }
 
-const STEADY_HEADER: [&str; 13] = [
+const STEADY_HEADER: [&str; 14] = [
     "contact",
     "slip",
     "sinkage",
@@ -188,10 +188,12 @@ const STEADY_HEADER: [&str; 13] = [
     "drift_torque",
     "travel",
     "duration",
+    "power",
 ];
 
 /// One steady row: contact, slip, sinkage \[m\], pull \[N\], torque \[N m\], DP/W, T/(W R),
-/// sinkage rate \[m/s\], the third-to-fourth-quarter drifts, travel \[m\], duration \[s\].
+/// sinkage rate \[m/s\], the third-to-fourth-quarter drifts, travel \[m\], duration \[s\],
+/// the power put into the bed \[W\] (`WheelSteady::power`).
 fn steady_fields(s: &WheelSteady) -> Vec<String> {
     vec![
         label(s.creep).to_string(),
@@ -207,6 +209,7 @@ fn steady_fields(s: &WheelSteady) -> Vec<String> {
         s.drift[2].to_string(),
         s.travel.to_string(),
         s.duration.to_string(),
+        s.power().to_string(),
     ]
 }
 
