@@ -44,7 +44,7 @@
 //!   start is applied `n` times: the hard-case matrix fails (creep 0.02..0.34 of Kalker's
 //!   `F_ss`, a column of spheres drifting 0.29 m). It needs Rapier to keep impulses per solver
 //!   contact, or a hook that may add manifold points (the experiment is
-//!   `notes/substep-experiment.patch` in the repository).
+//!   `docs/experiments/substep-secant-rows.patch` in the repository, for commit 48e0c6e).
 //!
 //! With one substep the correction is also not what limits a free ball's energy: Rapier
 //! clamps the relaxed reading at zero overlap, so scaling the correction by 1.001 changes

@@ -175,8 +175,11 @@ pub fn surface_of(collider: &Collider) -> Option<Surface> {
 /// half-space, triangle mesh, heightfield or convex polyhedron is flat at the contact (infinite
 /// radius at the face, the face's normal: Rapier's contact normal), so that a ball on any game
 /// terrain creeps. A contact with a mesh's edge or vertex is treated as a face contact (the
-/// Hertz radius is the ball's). Other shapes (capsules, cylinders, cones, compounds, ...) are
-/// `None`: the plugin leaves them to Coulomb.
+/// Hertz radius is the ball's). Other shapes are `None`. A cylinder is `None` here too, but the
+/// rigid hook does not leave it to Coulomb: a cylinder on a flat collider (`None` against
+/// [`Surface::Plane`]) is a wheel, with Carter's line-contact law or, for a crown radius set with
+/// `CreepHooks::set_wheel_crown`, Hertz's ellipse (the crate's `wheel` module). Capsules, cones,
+/// compounds and a cylinder against anything but a flat collider are left to Coulomb.
 pub fn rigid_surface_of(collider: &Collider) -> Option<Surface> {
     let shape = collider.shape();
     if let Some(ball) = shape.as_ball() {
