@@ -42,7 +42,9 @@ pub use pipeline::{CreepPipeline, RapierStep};
 pub use registry::{
     CreepMaterial, Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of, surface_of,
 };
-pub use rigid::{CreepHooks, CreepSettings, StepCounts, check_parameters, configure_parameters};
+pub use rigid::{
+    CreepHooks, CreepSettings, StepCounts, check_parameters, configure_parameters, solver_tangents,
+};
 pub use store::{ContactKey, ContactRecord, ContactStore, KeyHasher};
 pub use world::{CreepWorld, clone_physics};
 

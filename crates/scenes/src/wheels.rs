@@ -112,18 +112,6 @@ pub struct WheelMeasure {
     pub points: f64,
 }
 
-/// The friction basis of Rapier's Coulomb contact for the normal `n` (rapier3d 0.36
-/// `compute_tangent_contact_directions`: `t1 = orthonormal_vector(-n)`, `t2 = -n x t1`), in which
-/// `ContactData::tangent_impulse` is given.
-fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
-    let d = -n;
-    let sign = 1f64.copysign(d.z);
-    let a = -1.0 / (sign + d.z);
-    let b = d.x * d.y * a;
-    let t1 = Vec3::new(b, sign + d.y * d.y * a, -d.y);
-    (t1, d.cross(t1))
-}
-
 fn v3(v: Vector) -> Vec3 {
     Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
 }
@@ -150,7 +138,7 @@ pub(crate) fn contact_forces(
     for m in pair.manifolds() {
         POINTS.with(|c| c.set(c.get() + m.points.len()));
         let n = v3(m.data.normal);
-        let (t1, t2) = solver_tangents(n);
+        let (t1, t2) = creep_rapier::solver_tangents(n);
         for pt in &m.points {
             p += f64::from(pt.data.impulse);
             let ti = pt.data.tangent_impulse;
@@ -348,25 +336,25 @@ pub fn crowned_contact(params: &WheelParams, p: f64) -> Result<(f64, f64), Scene
     let rc = params
         .crown
         .ok_or_else(|| SceneError::Parameter("crowned_contact needs a crown radius".to_string()))?;
-    let pair = PairMaterial::new(
-        &params.material,
-        &params.material,
-        Surface::Sphere(params.radius),
-        Surface::Plane,
-    )?;
+    let pair = wheel_on_floor(params)?;
     let h = elliptic_hertz(1.0 / params.radius, 1.0 / rc, p, pair.e_star)?;
     Ok((h.a, h.b))
 }
 
 /// The pair's combined shear modulus and contact modulus `(G, E*)` \[Pa\].
 pub fn moduli(params: &WheelParams) -> Result<(f64, f64), SceneError> {
-    let pair = PairMaterial::new(
+    let pair = wheel_on_floor(params)?;
+    Ok((pair.g, pair.e_star))
+}
+
+/// The wheel's material against the floor's (the same), the wheel's rolling radius against a plane.
+fn wheel_on_floor(params: &WheelParams) -> Result<PairMaterial, SceneError> {
+    Ok(PairMaterial::new(
         &params.material,
         &params.material,
         Surface::Sphere(params.radius),
         Surface::Plane,
-    )?;
-    Ok((pair.g, pair.e_star))
+    )?)
 }
 
 /// The closed form a driven-wheel row is measured against, as `Q/(mu P)` at the row's
