@@ -32,6 +32,7 @@ mod rigid;
 mod rolling;
 mod store;
 mod wheel;
+mod wheel_hook;
 mod world;
 
 pub use compliant::{

@@ -1,0 +1,226 @@
+use super::*;
+
+#[test]
+fn linear_limit_is_kalkers_theory() {
+    for (ab, nu) in [(1.0, 0.25), (0.5, 0.0), (0.2, 0.5), (3.0, 0.3)] {
+        let law = Steady3d::new(ab, nu).unwrap();
+        let c = law.coefficients();
+        let e = 1e-7;
+        let l = law.loads(e, 0.0, 0.0);
+        assert!((l.fx / e / c.c11 - 1.0).abs() < 1e-5, "{ab} {nu}");
+        let l = law.loads(0.0, e, 0.0);
+        assert!((l.fy / e / c.c22 - 1.0).abs() < 1e-5);
+        assert!((l.mz / e / -c.c23 - 1.0).abs() < 1e-5);
+        let l = law.loads(0.0, 0.0, e);
+        assert!((l.fy / e / c.c23 - 1.0).abs() < 1e-4, "{}", l.fy / e);
+        assert!((l.mz / e / c.c33 - 1.0).abs() < 1e-4, "{}", l.mz / e);
+    }
+}
+
+#[test]
+fn saturates_at_mu_p_and_is_odd() {
+    let law = Steady3d::new(0.5, 0.25).unwrap();
+    for i in 0..200 {
+        let t = i as f64 * 0.37;
+        let (x, y, z) = (t.sin() * 3.0, (1.3 * t).cos() * 2.0, (0.7 * t).sin() * 4.0);
+        let l = law.loads(x, y, z);
+        assert!(l.fx.hypot(l.fy) <= 1.0 + 1e-12);
+        assert!(l.mz.abs() <= law.max_moment() + 1e-12 + 1.0);
+        let m = law.loads(-x, -y, -z);
+        assert!((l.fx + m.fx).abs() < 1e-12 && (l.fy + m.fy).abs() < 1e-12);
+        assert!((l.mz + m.mz).abs() < 1e-12);
+        // Dissipation: the force does positive work on the translational creepage at zero spin.
+        let p = law.loads(x, y, 0.0);
+        assert!(p.fx * x + p.fy * y >= 0.0);
+    }
+    let l = law.loads(100.0, 0.0, 0.0);
+    assert!((l.fx - 1.0).abs() < 1e-12);
+    let k = law.loads_kalker(0.1, 0.0, 0.0);
+    assert!(k.fx < 0.0);
+    assert_eq!(law.loads(f64::NAN, 0.0, 0.0), Loads::default());
+    // Huge finite creepages: the full-slip limits, never NaN.
+    let l = law.loads(1e300, 0.0, 0.0);
+    assert!((l.fx - 1.0).abs() < 1e-9 && l.fy == 0.0, "{l:?}");
+    let l = law.loads(0.0, -1e300, 0.0);
+    assert!((l.fy + 1.0).abs() < 1e-9 && l.mz.is_finite(), "{l:?}");
+    let l = law.loads(0.0, 0.0, 1e300);
+    assert!(
+        (l.mz / law.max_moment() - 1.0).abs() < 1e-4 && l.fy.abs() < 1e-4,
+        "{l:?}"
+    );
+    let l = law.loads(1e300, 1e300, -1e300);
+    assert!(
+        l.fx.is_finite() && l.fy.is_finite() && l.mz.is_finite(),
+        "{l:?}"
+    );
+    // Circle: M_max = 3 pi/16.
+    let c = Steady3d::new(1.0, 0.25).unwrap();
+    assert!((c.max_moment() - 3.0 * std::f64::consts::PI / 16.0).abs() < 1e-12);
+}
+
+#[test]
+fn constants_at_and_between_nodes() {
+    for (i, &ab) in NODE_AB.iter().enumerate() {
+        assert_eq!(NODE_LN_AB[i], ab.ln());
+        for (j, &nu) in NODE_NU.iter().enumerate() {
+            assert!(NODES[i][j].is_admissible(), "node {ab} {nu}");
+            let law = Steady3d::new(ab, nu).unwrap();
+            assert_eq!(law.node(), NODES[i][j]);
+            // At a node: one row, one spin shape, the node's own.
+            assert_eq!(law.rows[1].w, 0.0, "{ab} {nu}");
+            assert_eq!(law.rows[0].fs[1][0], 0.0, "{ab} {nu}");
+            assert_eq!(law.rows[0].n, NODES[i][j]);
+            // a/b > 1 has its own rows (the law is not symmetric in a/b -> b/a).
+            if ab > 1.0 {
+                assert_ne!(law.node(), NODES[4 - i][j]);
+            }
+        }
+    }
+    // Between nodes every constant lies between the four surrounding nodes' values.
+    let mid = node_at(0.35, 0.125).to_array();
+    let corners = [NODES[0][0], NODES[0][1], NODES[1][0], NODES[1][1]].map(|n| n.to_array());
+    for k in 0..18 {
+        let lo = corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
+        let hi = corners
+            .iter()
+            .map(|c| c[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(mid[k] >= lo - 1e-12 && mid[k] <= hi + 1e-12, "constant {k}");
+    }
+    assert!(node_at(0.35, 0.125).is_admissible());
+    // Beyond the end rows: their constants.
+    assert_eq!(node_at(0.1, 0.25), NODES[0][1]);
+    assert_eq!(node_at(10.0, 0.25), NODES[4][1]);
+    // Between rows two rows are blended, with convex weights.
+    let law = Steady3d::new(3.0, 0.375).unwrap();
+    assert!(law.rows[0].w > 0.0 && law.rows[1].w > 0.0);
+    assert!((law.rows[0].w + law.rows[1].w - 1.0).abs() < 1e-15);
+    // Inadmissible constants are a typed error.
+    let mut bad = NODES[1][1];
+    bad.q3 = -1.0;
+    assert!(Steady3d::with_node(0.5, 0.25, bad).is_err());
+}
+
+#[test]
+fn tiny_creepages_are_the_linear_theory_without_a_seam() {
+    let law = Steady3d::new(0.7, 0.3).unwrap();
+    let c = law.coefficients();
+    let e = 1e-40;
+    let l = law.loads(e, 2.0 * e, -3.0 * e);
+    assert_eq!(l.fx, c.c11 * e);
+    assert!((l.fy - (2.0 * c.c22 - 3.0 * c.c23) * e).abs() < 1e-12 * e);
+    assert!((l.mz - (-2.0 * c.c23 - 3.0 * c.c33) * e).abs() < 1e-12 * e);
+    // Just above the threshold the non-linear path agrees to rounding.
+    let e = 2.0 * TINY_CREEPAGE;
+    let l = law.loads(e, 2.0 * e, -3.0 * e);
+    assert!((l.fx / (c.c11 * e) - 1.0).abs() < 1e-9);
+    assert!((l.fy / ((2.0 * c.c22 - 3.0 * c.c23) * e) - 1.0).abs() < 1e-9);
+    assert!((l.mz / ((-2.0 * c.c23 - 3.0 * c.c33) * e) - 1.0).abs() < 1e-9);
+}
+
+/// Largest rise of the pure spin's lateral force from `phi_n = 3` to `3e4` (log-spaced) and
+/// its value at `3e4`.
+fn spin_force_rise(law: &Steady3d) -> (f64, f64) {
+    let mut last = law.loads(0.0, 0.0, 3.0).fy;
+    let mut rise = 0.0f64;
+    for k in 1..=40 {
+        let fy = law.loads(0.0, 0.0, 3.0 * 10f64.powf(k as f64 / 10.0)).fy;
+        assert!(fy >= 0.0);
+        rise = rise.max(fy - last);
+        last = fy;
+    }
+    (rise, last)
+}
+
+#[test]
+fn spin_force_fades_in_full_slip() {
+    // In full slip of pure spin the traction carries no force: beyond the table the
+    // lateral force of spin decreases (to 1e-6 of mu P: flat to 1e-10 in places) and is
+    // below 1 % of mu P at phi_n = 3e4, at every node.
+    for g in NODE_AB {
+        for nu in NODE_NU {
+            let (rise, end) = spin_force_rise(&Steady3d::new(g, nu).unwrap());
+            assert!(rise < 1e-6 && end < 0.01, "{g} {nu}: {rise} {end}");
+        }
+    }
+    // Between nodes the blend in nu of a row's constants lets it rise a little first
+    // (measured at most 0.047 of mu P on this grid of a/b = 0.2 ... 5, log-spaced,
+    // nu = 0 ... 0.5; 0.043 on a/b = 0.2 ... 1 with the former interpolation); it still
+    // fades.
+    let mut worst = 0.0f64;
+    for i in 0..=16 {
+        for j in 0..=4 {
+            let ab = 0.2 * 25f64.powf(i as f64 / 16.0);
+            let law = Steady3d::new(ab, 0.125 * j as f64).unwrap();
+            let (rise, end) = spin_force_rise(&law);
+            assert!(end < 0.01, "{ab} {j}: {end}");
+            worst = worst.max(rise);
+        }
+    }
+    assert!(worst < 0.048, "{worst}");
+    // And the spin moment grows monotonically towards M_max.
+    for (ab, nu) in [
+        (1.0, 0.0),
+        (0.5, 0.5),
+        (0.35, 0.125),
+        (0.7, 0.4),
+        (3.0, 0.3),
+        (5.0, 0.5),
+    ] {
+        let law = Steady3d::new(ab, nu).unwrap();
+        let mut m = 0.0;
+        for k in 0..60 {
+            let mz = law.loads(0.0, 0.0, 0.01 * 1.3f64.powi(k)).mz;
+            assert!(mz > m && mz < law.max_moment(), "{ab} {nu} {k}");
+            m = mz;
+        }
+    }
+}
+
+#[test]
+fn spin_force_below_the_table_has_no_spurious_bump() {
+    // The table's smallest spin is phi_n = 0.1; below it nothing constrains the fitted
+    // shapes but this: the pure spin force stays near Kalker's linear C23 phi_n (a fit
+    // whose shape saturated the force at phi_n ~ 1e-4 was rejected by this test).
+    // Measured: at most 1.45 times the linear force over phi_n = 1e-6 ... 0.1 at every
+    // node (a/b = 5, nu = 0.5, near phi_n = 0.03: a bump the table cannot see; a > b
+    // needs table points below phi_n = 0.1).
+    let mut worst = 0.0f64;
+    for ab in NODE_AB {
+        for nu in NODE_NU {
+            let law = Steady3d::new(ab, nu).unwrap();
+            let c23 = law.coefficients().c23;
+            for k in 0..=50 {
+                let phi = 1e-6 * 10f64.powf(k as f64 / 10.0);
+                let r = law.loads(0.0, 0.0, phi).fy / (c23 * phi);
+                assert!(r > 0.0, "{ab} {nu} {phi}");
+                worst = worst.max(r);
+            }
+        }
+    }
+    assert!(worst < 1.46, "{worst}");
+}
+
+#[test]
+fn inverse_round_trips_at_zero_spin() {
+    for (ab, nu) in [(1.0, 0.25), (0.2, 0.0), (2.0, 0.5)] {
+        let law = Steady3d::new(ab, nu).unwrap();
+        for i in 0..50 {
+            let t = i as f64 * 0.41;
+            let (x, y) = (0.3 * t.cos(), 0.25 * (1.7 * t).sin());
+            let l = law.loads(x, y, 0.0);
+            if l.fx.hypot(l.fy) > 0.999_999 {
+                continue;
+            }
+            let (bx, by) = law.creepages_for_force(l.fx, l.fy).unwrap();
+            assert!(
+                (bx - x).abs() < 1e-9 && (by - y).abs() < 1e-9,
+                "{x} {y}: {bx} {by}"
+            );
+        }
+        assert!(law.creepages_for_force(1.0, 0.0).is_err());
+        assert!(law.creepages_for_force(f64::NAN, 0.0).is_err());
+        assert_eq!(law.creepages_for_force(0.0, 0.0).unwrap(), (0.0, 0.0));
+    }
+    assert!(Steady3d::new(0.01, 0.25).is_err());
+}
