@@ -60,6 +60,12 @@ echo "== 2. Rust: creep-lammps (static library, reference driver) and its tests"
 REF=$TARGET/release/creep-lammps-ref
 
 echo "== 3. CMake: the plugin against the wheel's headers"
+# A build directory configured from another checkout (the target directory reused by a second
+# clone or worktree) is refused by CMake ("does not match the source"): start it afresh then.
+if [ -f "$WORK/plugin-build/CMakeCache.txt" ] \
+  && ! grep -qx "CMAKE_HOME_DIRECTORY:INTERNAL=$HERE/plugin" "$WORK/plugin-build/CMakeCache.txt"; then
+  rm -rf "$WORK/plugin-build"
+fi
 "$CMAKE" -S "$HERE/plugin" -B "$WORK/plugin-build" -DCMAKE_BUILD_TYPE=Release \
   -DLAMMPS_HEADER_DIR="$SITE/include/lammps" -DMPI_INCLUDE_DIR="$VENV/include" \
   -DCREEP_LAMMPS_LIB="$TARGET/release/libcreep_lammps.a" > "$WORK/cmake.log"
