@@ -35,6 +35,26 @@ pub struct CostReport {
     pub refreshes: usize,
 }
 
+impl CostReport {
+    /// The CSV header of [`CostReport::csv_row`] (seconds per DEM step; `ratio` coupled / alone).
+    pub const CSV_HEADER: &'static str = "grains,rounds,steps_per_block,bed_alone_s_per_step,coupled_s_per_step,ratio,wheel_contacts,refreshes";
+
+    /// The report as one CSV row under [`CostReport::CSV_HEADER`].
+    pub fn csv_row(&self) -> String {
+        format!(
+            "{},{},{},{:.4e},{:.4e},{:.4},{},{}",
+            self.grains,
+            self.rounds,
+            self.steps,
+            self.alone,
+            self.coupled,
+            self.coupled / self.alone,
+            self.contacts,
+            self.refreshes
+        )
+    }
+}
+
 /// Settles a bed of `counts` grains (gravity 100 m/s^2 so that it settles in a few thousand
 /// steps), then steps two copies in alternating blocks of 1,000 DEM steps, `rounds` times: the
 /// engine alone (`Dem::step`) and the engine with a rigid cylinder (a wheel in Rapier, driven

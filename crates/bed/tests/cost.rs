@@ -2,7 +2,7 @@
 //! `cargo test --release -p creep-bed --test cost -- --ignored --nocapture`
 //! (the same as `creep run wheel-on-sand --cost`).
 
-use creep_bed::cost::coupling_cost;
+use creep_bed::cost::{CostReport, coupling_cost};
 
 #[test]
 #[ignore = "a timing: run in release"]
@@ -10,19 +10,7 @@ fn coupling_cost_against_the_bed_alone() {
     let nx: usize = std::env::var("BED_NX").map_or(20, |v| v.parse().unwrap());
     let rounds: usize = std::env::var("BED_ROUNDS").map_or(5, |v| v.parse().unwrap());
     let c = coupling_cost([nx, 5, 20], rounds).unwrap();
-    println!(
-        "grains,rounds,steps_per_block,bed_alone_s_per_step,coupled_s_per_step,ratio,wheel_contacts,refreshes"
-    );
-    println!(
-        "{},{},{},{:.4e},{:.4e},{:.4},{},{}",
-        c.grains,
-        c.rounds,
-        c.steps,
-        c.alone,
-        c.coupled,
-        c.coupled / c.alone,
-        c.contacts,
-        c.refreshes
-    );
+    println!("{}", CostReport::CSV_HEADER);
+    println!("{}", c.csv_row());
     assert!(c.contacts > 0, "the wheel touches the bed");
 }

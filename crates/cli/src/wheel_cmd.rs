@@ -94,22 +94,8 @@ pub fn run(a: &WheelArgs, out: &mut dyn Write) -> Res {
     if a.cost {
         let nx = (a.grains / 100).max(4);
         let c = creep_bed::cost::coupling_cost([nx, 5, 20], a.rounds)?;
-        writeln!(
-            out,
-            "grains,rounds,steps_per_block,bed_alone_s_per_step,coupled_s_per_step,ratio,wheel_contacts,refreshes"
-        )?;
-        writeln!(
-            out,
-            "{},{},{},{:.4e},{:.4e},{:.4},{},{}",
-            c.grains,
-            c.rounds,
-            c.steps,
-            c.alone,
-            c.coupled,
-            c.coupled / c.alone,
-            c.contacts,
-            c.refreshes
-        )?;
+        writeln!(out, "{}", creep_bed::cost::CostReport::CSV_HEADER)?;
+        writeln!(out, "{}", c.csv_row())?;
         return Ok(());
     }
     if a.slip.is_empty() {
