@@ -65,10 +65,24 @@ pub(crate) struct Wheel {
     pub contact: WheelContact,
 }
 
+/// A wheel's axle direction at the hook calls of two consecutive steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct AxleTrack {
+    handle: ColliderHandle,
+    /// The step (the contact store's generation) of `now`.
+    step: u64,
+    /// The axle at the hook call of the step before `step`, if the wheel was seen then.
+    before: Option<creep_law::Vec3>,
+    /// The axle at the hook call of `step`.
+    now: creep_law::Vec3,
+}
+
 /// Crown radii of the wheels, by collider index (no hashing).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Crowns {
     slots: Vec<Option<(ColliderHandle, f64)>>,
+    /// The wheels' axles in the last two steps, by collider index (see [`Crowns::axle_turn`]).
+    axles: Vec<Option<AxleTrack>>,
     /// Elliptic Hertz at unit load by `(kx, ky, E*)`: `(a1, b1)` (a short list).
     hertz: Vec<([f64; 3], (f64, f64))>,
 }
@@ -91,6 +105,44 @@ impl Crowns {
         }
         self.slots[i] = crown.map(|rc| (collider, rc));
         Ok(())
+    }
+
+    /// The angle \[rad\] the wheel's axle turned about `n` over the last step (from the poses
+    /// of the hook calls of steps `step - 1` and `step`), or `None` if the wheel was not seen in
+    /// the step before. The poses follow the solver's velocities, which a wheel's joint keeps
+    /// consistent with its axle's carrier; the angular velocity the hook sees also holds the
+    /// spin-creep impulse the plugin applied to the wheel alone after the last step (crate
+    /// module `rolling`), which a joint only shares out in the next solve.
+    pub fn axle_turn(
+        &mut self,
+        collider: ColliderHandle,
+        axle: creep_law::Vec3,
+        n: creep_law::Vec3,
+        step: u64,
+    ) -> Option<f64> {
+        let i = collider.into_raw_parts().0 as usize;
+        if i >= self.axles.len() {
+            self.axles.resize(i + 1, None);
+        }
+        let slot = &mut self.axles[i];
+        let track = match *slot {
+            Some(t) if t.handle == collider && t.step == step => t,
+            Some(t) if t.handle == collider && t.step + 1 == step => AxleTrack {
+                handle: collider,
+                step,
+                before: Some(t.now),
+                now: axle,
+            },
+            _ => AxleTrack {
+                handle: collider,
+                step,
+                before: None,
+                now: axle,
+            },
+        };
+        *slot = Some(track);
+        let before = track.before?;
+        Some(before.cross(track.now).dot(n).atan2(before.dot(track.now)))
     }
 
     /// The crown radius of a collider, if set.

@@ -94,6 +94,7 @@ pub(crate) fn wheel_manifold(
         feature1: u32::MAX,
         feature2: u32::MAX,
     };
+    let generation = store.generation;
     let rec = store.touch(key);
     let n_prev = if rec.normal == Vec3::ZERO {
         n
@@ -159,10 +160,18 @@ pub(crate) fn wheel_manifold(
     // force of the spin takes its share of the capacity, the twisting moment is applied after
     // the step. A line contact (no elliptic law) and a wheel left on Rapier's points (tilted,
     // whose friction points resist a twist as Coulomb does) have none.
+    // The wheel's turn about n over the last step from its poses (crate::wheel's
+    // `Crowns::axle_turn`: its angular velocity holds the last spin impulse, which a joint
+    // shares out only in the next solve), the other body's from its angular velocity.
+    let w_twist_read = match crowns.axle_turn(wc, wheel.axle, n, generation) {
+        Some(turn) if side == 0 => q_motion.angular_velocity.dot(n) - turn / dt,
+        Some(turn) => turn / dt - p_motion.angular_velocity.dot(n),
+        None => rates.w_twist,
+    };
     let w_scale = p_motion.angular_velocity.length() + q_motion.angular_velocity.length();
     let w_twist =
-        if patched && rates.w_twist.abs() > SPIN_NOISE_ULPS * f64::from(f32::EPSILON) * w_scale {
-            rates.w_twist
+        if patched && w_twist_read.abs() > SPIN_NOISE_ULPS * f64::from(f32::EPSILON) * w_scale {
+            w_twist_read
         } else {
             0.0
         };

@@ -410,7 +410,18 @@ impl Robot {
         for i in 0..2 {
             let wb = &bodies[self.wheels[i]];
             rim[i] = -r * (v3(wb.angvel()) - w_ch).dot(axle);
-            wheels[i] = self.contact(self.wheels[i], self.wheel_colliders[i], r, Some(heading));
+            // The wheel's angular velocity as its joint holds it: the chassis' plus the
+            // wheel's own turn about the axle. The plugin applies the wheel's spin-creep moment
+            // after the step to the wheel alone (creep-rapier's rolling module), which the
+            // joint shares out with the chassis only in the next solve; the wheel's own
+            // angular velocity in between is not the motion the step made.
+            let w_joint = w_ch + axle * (v3(wb.angvel()) - w_ch).dot(axle);
+            wheels[i] = self.contact(
+                self.wheels[i],
+                self.wheel_colliders[i],
+                r,
+                Some((heading, w_joint)),
+            );
         }
         let caster = self.contact(
             self.caster,
@@ -438,15 +449,17 @@ impl Robot {
         }
     }
 
-    /// One body's contact with the floor (module docs), `heading` for a wheel (its `x` is along
-    /// it), `None` for the ball (`x = -v_roll/|v_roll|`).
+    /// One body's contact with the floor (module docs): for a wheel, its heading (its `x` is
+    /// along it) and its angular velocity as its joint holds it; `None` for the ball
+    /// (`x = -v_roll/|v_roll|`, its own angular velocity).
     fn contact(
         &self,
         body: RigidBodyHandle,
         collider: ColliderHandle,
         radius: f64,
-        heading: Option<Vec3>,
+        wheel: Option<(Vec3, Vec3)>,
     ) -> ContactSample {
+        let heading = wheel.map(|(h, _)| h);
         let w = &self.world;
         let rb = &w.physics.bodies[body];
         let centre = v3(rb.translation());
@@ -458,7 +471,7 @@ impl Robot {
         let p_motion = BodyMotion {
             position: centre,
             velocity: v3(rb.linvel()),
-            angular_velocity: v3(rb.angvel()),
+            angular_velocity: wheel.map_or(v3(rb.angvel()), |(_, w)| w),
             surface: Surface::Sphere(radius),
         };
         let fl = &w.physics.bodies[self.floor];

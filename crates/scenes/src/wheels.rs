@@ -139,7 +139,13 @@ pub(crate) fn contact_forces(
         POINTS.with(|c| c.set(c.get() + m.points.len()));
         let n = v3(m.data.normal);
         let (t1, t2) = creep_rapier::solver_tangents(n);
-        for pt in &m.points {
+        // Only the points the solver used this step (a wheel's manifold is solved as one
+        // patch contact; its other points keep no impulse of this step).
+        for sc in &m.data.solver_contacts {
+            let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+            let Some(pt) = m.points.get(cid) else {
+                continue;
+            };
             p += f64::from(pt.data.impulse);
             let ti = pt.data.tangent_impulse;
             q += t1 * f64::from(ti.x) + t2 * f64::from(ti.y);
@@ -196,9 +202,12 @@ fn build(
             .rotation(Vector::new(FRAC_PI_2 as f32, 0.0, 0.0))
             .linvel(Vector::new(v, 0.0, 0.0))
             .angvel(Vector::new(0.0, 0.0, -v / r))
-            // No yaw (the heading is held); tilting stays free: with the tilt locked as well
-            // the line contact's three friction points no longer hold a Coulomb twin in stick.
-            .enabled_rotations(true, false, true)
+            // No yaw (the heading is held). The wheel's contact is one point at its patch
+            // (creep-rapier's wheel module), so a wheel free to slide along its axle is also
+            // held upright (like a vehicle's axle); with the axle's translation locked the tilt
+            // stays free (locking both would leave the lateral friction row no mobility: the
+            // 2x2 friction solve against the fixed floor would be singular).
+            .enabled_rotations(lock_axial, false, true)
             .enabled_translations(true, true, !lock_axial)
             .can_sleep(false),
         ColliderBuilder::cylinder(0.5 * params.width as f32, r).friction(mu),
