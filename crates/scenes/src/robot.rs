@@ -197,6 +197,10 @@ pub struct ContactSample {
     pub slip: [f64; 2],
     /// Relative spin `w_twist = (w_q - w_p) . n` [rad/s].
     pub twist: f64,
+    /// The slip the creep law prescribed for the step (the hook's target, along `x` and `y`)
+    /// [m/s]; 0 without creep. Over `speed` it is the law's creepage, free of the engine's own
+    /// slip (contact bounces, joint compliance), which the measured creepages include.
+    pub target: [f64; 2],
     /// Measured dissipation `Q . v_disp + M_z w_twist` \[W\].
     pub power: f64,
     /// The hook's booked creep power for this contact, `q_used . target + M_z w_twist` \[W\].
@@ -500,15 +504,18 @@ impl Robot {
         let (p, force, power) = self.impulses(collider, &p_motion, &q_motion, n);
         // The creep law's twisting moment on the body (the plugin applies it after the step)
         // and the hook's booked power, from the pair's records.
-        let (mut mz, mut hook_power) = (0.0, 0.0);
+        let (mut mz, mut hook_power, mut target) = (0.0, 0.0, Vec3::ZERO);
         for rec in pair_records(w, collider, self.floor_collider) {
-            let on_body = if rec.bodies.0 == Some(body) {
-                -rec.spin_torque
+            let (on_body, sign) = if rec.bodies.0 == Some(body) {
+                (-rec.spin_torque, 1.0)
             } else {
-                rec.spin_torque
+                (rec.spin_torque, -1.0)
             };
             mz += on_body.dot(n);
             hook_power += rec.q_used.dot(rec.target).max(0.0);
+            // The target is the slip of body 2 relative to body 1: as `v_disp` when the body
+            // is body 1.
+            target += rec.target * sign;
         }
         // The moment on the body dissipates `mz (w_q - w_p) . n` (it opposes the relative spin).
         let spin_power = mz * (q_motion.angular_velocity - p_motion.angular_velocity).dot(n);
@@ -526,6 +533,7 @@ impl Robot {
             phi: rates.w_twist * inv_v,
             slip: [rates.v_disp.dot(x), rates.v_disp.dot(y)],
             twist: rates.w_twist,
+            target: [target.dot(x), target.dot(y)],
             power: power + spin_power,
             hook_power,
         }
@@ -645,6 +653,9 @@ pub struct ContactMean {
     pub slip: [f64; 2],
     /// Mean relative spin [rad/s].
     pub twist: f64,
+    /// The creep law's creepages (`ContactSample::target` over the mean speed) along `x`
+    /// and `y` [-].
+    pub law_creepage: [f64; 2],
     /// Measured dissipation \[W\].
     pub power: f64,
     /// The hook's booked creep power \[W\].
@@ -661,6 +672,8 @@ impl ContactMean {
         self.slip[0] += k * s.slip[0];
         self.slip[1] += k * s.slip[1];
         self.twist += k * s.twist;
+        self.law_creepage[0] += k * s.target[0];
+        self.law_creepage[1] += k * s.target[1];
         self.power += k * s.power;
         self.hook_power += k * s.hook_power;
     }
@@ -674,6 +687,7 @@ impl ContactMean {
         self.xi = self.slip[0] * inv_v;
         self.eta = self.slip[1] * inv_v;
         self.phi = self.twist * inv_v;
+        self.law_creepage = [self.law_creepage[0] * inv_v, self.law_creepage[1] * inv_v];
     }
 }
 
