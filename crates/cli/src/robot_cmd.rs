@@ -5,8 +5,7 @@
 
 use std::io::Write;
 
-use creep_rapier::Fidelity;
-use creep_scenes::robot::{self, RobotParams, RobotRun, WheelSpeeds};
+use creep_scenes::robot::{self, Fidelity, RobotParams, RobotRun, WheelSpeeds};
 
 use crate::output::CsvWriter;
 

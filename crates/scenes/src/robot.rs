@@ -46,7 +46,9 @@ use std::f64::consts::FRAC_PI_2;
 
 use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::{Material, Surface, Vec3};
-use creep_rapier::{ContactRecord, CreepMaterial, CreepSettings, CreepWorld, Fidelity};
+/// The fidelity a robot's contacts run at (re-exported for the robot's users).
+pub use creep_rapier::Fidelity;
+use creep_rapier::{ContactRecord, CreepMaterial, CreepSettings, CreepWorld};
 use rapier3d::prelude::*;
 
 use crate::measure::{SceneError, positive};
