@@ -1,8 +1,9 @@
-//! The rigid hook's wheel path (crate::wheel, docs/ARCHITECTURE.md §2): a cylinder on a flat
-//! collider gets one contact record and one slip target for its whole manifold, with Carter's
-//! line-contact law or, for a crowned wheel, the elliptic contact's 3-D law. Called from
-//! [`crate::CreepHooks`]' `modify_solver_contacts` (crate::rigid), whose implicit per-contact
-//! solve it shares.
+//! The rigid hook's wheel path (crate::wheel, docs/ARCHITECTURE.md §2, §6): a cylinder on a
+//! flat collider gets one contact record and one slip target for its whole manifold, with
+//! Carter's line-contact law or, for a crowned wheel, the elliptic contact's 3-D law and spin
+//! creep; an upright wheel's manifold is solved as one solver contact at its patch centre
+//! (`patch_contact`, crate::wheel's "The patch contact"). Called from [`crate::CreepHooks`]'
+//! `modify_solver_contacts` (crate::rigid), whose implicit per-contact solve it shares.
 
 use creep_law::kinematics::contact_rates;
 use creep_law::{PairMaterial, Surface, Vec3};
@@ -163,12 +164,17 @@ pub(crate) fn wheel_manifold(
     // The wheel's turn about n over the last step from its poses (crate::wheel's
     // `Crowns::axle_turn`: its angular velocity holds the last spin impulse, which a joint
     // shares out only in the next solve), the other body's from its angular velocity.
-    let w_twist_read = match crowns.axle_turn(wc, wheel.axle, n, generation) {
+    let turn = crowns.axle_turn(wc, wheel.axle, n, generation);
+    let w_twist_read = match turn {
         Some(turn) if side == 0 => q_motion.angular_velocity.dot(n) - turn / dt,
         Some(turn) => turn / dt - p_motion.angular_velocity.dot(n),
         None => rates.w_twist,
     };
-    let w_scale = p_motion.angular_velocity.length() + q_motion.angular_velocity.length();
+    // A relative spin within f32 rounding is noise (crate::rigid's SPIN_NOISE_ULPS): of the
+    // angular velocities, and for a turn read from the poses, of the axle's direction per step.
+    let w_scale = p_motion.angular_velocity.length()
+        + q_motion.angular_velocity.length()
+        + if turn.is_some() { 1.0 / dt } else { 0.0 };
     let w_twist =
         if patched && w_twist_read.abs() > SPIN_NOISE_ULPS * f64::from(f32::EPSILON) * w_scale {
             w_twist_read

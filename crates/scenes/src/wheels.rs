@@ -11,10 +11,11 @@
 //!   overlap, not creep). Closed forms: Carter's `Q/(mu P) = 1 - (1 - xi/(mu a/R))^2` (Carter
 //!   1926; Johnson 1985, §8.2; creep-reference `carter`) for the line contact; for the crowned
 //!   wheel, Kalker's exact theory (creep-reference's boundary elements, `steady3d::table`).
-//! * [`lateral`]: see below.
-//!   speed `V` and angle `alpha` to the wheel's heading: lateral creepage `eta = tan(alpha)`, and
-//!   the lateral force against it; Kalker's linear theory gives the slope `G a b C22` (Kalker
-//!   1967; Kalker 1990, Table E.3) and the force saturates at `mu P`.
+//! * [`lateral`]: a wheel rolling along `x` and pushed sideways at its axle, held upright with
+//!   its heading held: it settles at the slip angle `alpha` whose lateral force balances the
+//!   push, lateral creepage `eta = tan(alpha)`; Kalker's linear theory gives the slope
+//!   `G a b C22` (Kalker 1967; Kalker 1990, Table E.3), the boundary elements the curve, and
+//!   the force saturates at `mu P`.
 
 use std::f64::consts::FRAC_PI_2;
 
