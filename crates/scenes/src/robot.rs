@@ -13,7 +13,8 @@
 //!
 //! Each contact is measured in the frame of creep-rapier's `creep3d` (Kalker 1967; Kalker
 //! 1990, §1.2) with the rolling body as p and the floor as q (`n` from p to q, downwards):
-//! Kuhn & Bagi's rolling velocity `v_roll` at the contact point under the body's centre,
+//! Kuhn & Bagi's rolling velocity `v_roll` at the point Rapier rolls the body about (under its
+//! centre, midway between the surfaces: `R - delta/2` below it, `delta` the overlap),
 //! `x` along the wheel's heading against the rolling (`x = -v_roll/|v_roll|` for the ball),
 //! `y = n × x`, and with `V = |v_roll . x|`: longitudinal creepage `xi = v_disp . x / V`,
 //! lateral `eta = v_disp . y / V`, spin `phi = (w_q - w_p) . n / V` \[1/m\] (`v_disp` the floor's
@@ -38,9 +39,15 @@
 //! Rapier's contact impulses; `M_z` the creep law's twisting moment on the body, which the
 //! plugin applies after the step, read from its contact record): the **measured** dissipation.
 //! The rigid hook books its own estimate, `q_used . target + M_z w_twist` per creep contact
-//! (`StepCounts::creep_power`): in a steady creep run the two agree (the solver delivers the
-//! slip the hook asks for). The Coulomb twin's contacts stick (no dissipation) except where
-//! Rapier's friction points slide.
+//! (`StepCounts::creep_power`): in a steady creep run the two agree up to the engine's own slip
+//! (measured -15 % turning on the spot, +6 % on the arc: the wheels' measured creepages include
+//! Rapier's slip, of the order of the Coulomb twin's, 1e-3 to 1.4e-2, which works against the
+//! spin's lateral force; `ContactMean::law_creepage` gives the law's own creepages). A wheel's
+//! angular velocity is taken as its joint holds it (the chassis' plus its own about the axle):
+//! the plugin applies the twisting moment to the wheel alone after the step and the joint shares
+//! it with the chassis in the next solve. The Coulomb twin's wheels touch at one patch point
+//! each (creep-rapier's wheel module), with no twisting friction: they dissipate only where
+//! Rapier's rows slip (bounces).
 
 use std::f64::consts::FRAC_PI_2;
 
