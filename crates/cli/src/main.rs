@@ -9,6 +9,7 @@ mod progress;
 mod ref_cmd;
 mod report_cmd;
 mod repose_cmd;
+mod robot_cmd;
 mod run_cmd;
 mod triaxial_cmd;
 mod wheel_cmd;

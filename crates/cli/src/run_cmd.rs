@@ -86,6 +86,11 @@ pub enum RunCommand {
     /// rolls (spin decay vs Kalker's linear theory) and driven rubber wheels (line contact vs
     /// Carter, crowned with a/b = 0.5 vs the boundary elements): traction against creepage.
     Wheels,
+    /// A differential-drive robot (two driven crowned rubber wheels, a caster ball) turning on
+    /// the spot and on an arc, with creep and as a Coulomb twin: wheel creepages, arc radius
+    /// against the closed form, dissipated energy; CSV on stdout (header:
+    /// `robot_cmd::SUMMARY_HEADER`, or `--series`).
+    Robot(crate::robot_cmd::RobotArgs),
 }
 
 /// Built-in materials (creep-law's presets).
@@ -320,6 +325,7 @@ pub fn run(cmd: &RunCommand, out: &mut dyn Write) -> Res {
             }
         }
         RunCommand::WheelOnSand(a) => crate::wheel_cmd::run(a, out)?,
+        RunCommand::Robot(a) => crate::robot_cmd::run(a, out)?,
         RunCommand::Repose(a) => crate::repose_cmd::run(a, out)?,
         RunCommand::CueBall => {
             let r = cue_ball::run(Material::steel(), 2.0, 1.0 / 240.0)?;

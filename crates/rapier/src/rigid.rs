@@ -225,7 +225,7 @@ struct Inner {
 /// `eps_f32 |w|`; 16 as for the tangential load's floor (crate::gap). Without it the noise
 /// spin of straight rolling drove the spin terms and the hard-case matrix's mass-ratio case
 /// exceeded its paired energy bound by 1.2 %.
-const SPIN_NOISE_ULPS: f64 = 16.0;
+pub(crate) const SPIN_NOISE_ULPS: f64 = 16.0;
 
 /// The mark of a collider in its clearing step (see [`CreepHooks::update_activation`]): kept on
 /// the collider itself, not in the hooks, so that a copied world (`clone_physics` with fresh

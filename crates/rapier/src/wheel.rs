@@ -26,11 +26,31 @@
 //!   `a/b = 0.1`, `nu = 0.25, 0.5`, against 1.33 and 2). Not checked by a scene (the wheel's
 //!   lateral scene is engine-limited, creep-scenes `wheels`).
 //!
-//! The same target slip is set on every solver contact of the manifold (a rigid wheel without
-//! spin slips alike at both ends of its line), so Rapier's two-point friction still resists a
-//! twist of the wheel about the normal as Coulomb would: spin creep of wheels is not modelled.
-//! Rapier's rotation gap (crate module `gap`) is corrected for balls only; a fast wheel at long
-//! steps sinks and loses energy as in plain Rapier.
+//! # The patch contact
+//!
+//! Rapier's manifold of a cylinder on a flat collider has two to four points along the line of
+//! contact, and its Coulomb solve limits each point's friction by `mu` times that point's own
+//! normal impulse (rapier3d 0.36 `ContactWithCoulombFriction::solve`), the points solved one
+//! after the other with their lever arms frozen at their own positions. Three collinear points
+//! share the load in a statically indeterminate way: from 0.8 `mu P` one row saturated and the
+//! Coulomb twin of a driven wheel slipped (creepage 9e-3 at 0.8 `mu P`, 4e-2 at 0.9), and a
+//! wheel pushed sideways slid far beyond its creep target. The hook therefore solves an upright
+//! wheel (`|axle . n| < 0.2`) as **one solver contact at the centre of its patch**
+//! (crate::wheel_hook `patch_contact`: the point of the wheel's mid-plane rim nearest the floor,
+//! with the manifold's separation fitted along the axle), for every fidelity (a Coulomb twin
+//! has the same contact): its friction row acts where the law's patch is, with the limit
+//! `mu P` of the whole wheel. The contact has no tilt stiffness (hold a wheel upright by its
+//! axle: a joint, or locked tilt) and no Coulomb twisting friction.
+//!
+//! **Spin**: a crowned wheel's patch has Kalker's spin creep as a ball's contact has (crate
+//! module `creep3d`): the lateral force of spin takes its share of `mu P` and the twisting moment
+//! `Mz(xi_n, eta_n, phi_n)` of `Steady3d` is applied after the step (crate module `rolling`).
+//! The relative spin is read from the wheel's axle turning between the hook calls of two steps
+//! (`Crowns::axle_turn`), not from its angular velocity: a wheel on a joint takes the
+//! post-step impulse alone and its joint shares it with the carrier only in the next solve. A
+//! line-contact wheel (no elliptic law) and a tilted wheel (left on Rapier's points) have no
+//! spin creep. Rapier's rotation gap (crate module `gap`) is corrected as for a sphere of the
+//! wheel's radius; a fast wheel at long steps sinks and loses energy as in plain Rapier.
 
 use creep_law::elliptic::elliptic_hertz;
 use rapier3d::prelude::*;
@@ -65,10 +85,24 @@ pub(crate) struct Wheel {
     pub contact: WheelContact,
 }
 
+/// A wheel's axle direction at the hook calls of two consecutive steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct AxleTrack {
+    handle: ColliderHandle,
+    /// The step (the contact store's generation) of `now`.
+    step: u64,
+    /// The axle at the hook call of the step before `step`, if the wheel was seen then.
+    before: Option<creep_law::Vec3>,
+    /// The axle at the hook call of `step`.
+    now: creep_law::Vec3,
+}
+
 /// Crown radii of the wheels, by collider index (no hashing).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Crowns {
     slots: Vec<Option<(ColliderHandle, f64)>>,
+    /// The wheels' axles in the last two steps, by collider index (see [`Crowns::axle_turn`]).
+    axles: Vec<Option<AxleTrack>>,
     /// Elliptic Hertz at unit load by `(kx, ky, E*)`: `(a1, b1)` (a short list).
     hertz: Vec<([f64; 3], (f64, f64))>,
 }
@@ -91,6 +125,44 @@ impl Crowns {
         }
         self.slots[i] = crown.map(|rc| (collider, rc));
         Ok(())
+    }
+
+    /// The angle \[rad\] the wheel's axle turned about `n` over the last step (from the poses
+    /// of the hook calls of steps `step - 1` and `step`), or `None` if the wheel was not seen in
+    /// the step before. The poses follow the solver's velocities, which a wheel's joint keeps
+    /// consistent with its axle's carrier; the angular velocity the hook sees also holds the
+    /// spin-creep impulse the plugin applied to the wheel alone after the last step (crate
+    /// module `rolling`), which a joint only shares out in the next solve.
+    pub fn axle_turn(
+        &mut self,
+        collider: ColliderHandle,
+        axle: creep_law::Vec3,
+        n: creep_law::Vec3,
+        step: u64,
+    ) -> Option<f64> {
+        let i = collider.into_raw_parts().0 as usize;
+        if i >= self.axles.len() {
+            self.axles.resize(i + 1, None);
+        }
+        let slot = &mut self.axles[i];
+        let track = match *slot {
+            Some(t) if t.handle == collider && t.step == step => t,
+            Some(t) if t.handle == collider && t.step + 1 == step => AxleTrack {
+                handle: collider,
+                step,
+                before: Some(t.now),
+                now: axle,
+            },
+            _ => AxleTrack {
+                handle: collider,
+                step,
+                before: None,
+                now: axle,
+            },
+        };
+        *slot = Some(track);
+        let before = track.before?;
+        Some(before.cross(track.now).dot(n).atan2(before.dot(track.now)))
     }
 
     /// The crown radius of a collider, if set.

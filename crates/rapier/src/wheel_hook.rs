@@ -1,8 +1,9 @@
-//! The rigid hook's wheel path (crate::wheel, docs/ARCHITECTURE.md §2): a cylinder on a flat
-//! collider gets one contact record and one slip target for its whole manifold, with Carter's
-//! line-contact law or, for a crowned wheel, the elliptic contact's 3-D law. Called from
-//! [`crate::CreepHooks`]' `modify_solver_contacts` (crate::rigid), whose implicit per-contact
-//! solve it shares.
+//! The rigid hook's wheel path (crate::wheel, docs/ARCHITECTURE.md §2, §6): a cylinder on a
+//! flat collider gets one contact record and one slip target for its whole manifold, with
+//! Carter's line-contact law or, for a crowned wheel, the elliptic contact's 3-D law and spin
+//! creep; an upright wheel's manifold is solved as one solver contact at its patch centre
+//! (`patch_contact`, crate::wheel's "The patch contact"). Called from [`crate::CreepHooks`]'
+//! `modify_solver_contacts` (crate::rigid), whose implicit per-contact solve it shares.
 
 use creep_law::kinematics::contact_rates;
 use creep_law::{PairMaterial, Surface, Vec3};
@@ -11,7 +12,7 @@ use rapier3d::prelude::*;
 use crate::convert::{inverse_mass, motion, v3, vf};
 use crate::creep3d::{LawCache, RollFrame, solve_translation};
 use crate::registry::Fidelity;
-use crate::rigid::{CreepSettings, StepCounts, pair_fidelity, solver_tangents};
+use crate::rigid::{CreepSettings, SPIN_NOISE_ULPS, StepCounts, pair_fidelity, solver_tangents};
 use crate::store::{ContactKey, ContactStore};
 use crate::wheel::{Crowns, WheelContact, carter_creepage, line_half_width};
 
@@ -69,13 +70,24 @@ pub(crate) fn wheel_manifold(
     let Some(wheel) = crowns.wheel(wc, co, pair.e_star) else {
         return false;
     };
+    let n = v3(*rigid.normal);
+    // Last step's loads of the whole manifold, read before the manifold becomes one patch.
+    let loads = manifold_loads(rigid);
+    // One solver contact at the centre of the wheel's contact patch (module docs of
+    // crate::wheel), for every fidelity, so that a Coulomb twin has the same contact.
+    let patched = wheel.axle.dot(n).abs() < UPRIGHT;
+    if patched {
+        let towards_floor = if side == 0 { n } else { -n };
+        let centre = v3(co.translation());
+        patch_contact(rigid, centre, wheel.axle, radius, towards_floor, n);
+    }
+    let n_contacts = rigid.solver_contacts.len();
     let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
     if fidelity == Fidelity::Coulomb {
         counts.coulomb_requested += n_contacts;
         return true;
     }
     let dt = ctx.dt;
-    let n = v3(*rigid.normal);
     // The whole manifold: total normal force, contact centre.
     let key = ContactKey {
         collider1: c1,
@@ -83,6 +95,7 @@ pub(crate) fn wheel_manifold(
         feature1: u32::MAX,
         feature2: u32::MAX,
     };
+    let generation = store.generation;
     let rec = store.touch(key);
     let n_prev = if rec.normal == Vec3::ZERO {
         n
@@ -90,15 +103,9 @@ pub(crate) fn wheel_manifold(
         rec.normal
     };
     let (t1, t2) = solver_tangents(n_prev);
-    let (mut impulse, mut tangent, mut centre, mut count) = (0.0, Vec3::ZERO, Vec3::ZERO, 0.0);
+    let (impulse, tangent) = (loads.0, t1 * loads.1 + t2 * loads.2);
+    let (mut centre, mut count) = (Vec3::ZERO, 0.0);
     for sc in rigid.solver_contacts.iter() {
-        let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
-        let Some(point) = rigid.manifold.points.get(cid) else {
-            continue;
-        };
-        impulse += f64::from(point.data.impulse);
-        let ti = point.data.tangent_impulse;
-        tangent += t1 * f64::from(ti.x) + t2 * f64::from(ti.y);
         centre += (v3(sc.anchor1) + v3(sc.anchor2)) * 0.5;
         count += 1.0;
     }
@@ -150,11 +157,45 @@ pub(crate) fn wheel_manifold(
             Some(line_half_width(p_force, width, radius, pair.e_star)),
         ),
     };
+    // Spin creep of a crowned wheel's patch contact (as a ball's, crate::creep3d): the lateral
+    // force of the spin takes its share of the capacity, the twisting moment is applied after
+    // the step. A line contact (no elliptic law) and a wheel left on Rapier's points (tilted,
+    // whose friction points resist a twist as Coulomb does) have none.
+    // The wheel's turn about n over the last step from its poses (crate::wheel's
+    // `Crowns::axle_turn`: its angular velocity holds the last spin impulse, which a joint
+    // shares out only in the next solve), the other body's from its angular velocity.
+    let turn = crowns.axle_turn(wc, wheel.axle, n, generation);
+    let w_twist_read = match turn {
+        Some(turn) if side == 0 => q_motion.angular_velocity.dot(n) - turn / dt,
+        Some(turn) => turn / dt - p_motion.angular_velocity.dot(n),
+        None => rates.w_twist,
+    };
+    // A relative spin within f32 rounding is noise (crate::rigid's SPIN_NOISE_ULPS): of the
+    // angular velocities, and for a turn read from the poses, of the axle's direction per step.
+    let w_scale = p_motion.angular_velocity.length()
+        + q_motion.angular_velocity.length()
+        + if turn.is_some() { 1.0 / dt } else { 0.0 };
+    let w_twist =
+        if patched && w_twist_read.abs() > SPIN_NOISE_ULPS * f64::from(f32::EPSILON) * w_scale {
+            w_twist_read
+        } else {
+            0.0
+        };
+    let (phi_n, spin_fy) = match law3 {
+        Some((law3, c2)) if w_twist != 0.0 => {
+            let phi_n = w_twist / roll * g * c2 * c2.sqrt() / mu_p;
+            (phi_n, law3.loads(0.0, 0.0, phi_n).fy)
+        }
+        _ => (0.0, 0.0),
+    };
+    let q_s = frame.y * (spin_fy * mu_p);
+    // The capacity left to the translation.
+    let mu_t = (mu_p - spin_fy.abs() * mu_p).max(0.0);
     let creepage = |q: f64| -> f64 {
         match (law3, line) {
             (Some((law3, c2)), _) => {
-                let f = (q / mu_p).clamp(0.0, 1.0 - 1e-9);
-                law3.creepages_for_force(f, 0.0).map_or(0.0, |(x, _)| x) * mu_p / (g * c2)
+                let f = (q / mu_t).clamp(0.0, 1.0 - 1e-9);
+                law3.creepages_for_force(f, 0.0).map_or(0.0, |(x, _)| x) * mu_t / (g * c2)
             }
             (None, Some(a)) => carter_creepage(q, mu_p, p_force, a, radius),
             _ => 0.0,
@@ -195,17 +236,119 @@ pub(crate) fn wheel_manifold(
     } else {
         0.0
     };
-    let (q_t, ux, uy) = solve_translation(frame.split(q_star), k, r, mu_p, slope0, &creepage);
+    let (q_t, ux, uy) = solve_translation(frame.split(q_star - q_s), k, r, mu_t, slope0, &creepage);
     let f = creepage(q_t);
     let (cx, cy) = (f * ux, f * r * uy);
-    let q_used = frame.join(q_t * ux, q_t * uy);
+    let q_used = frame.join(q_t * ux, q_t * uy) + q_s;
     let target = frame.join(cx, cy) * roll;
     rec.q_used = q_used;
     rec.target = target;
+    // Kalker's twisting moment on p about n (crate::creep3d), applied after the step as an
+    // angular impulse that never reverses the relative spin (crate::rolling).
+    let mz = match law3 {
+        Some((law3, c2)) if phi_n != 0.0 => {
+            let scale = g * c2 / mu_p;
+            law3.loads(cx * scale, cy * scale, phi_n).mz * mu_p * c2.sqrt()
+        }
+        _ => 0.0,
+    };
+    rec.spin_torque = n * (-mz);
     counts.creep += n_contacts;
-    counts.creep_power += q_used.dot(target).max(0.0);
+    counts.creep_power += (q_used.dot(target) + mz * w_twist).max(0.0);
     for sc in rigid.solver_contacts.iter_mut() {
         sc.tangent_velocity += vf(target);
     }
     true
+}
+
+/// Largest `|axle . n|` of a wheel whose manifold becomes one patch contact (a camber up to
+/// ~11.5 degrees); a wheel tilted further touches on its rim's edge and keeps Rapier's points.
+const UPRIGHT: f64 = 0.2;
+
+/// Last step's total normal impulse and total friction impulse (in the solver's tangent basis
+/// of last step's normal, components `t1`, `t2`) of the manifold's solver contacts \[N s\].
+fn manifold_loads(rigid: &ModifiableManifold) -> (f64, f64, f64) {
+    let (mut p, mut q1, mut q2) = (0.0, 0.0, 0.0);
+    for sc in rigid.solver_contacts.iter() {
+        let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+        let Some(point) = rigid.manifold.points.get(cid) else {
+            continue;
+        };
+        p += f64::from(point.data.impulse);
+        q1 += f64::from(point.data.tangent_impulse.x);
+        q2 += f64::from(point.data.tangent_impulse.y);
+    }
+    (p, q1, q2)
+}
+
+/// Replaces a wheel's solver contacts by one at the centre of its contact patch: the point of
+/// the wheel's mid-plane rim nearest the floor, `c = x_w + R d`, `d` the unit direction towards
+/// the floor in the wheel's plane (`towards_floor` less its part along the axle), with the
+/// manifold's mean separation, gap correction and target (module docs of crate::wheel: a
+/// rigid wheel's friction acts at its patch, not at Rapier's two to four points along the
+/// cylinder's line, whose per-point friction limits let a Coulomb wheel slip from 0.8 `mu P`).
+/// Keeps the contact id of the point that carried last step's load (only it is solved, so only
+/// it carries warm starts and impulses into the next step).
+fn patch_contact(
+    rigid: &mut ModifiableManifold,
+    centre: Vec3,
+    axle: Vec3,
+    radius: f64,
+    towards_floor: Vec3,
+    n: Vec3,
+) {
+    let k = rigid.solver_contacts.len();
+    if k == 0 {
+        return;
+    }
+    let Some(d) = towards_floor.reject(axle).try_normalize() else {
+        return;
+    };
+    let (mut keep, mut best) = (0, f32::NEG_INFINITY);
+    // The separation at the mid-plane: least squares of the points' separations against
+    // their positions `s` along the axle (the mean for points at one `s`).
+    let (mut s1, mut s2, mut d1, mut sd, mut tv) = (0.0, 0.0, 0.0, 0.0, Vec3::ZERO);
+    for (i, sc) in rigid.solver_contacts.iter().enumerate() {
+        let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+        let load = rigid
+            .manifold
+            .points
+            .get(cid)
+            .map_or(0.0, |p| p.data.impulse);
+        if load > best {
+            (keep, best) = (i, load);
+        }
+        let s = (v3(sc.anchor1) - centre).dot(axle);
+        let dist = f64::from(sc.dist);
+        s1 += s;
+        s2 += s * s;
+        d1 += dist;
+        sd += s * dist;
+        tv += v3(sc.tangent_velocity);
+    }
+    let inv = 1.0 / k as f64;
+    let (s_mean, d_mean) = (s1 * inv, d1 * inv);
+    let var = s2 * inv - s_mean * s_mean;
+    let slope = if var > 1e-12 * radius * radius {
+        (sd * inv - s_mean * d_mean) / var
+    } else {
+        0.0
+    };
+    let dist = d_mean - slope * s_mean;
+    let tv = tv * inv;
+    let on_wheel = centre + d * radius;
+    // anchor1 on collider 1; the normal points from collider 1 to collider 2, and the
+    // separation along it is `dist` (negative: overlap).
+    let (a1, a2) = if towards_floor.dot(n) > 0.0 {
+        (on_wheel, on_wheel + n * dist)
+    } else {
+        (on_wheel - n * dist, on_wheel)
+    };
+    rigid.solver_contacts.swap(0, keep);
+    rigid.solver_contacts.truncate(1);
+    let sc = &mut rigid.solver_contacts[0];
+    sc.anchor1 = vf(a1);
+    sc.anchor2 = vf(a2);
+    sc.dist = dist as f32;
+    sc.tangent_velocity = vf(tv);
 }

@@ -16,6 +16,7 @@ pub mod incline;
 mod measure;
 pub mod pile;
 pub mod repose;
+pub mod robot;
 pub mod rolling_ball;
 pub mod rolling_effect;
 pub mod stats;

@@ -11,10 +11,11 @@
 //!   overlap, not creep). Closed forms: Carter's `Q/(mu P) = 1 - (1 - xi/(mu a/R))^2` (Carter
 //!   1926; Johnson 1985, §8.2; creep-reference `carter`) for the line contact; for the crowned
 //!   wheel, Kalker's exact theory (creep-reference's boundary elements, `steady3d::table`).
-//! * [`lateral`]: see below.
-//!   speed `V` and angle `alpha` to the wheel's heading: lateral creepage `eta = tan(alpha)`, and
-//!   the lateral force against it; Kalker's linear theory gives the slope `G a b C22` (Kalker
-//!   1967; Kalker 1990, Table E.3) and the force saturates at `mu P`.
+//! * [`lateral`]: a wheel rolling along `x` and pushed sideways at its axle, held upright with
+//!   its heading held: it settles at the slip angle `alpha` whose lateral force balances the
+//!   push, lateral creepage `eta = tan(alpha)`; Kalker's linear theory gives the slope
+//!   `G a b C22` (Kalker 1967; Kalker 1990, Table E.3), the boundary elements the curve, and
+//!   the force saturates at `mu P`.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -139,7 +140,13 @@ pub(crate) fn contact_forces(
         POINTS.with(|c| c.set(c.get() + m.points.len()));
         let n = v3(m.data.normal);
         let (t1, t2) = creep_rapier::solver_tangents(n);
-        for pt in &m.points {
+        // Only the points the solver used this step (a wheel's manifold is solved as one
+        // patch contact; its other points keep no impulse of this step).
+        for sc in &m.data.solver_contacts {
+            let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+            let Some(pt) = m.points.get(cid) else {
+                continue;
+            };
             p += f64::from(pt.data.impulse);
             let ti = pt.data.tangent_impulse;
             q += t1 * f64::from(ti.x) + t2 * f64::from(ti.y);
@@ -196,9 +203,12 @@ fn build(
             .rotation(Vector::new(FRAC_PI_2 as f32, 0.0, 0.0))
             .linvel(Vector::new(v, 0.0, 0.0))
             .angvel(Vector::new(0.0, 0.0, -v / r))
-            // No yaw (the heading is held); tilting stays free: with the tilt locked as well
-            // the line contact's three friction points no longer hold a Coulomb twin in stick.
-            .enabled_rotations(true, false, true)
+            // No yaw (the heading is held). The wheel's contact is one point at its patch
+            // (creep-rapier's wheel module), so a wheel free to slide along its axle is also
+            // held upright (like a vehicle's axle); with the axle's translation locked the tilt
+            // stays free (locking both would leave the lateral friction row no mobility: the
+            // 2x2 friction solve against the fixed floor would be singular).
+            .enabled_rotations(lock_axial, false, true)
             .enabled_translations(true, true, !lock_axial)
             .can_sleep(false),
         ColliderBuilder::cylinder(0.5 * params.width as f32, r).friction(mu),

@@ -132,12 +132,12 @@ fn driven_crowned_wheel_follows_kalker() {
     assert!(worst < 0.02, "worst |Q/(mu P) - BEM| {worst}");
 }
 
-/// The range, up to 0.9 `mu P`: not met. Rapier's contact of a cylinder on a box has
-/// three friction points, and from 0.8 `mu P` on the Coulomb twin itself slips (its creepage
-/// 9e-3 at 0.8, 4e-2 at 0.9, against -2e-3 below), so the twin no longer measures the engine's
-/// own slip (measured: line -10.7 % / -9.6 %, crowned -3.6 % / -8.2 % of `mu P` at 0.8 / 0.9).
+/// The range, up to 0.9 `mu P`: both wheels within 2 % of `mu P` of their closed forms.
+/// Before the wheel's manifold became one patch contact (creep-rapier's wheel module) Rapier's
+/// three friction points let the Coulomb twin itself slip from 0.8 `mu P` (creepage 9e-3 at 0.8,
+/// 4e-2 at 0.9) and this missed by line -10.7 % / -9.6 %, crowned -3.6 % / -8.2 %; with the
+/// patch contact the twin sticks (creepage -2.8e-3, the rolling-radius offset, at every load).
 #[test]
-#[ignore = "engine limit: Rapier's three-point cylinder contact slips in the Coulomb twin from 0.8 mu P; run it to see the numbers"]
 fn driven_wheels_near_the_friction_limit() {
     let line = line_wheel_error(&[0.8, 0.9]);
     let crowned = crowned_wheel_error(&[0.8, 0.9]);
@@ -147,18 +147,14 @@ fn driven_wheels_near_the_friction_limit() {
     );
 }
 
-/// A free crowned wheel pushed sideways: the lateral force against the lateral creepage
-/// (`tan` of the slip angle) has the linear slope of Kalker's theory, `G a b C22` (Kalker 1990,
-/// Table E.3, via creep-law's `kalker3d`), within 2 %; below the Coulomb limit it follows the
-/// boundary elements' pure lateral curve within 2 % of `mu P`, and pushed beyond `mu P` the
-/// wheel slides sideways with the floor's force within 2 % of `mu P`.
-///
-/// Not met (engine limit): pushed sideways, the wheel's three-point contact slides well beyond
-/// the law's target (slip angle 0.075 rad at a push of 0.3 `mu P`, where the law asks for a
-/// tenth of it) and the linear slope is off by +5.9 % / -2.4 % at pushes of 0.01 / 0.02 `mu P`.
-/// The lateral law itself is checked on a ball (`ball_lateral_creep_follows_c22`).
+/// A free crowned wheel pushed sideways (held upright, its heading held): the lateral force
+/// against the lateral creepage (`tan` of the slip angle) has the linear slope of Kalker's
+/// theory, `G a b C22` (Kalker 1990, Table E.3, via creep-law's `kalker3d`), within 2 %; below
+/// the Coulomb limit it follows the boundary elements' pure lateral curve within 2 % of `mu P`.
+/// Before the wheel's manifold became one patch contact (creep-rapier's wheel module) the
+/// three-point contact slid well beyond the law's target (slip angle 0.075 rad at 0.3 `mu P`)
+/// and the slope was off by +5.9 % / -2.4 %.
 #[test]
-#[ignore = "engine limit: a cylinder pushed sideways slides on Rapier's three friction points beyond the creep target; run it to see the numbers"]
 fn slip_angle_lateral_force() {
     let mut p = WheelParams::default();
     p.crown = Some(crown_for_ratio(p.radius, 0.5).unwrap());
@@ -193,14 +189,27 @@ fn slip_angle_lateral_force() {
         );
         worst_curve = worst_curve.max((s - s_ref).abs());
     }
+    assert!(worst_slope < 0.02, "slope error {worst_slope}");
+    assert!(worst_curve < 0.02, "lateral curve error {worst_curve}");
+}
+
+/// The same wheel pushed beyond `mu P` (1.2 `mu m g`) slides sideways with the floor's force
+/// at `mu P` within 2 %. Not met: sliding sideways at up to 1.5 m/s the cylinder takes
+/// intermittent impacts (steps with no contact, then a normal impulse of 1.5 `m g dt` that
+/// stops most of the lateral speed at once), so the window's mean `|F|/(mu P)` is 0.82 (at
+/// pushes of 1.05 and 1.5 `mu m g` it is 0.999 and 0.9994).
+#[test]
+#[ignore = "engine limit: a cylinder sliding sideways fast takes intermittent impacts; run it to see the numbers"]
+fn slip_angle_saturation() {
+    let mut p = WheelParams::default();
+    p.crown = Some(crown_for_ratio(p.radius, 0.5).unwrap());
+    let mu = p.material.friction();
     let m = wheels::lateral(&p, 1.2).unwrap();
     let f = m.qx.hypot(m.qy) / (mu * m.p);
     eprintln!(
         "push 1.2: slip angle {:.4} rad, |F|/(mu P) {f:.4}",
         m.eta.atan()
     );
-    assert!(worst_slope < 0.02, "slope error {worst_slope}");
-    assert!(worst_curve < 0.02, "lateral curve error {worst_curve}");
     assert!((f - 1.0).abs() < 0.02, "saturation {f}");
 }
 
