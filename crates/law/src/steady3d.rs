@@ -260,16 +260,102 @@ pub const CREEPAGE_CLAMP: f64 = 1e6;
 pub const TINY_CREEPAGE: f64 = 1e-30;
 
 /// The spin constants of one row `a/b = NODE_AB[i]` of the table at the contact's `nu` (module
-/// documentation, "Between nodes"), with the row's weight.
+/// documentation, "Between nodes"), with the row's weight, prepared once per contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct SpinRow {
-    /// Weight of the row's loads in the blend (`0`: not evaluated).
+    /// Weight of the row's spin terms in the blend (`0`: not evaluated).
     w: f64,
     /// Constants of the row interpolated in `nu` (only the spin constants `ma .. am` are used).
     n: Node,
-    /// The spin force's shapes of the row's two `nu` nodes, `[w, p1, q1, q2, p2, q3]` (the
-    /// shapes' outputs are blended with the weights `w`; the second is unused when its `w` is 0).
-    fs: [[f64; 6]; 2],
+    /// The spin force's shape as one rational function of `u = phi_n^2`, `N(u)/D(u)` with
+    /// `N = sum num[k] u^k`, `D = sum den[k] u^k`: at a column of the table the node's own
+    /// `(1 + p1 u + p2 u^2)/(1 + q1 u + q2 u^2 + q3 u^3)`; between columns the blend of the
+    /// two nodes' shapes by their outputs, `w0 n0/d0 + w1 n1/d1 = (w0 n0 d1 + w1 n1 d0)/(d0 d1)`,
+    /// multiplied out here once (every coefficient is `>= 0`: no cancellation).
+    num: [f64; 6],
+    den: [f64; 7],
+}
+
+/// Product of two polynomials (coefficients in increasing powers) into `out` (zeroed first).
+fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
+    out.iter_mut().for_each(|o| *o = 0.0);
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            if x * y != 0.0 {
+                out[i + j] += x * y;
+            }
+        }
+    }
+}
+
+impl SpinRow {
+    /// The row from its weight, its constants interpolated in `nu`, and the spin shapes of the
+    /// row's two `nu` nodes with their weights `(w0, lo), (w1, hi)` (`w1 = 0`: `lo` alone).
+    fn new(w: f64, n: Node, (w0, lo): (f64, &Node), (w1, hi): (f64, &Node)) -> Self {
+        let n0 = [1.0, lo.p1, lo.p2];
+        let d0 = [1.0, lo.q1, lo.q2, lo.q3];
+        let mut num = [0.0; 6];
+        let mut den = [0.0; 7];
+        if w1 == 0.0 {
+            num[..3].copy_from_slice(&n0);
+            den[..4].copy_from_slice(&d0);
+        } else {
+            let n1 = [1.0, hi.p1, hi.p2];
+            let d1 = [1.0, hi.q1, hi.q2, hi.q3];
+            let (mut a, mut b) = ([0.0; 6], [0.0; 6]);
+            poly_mul(&n0, &d1, &mut a);
+            poly_mul(&n1, &d0, &mut b);
+            for k in 0..6 {
+                num[k] = w0 * a[k] + w1 * b[k];
+            }
+            poly_mul(&d0, &d1, &mut den);
+        }
+        SpinRow { w, n, num, den }
+    }
+
+    /// `(N(u), D(u))` of the spin force's shape (Estrin's scheme: short dependency chains).
+    #[inline(always)]
+    fn shape_parts(&self, u: f64, u2: f64, u4: f64) -> (f64, f64) {
+        let (a, b) = (&self.num, &self.den);
+        let num = (a[0] + a[1] * u) + u2 * (a[2] + a[3] * u) + u4 * (a[4] + a[5] * u);
+        let den = (b[0] + b[1] * u) + u2 * (b[2] + b[3] * u) + u4 * (b[4] + b[5] * u + b[6] * u2);
+        (num, den)
+    }
+}
+
+/// The spin's terms of one row (or their blend over two rows) that the translation and the
+/// moment use (module documentation, steps 1-5): `w`, the capacities `w (1 - ax s^2)`,
+/// `w (1 - ay s^4)` (floored at 0), `lam f_s`, `(1 - lam) f_s`, the moment-of-lateral-creepage
+/// factor `1 - am s^2` and the spin moment `M_max s max(0, 1 - b2 e^2 - b8 e^8)` over `M_max`.
+#[derive(Debug, Clone, Copy, Default)]
+struct SpinTerms {
+    w: f64,
+    cap_x: f64,
+    cap_y: f64,
+    f_sat: f64,
+    f_rest: f64,
+    ml_factor: f64,
+    spin_moment: f64,
+}
+
+impl SpinTerms {
+    /// The terms of `row` given its spin utilisation `s`, the lateral force of pure spin `f_s`,
+    /// and `(e^2, e^8)` of the translation alone.
+    #[inline(always)]
+    fn of_row(row: &SpinRow, s: f64, f_s: f64, e2: f64, e8: f64) -> Self {
+        let n = &row.n;
+        let s2 = s * s;
+        let w = 1.0 + n.gam * s2;
+        SpinTerms {
+            w,
+            cap_x: w * (1.0 - n.ax * s2).max(0.0),
+            cap_y: w * (1.0 - n.ay * s2 * s2).max(0.0),
+            f_sat: n.lam * f_s,
+            f_rest: (1.0 - n.lam) * f_s,
+            ml_factor: 1.0 - n.am * s2,
+            spin_moment: s * (1.0 - n.b2 * e2 - n.b8 * e8).max(0.0),
+        }
+    }
 }
 
 /// The law at one axis ratio and Poisson ratio: Kalker's coefficients, the interpolated
@@ -309,6 +395,14 @@ fn saturation_of_ratio(x_over_k: f64, k: f64) -> f64 {
     let u = x_over_k.min(1.0);
     // 1 - (1 - u)^2 (1 + (2 - k) u) expanded, free of cancellation at small u.
     u * (k - u * (2.0 * k - 3.0 + (2.0 - k) * u))
+}
+
+/// `(fx, fy)/sqrt(f2)`, `f2 = fx^2 + fy^2 > 1`: the projection onto the friction limit.
+#[cold]
+#[inline(never)]
+fn project_to_unit(fx: f64, fy: f64, f2: f64) -> (f64, f64) {
+    let inv = 1.0 / f2.sqrt();
+    (fx * inv, fy * inv)
 }
 
 /// Inverse of [`saturation_of_ratio`] on `[0, 1)`: the `x` with `S(x; k) = s`, by Newton's method on the
@@ -387,19 +481,13 @@ impl Steady3d {
             for (o, (x, y)) in n.iter_mut().zip(lo.to_array().iter().zip(hi.to_array())) {
                 *o = (1.0 - wn) * x + wn * y;
             }
-            let mut fs = [
-                [1.0 - wn, lo.p1, lo.q1, lo.q2, lo.p2, lo.q3],
-                [wn, hi.p1, hi.q1, hi.q2, hi.p2, hi.q3],
-            ];
-            if fs[0][0] == 0.0 {
-                // At the column nu = 0.5: that shape alone (the second is skipped at weight 0).
-                fs.swap(0, 1);
-            }
-            law.rows[k] = SpinRow {
-                w,
-                n: Node::from_array(n),
-                fs,
+            // At the column nu = 0.5 the shape of `hi` alone.
+            let shapes = if wn == 1.0 {
+                ((1.0, hi), (0.0, lo))
+            } else {
+                ((1.0 - wn, lo), (wn, hi))
             };
+            law.rows[k] = SpinRow::new(w, Node::from_array(n), shapes.0, shapes.1);
         }
         if law.rows[0].w == 0.0 {
             // At a row (ab at or beyond the last row): evaluate that row only.
@@ -425,11 +513,7 @@ impl Steady3d {
         // a_M / c = sqrt(a_M / b_m) = 1/sqrt(g).
         let m_max = 0.375 * e / g.sqrt();
         let n = node;
-        let row = SpinRow {
-            w: 1.0,
-            n,
-            fs: [[1.0, n.p1, n.q1, n.q2, n.p2, n.q3], [0.0; 6]],
-        };
+        let row = SpinRow::new(1.0, n, (1.0, &n), (0.0, &n));
         Ok(Steady3d {
             c,
             n,
@@ -491,101 +575,108 @@ impl Steady3d {
         if phi_n == 0.0 {
             return self.translation_only(xi_n, eta_n, tx0, ty0, t02);
         }
-        // Shared by the rows: the spin utilisation's argument, u, and the lateral creepage's
-        // moment with the utilisation of the translation alone (step 5).
-        let m = self.m_per_phi * phi_n.abs();
-        let u = phi_n * phi_n;
         let (e, ml) = if t02 > 0.0 {
             self.lateral_moment(xi_n, eta_n, tx0, ty0, t02)
         } else {
             (0.0, 0.0)
         };
-        let first = self.spin_row(&self.rows[0], phi_n, m, u, tx0, ty0, e, ml);
-        let r1 = &self.rows[1];
-        if r1.w == 0.0 {
-            return first;
-        }
-        let second = self.spin_row(r1, phi_n, m, u, tx0, ty0, e, ml);
-        let w0 = self.rows[0].w;
-        Loads {
-            fx: w0 * first.fx + r1.w * second.fx,
-            fy: w0 * first.fy + r1.w * second.fy,
-            mz: w0 * first.mz + r1.w * second.mz,
+        // 1-2 for the (one or two) rows, then 3-5 per row; between rows their loads blended.
+        if self.rows[1].w == 0.0 {
+            let [t] = self.spin_terms::<1>(phi_n, e);
+            self.with_spin(phi_n, tx0, ty0, ml, &t)
+        } else {
+            let [t0, t1] = self.spin_terms::<2>(phi_n, e);
+            let a = self.with_spin(phi_n, tx0, ty0, ml, &t0);
+            let b = self.with_spin(phi_n, tx0, ty0, ml, &t1);
+            let (w0, w1) = (self.rows[0].w, self.rows[1].w);
+            Loads {
+                fx: w0 * a.fx + w1 * b.fx,
+                fy: w0 * a.fy + w1 * b.fy,
+                mz: w0 * a.mz + w1 * b.mz,
+            }
         }
     }
 
-    /// The loads of one row at nonzero spin (module documentation, steps 1-5), given the shared
-    /// `m = C33 |phi_n|/M_max`, `u = phi_n^2`, the linear translation `t_0 = (tx0, ty0)` and
-    /// `(e, M_l)` of step 5. One division serves the spin utilisation and the spin force's
-    /// shapes, one the translation's utilisation, one its direction.
-    #[inline]
-    #[allow(clippy::too_many_arguments)]
-    fn spin_row(
-        &self,
-        row: &SpinRow,
-        phi_n: f64,
-        m: f64,
-        u: f64,
-        tx0: f64,
-        ty0: f64,
-        e: f64,
-        ml: f64,
-    ) -> Loads {
-        let n = &row.n;
-        // 1-2: s = ns/ds and the shape sum_k w_k nk/dk with one division.
-        let ns = m * (1.0 + n.ma * m);
-        let ds = 1.0 + m * (n.mb + n.ma * m);
-        let [f0, f1] = &row.fs;
-        let n0 = 1.0 + u * (f0[1] + f0[4] * u);
-        let d0 = 1.0 + u * (f0[2] + u * (f0[3] + f0[5] * u));
-        let (s, shape) = if f1[0] == 0.0 {
-            let inv = 1.0 / (ds * d0);
-            (ns * d0 * inv, f0[0] * n0 * ds * inv)
+    /// The spin terms of the first `R` rows (module documentation, steps 1-2); `e` is the
+    /// utilisation of the translation alone. One division serves every row's spin utilisation
+    /// `s = ns/ds` and spin-force shape `N/D`.
+    #[inline(always)]
+    fn spin_terms<const R: usize>(&self, phi_n: f64, e: f64) -> [SpinTerms; R] {
+        let m = self.m_per_phi * phi_n.abs();
+        let u = phi_n * phi_n;
+        let (u2, u4) = (u * u, (u * u) * (u * u));
+        let e2 = e * e;
+        let e8 = (e2 * e2) * (e2 * e2);
+        let mut ns = [0.0; R];
+        let mut ds = [0.0; R];
+        let mut num = [0.0; R];
+        let mut den = [0.0; R];
+        for r in 0..R {
+            let n = &self.rows[r].n;
+            ns[r] = m * (1.0 + n.ma * m);
+            ds[r] = 1.0 + m * (n.mb + n.ma * m);
+            (num[r], den[r]) = self.rows[r].shape_parts(u, u2, u4);
+        }
+        let c23_phi = self.c.c23 * phi_n;
+        // inv_r = 1/A_r, A_r = ds_r den_r; with two rows 1/(A0 A1) gives both.
+        let mut inv = [0.0; R];
+        if R == 1 {
+            inv[0] = 1.0 / (ds[0] * den[0]);
         } else {
-            let n1 = 1.0 + u * (f1[1] + f1[4] * u);
-            let d1 = 1.0 + u * (f1[2] + u * (f1[3] + f1[5] * u));
-            let inv = 1.0 / (ds * d0 * d1);
-            (
-                ns * d0 * d1 * inv,
-                (f0[0] * n0 * d1 + f1[0] * n1 * d0) * ds * inv,
+            let (a0, a1) = (ds[0] * den[0], ds[1] * den[1]);
+            let i = 1.0 / (a0 * a1);
+            inv[0] = a1 * i;
+            inv[1] = a0 * i;
+        }
+        std::array::from_fn(|r| {
+            SpinTerms::of_row(
+                &self.rows[r],
+                ns[r] * den[r] * inv[r],
+                c23_phi * num[r] * ds[r] * inv[r],
+                e2,
+                e8,
             )
-        };
-        let f_s = self.c.c23 * phi_n * shape;
-        let s2 = s * s;
-        let w = 1.0 + n.gam * s2;
+        })
+    }
+
+    /// Steps 3-5 of the module documentation at nonzero spin, given the spin terms, the linear
+    /// translation `t_0 = (tx0, ty0)` and the moment `M_l` of lateral creepage. One division
+    /// serves the translation's utilisation; the direction's square root and division run in
+    /// parallel.
+    #[inline(always)]
+    fn with_spin(&self, phi_n: f64, tx0: f64, ty0: f64, ml: f64, t: &SpinTerms) -> Loads {
         // 3: translation t = t'/w, t' = (C11 xi, C22 eta + lam f_s).
         let (kx, ky) = (self.n.kx, self.n.ky);
         let tx = tx0;
-        let ty = ty0 + n.lam * f_s;
+        let ty = ty0 + t.f_sat;
         let tm2 = tx * tx + ty * ty;
         let (mut fx, mut fy, st) = if tm2 > 0.0 {
             let q = kx * tx * tx + ky * ty * ty;
-            let wq = w * q;
+            let wq = t.w * q;
             let inv = 1.0 / (wq * tm2);
             // |t|/k = |t'|^3/(w q) and k = q/|t'|^2 with one division.
             let st = saturation_of_ratio(tm2.sqrt() * tm2 * tm2 * inv, q * wq * inv);
             let b = self.n.beta * (st * st) * (st * st);
             let dx = tx * (1.0 + b * self.turn);
-            let scale = st / (dx * dx + ty * ty).sqrt();
+            // st/|d| as (st/|d|^2) |d|: the square root and the division in parallel.
+            let d2 = dx * dx + ty * ty;
+            let scale = (st / d2) * d2.sqrt();
             (dx * scale, ty * scale, st)
         } else {
             (0.0, 0.0, 0.0)
         };
-        fx *= w * (1.0 - n.ax * s2).max(0.0);
-        fy *= w * (1.0 - n.ay * s2 * s2).max(0.0);
+        fx *= t.cap_x;
+        fy *= t.cap_y;
         // 4: the rest of the spin's lateral force, the friction limit.
-        fy += (1.0 - n.lam) * f_s * (1.0 - st).sqrt().sqrt();
+        fy += t.f_rest * (1.0 - st).sqrt().sqrt();
         let f2 = fx * fx + fy * fy;
         if f2 > 1.0 {
-            let inv = 1.0 / f2.sqrt();
-            fx *= inv;
-            fy *= inv;
+            // Rare: a real branch (a select would put a square root and a division on every
+            // evaluation's critical path).
+            (fx, fy) = project_to_unit(fx, fy, f2);
         }
         // 5: moment.
-        let spin_moment = self.m_max * s.copysign(phi_n);
-        let e2 = e * e;
-        let e8 = (e2 * e2) * (e2 * e2);
-        let mz = ml * (1.0 - n.am * s2) + spin_moment * (1.0 - n.b2 * e2 - n.b8 * e8).max(0.0);
+        let mz = ml * t.ml_factor + self.m_max * t.spin_moment.copysign(phi_n);
         Loads { fx, fy, mz }
     }
 
@@ -614,7 +705,8 @@ impl Steady3d {
         let (e, mz) = self.lateral_moment(xi_n, eta_n, tx0, ty0, t02);
         let b = self.n.beta * (e * e) * (e * e);
         let dx = tx0 * (1.0 + b * self.turn);
-        let scale = e / (dx * dx + ty0 * ty0).sqrt();
+        let d2 = dx * dx + ty0 * ty0;
+        let scale = (e / d2) * d2.sqrt();
         Loads {
             fx: dx * scale,
             fy: ty0 * scale,
