@@ -101,17 +101,21 @@
 //!
 //! # Cost
 //!
-//! No `powf`. Without spin one translation (two square roots, two divisions); with spin per
-//! row one division for the spin utilisation and the spin force's shapes, five square roots and
-//! two to three more divisions. Measured (`cargo bench -p creep-law --bench steady3d`, its
-//! first table: the thread's CPU time, variants interleaved, medians of 11 rounds, on a
-//! shared 2-core Xeon under a load of about 19; `F_ss`, Kalker's closed form with
-//! [`crate::kalker::cbrt`], 9.7 ns there): without spin about 34 ns (3.5x `F_ss`); with spin
-//! about 55 ns at a row of the table (5.7x; the law before the row blend: 53 ns) and about
-//! 105 ns between rows (11x; two rows evaluated; before: 65 ns). **Issue #17's 50 ns with spin
-//! is not met**: at a row it is missed by about 10 %, between rows by a factor of two, the
-//! price of the accuracy between rows (the former single interpolated law cost 65 ns there
-//! and put the spin force 13 % off).
+//! No `powf`. Without spin one translation (two square roots, two divisions); with spin one
+//! division for every row's spin utilisation and spin-force shape (a row's two `nu` shapes are
+//! multiplied out into one rational function of `phi_n^2` in [`Steady3d::new`]), and per row
+//! one translation: one division for its utilisation, a square root and a division in parallel
+//! for its direction, two square roots for `(1 - s_t)^(1/4)`; the projection onto `|F| <= 1` is
+//! a rarely taken branch. Measured (`cargo bench -p creep-law --bench steady3d`, its first
+//! table: the thread's CPU time, variants interleaved, medians of 11 rounds; the binaries
+//! before and after alternated, on a shared 2-core Xeon under a load of 16-19; `F_ss`,
+//! Kalker's closed form with [`crate::kalker::cbrt`], 9.7 ns there): without spin about 34 ns
+//! (3.5x `F_ss`, unchanged); with spin 45-57 ns at a row of the table (before 53-63 ns in the
+//! same runs) and 85-105 ns between rows (two rows' translations; before 104-117 ns).
+//! **Issue #17's 50 ns with spin is met at a row only at the lower loads, and not between
+//! rows**; docs/CREEP3D.md has the table and what was tried (one translation on the two rows'
+//! blended spin terms: 64-75 ns between rows, but the lateral force of pure spin between rows
+//! `a <= b` then 9.5 % off instead of 4.6 %: not adopted).
 
 use crate::elliptic::complete_elliptic;
 use crate::error::LawError;

@@ -7,7 +7,9 @@ use creep_law::kalker3d;
 use creep_reference::bem::{
     EllipticContact, EllipticSteadySolver, SolverOptions, elliptic_creep_coefficients,
 };
-use creep_reference::steady3d::{Kind, POISSON, RATIOS, law_errors, read_csv, table};
+use creep_reference::steady3d::{
+    Kind, POISSON, RATIOS, law_errors, low_spin_table, read_csv, table,
+};
 
 #[test]
 fn circular_c22_c23_c33_within_2_percent_of_kalkers_table() {
@@ -259,3 +261,30 @@ const VALIDATION_LIMITS: &[(f64, f64, [f64; 8])] = &[
         [0.005, 0.001, 0.006, 0.010, 0.241, 0.094, 0.252, 0.129],
     ),
 ];
+
+#[test]
+fn low_spin_points_follow_kalkers_slope_and_the_laws_error_there_is_pinned() {
+    // data/steady3d_bem_lowspin.csv: pure spin phi_n = 0.025, 0.05, 0.075 for a/b = 2, 5 (below
+    // the table's 0.1; steady3d_fit uses them). The boundary elements' lateral force there is
+    // Kalker's linear C23 phi_n to within 1.5 % (measured at most 1.45 %, where the force
+    // starts to saturate). The fast law against them (measured, rounded up): a/b = 2 within
+    // 0.96 % of mu P (force) and 0.69 % of mu P c (moment); a/b = 5 at nu = 0, 0.25 within
+    // 3.3 % / 2.8 %, but at nu = 0.5 the force is 18.2 % off (the bump below the table that
+    // spin_force_below_the_table_has_no_spurious_bump in creep-law describes; a refit with
+    // these points brings it to 3.1 %, docs/CREEP3D.md, not yet adopted).
+    let pts = low_spin_table().unwrap();
+    assert_eq!(pts.len(), 2 * 3 * 3);
+    for p in &pts {
+        let c23 = kalker3d::coefficients(p.ab, p.nu).unwrap().c23;
+        let r = p.load[1] / (c23 * p.creepage[2]);
+        assert!((r - 1.0).abs() < 0.015, "{p:?}: {r}");
+    }
+    for x in law_errors(&pts).unwrap() {
+        let (f, m) = match (x.ab, x.nu) {
+            (2.0, _) => (0.010, 0.007),
+            (5.0, nu) if nu < 0.5 => (0.033, 0.028),
+            _ => (0.183, 0.036),
+        };
+        assert!(x.force <= f && x.moment <= m, "{x:?}");
+    }
+}
