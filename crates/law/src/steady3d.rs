@@ -94,10 +94,14 @@
 //!   target for pure spin is not met between rows** (blending two rows' loads whose spin
 //!   force peaks at different spins leaves a few per cent; more rows would reduce it);
 //! * rows `a/b = 2, 5` (`a > b`): translation within 0.5 %, but the law's form fits the spin
-//!   there poorly: pure spin force 1.8-12 %, combined force 5.8-35 % (a/b = 2 at nu = 0.5 the
-//!   worst), moments up to 15 %; between them (`a/b = 1.4, 3`) spin force up to 24 %, combined
-//!   25 %. Before these rows (the constants of `b/a` were used) spin loads were off by up to
-//!   84 % and combined forces by up to 93 %.
+//!   there poorly: pure spin force 1.7-2.8 % at a/b = 2 and 5.0-8.9 % at a/b = 5, combined
+//!   force 5.8-9.1 % and 18-24 %, moments up to 15 %; between them (`a/b = 1.4, 3`) spin force
+//!   up to 20 %, combined 22 %; below the table (`phi_n = 0.025-0.075`) the spin force within
+//!   3.1 %. The constants of `a/b = 2, 5` were refitted with boundary-element points below
+//!   the table and from the previous `nu` node (before: spin force 12 % and combined 35 % at
+//!   a/b = 2, nu = 0.5; the spin force 18 % off at a/b = 5, nu = 0.5 below the table). Before
+//!   these rows (the constants of `b/a` were used) spin loads were off by up to 84 % and
+//!   combined forces by up to 93 %.
 //!
 //! # Cost
 //!
@@ -245,14 +249,14 @@ pub const NODES: [[Node; 3]; 5] = [
         Node { kx: 2.313438e0, ky: 2.443406e0, t: 3.773505e-2, ma: 3.811837e-1, mb: 1.000000e0, p1: 4.416977e-2, q1: 2.246222e-14, q2: 5.021428e-1, p2: 9.362053e-2, q3: 5.045555e-2, lam: 5.263736e-1, ax: 1.199533e0, ay: 3.321848e0, gam: 2.294222e0, b2: 6.976433e-2, b8: 1.342791e-1, am: 5.567834e-1, beta: 2.867301e-1 },
     ],
     [
-        Node { kx: 2.433894e0, ky: 2.442335e0, t: 5.937346e-2, ma: 6.455140e-1, mb: 1.000000e0, p1: 3.345202e1, q1: 2.815614e1, q2: 1.253367e2, p2: 8.526962e1, q3: 1.920796e2, lam: 3.379356e-1, ax: 1.187939e0, ay: 7.395933e0, gam: 1.635289e0, b2: -3.074213e-1, b8: 4.431412e-1, am: 2.795459e-1, beta: 0.000000e0 },
-        Node { kx: 2.415942e0, ky: 2.460985e0, t: 1.726315e-2, ma: 1.055390e0, mb: 1.000000e0, p1: 1.428998e2, q1: 1.224266e2, q2: 3.729890e2, p2: 2.139824e2, q3: 4.923136e2, lam: 4.205850e-1, ax: 1.213549e0, ay: 8.563187e0, gam: 1.554399e0, b2: -3.466599e-1, b8: 3.746743e-1, am: 1.763503e-1, beta: 4.868147e-2 },
-        Node { kx: 2.376749e0, ky: 2.508218e0, t: 1.570672e-2, ma: 2.027595e0, mb: 1.000000e0, p1: 3.044565e0, q1: 2.298794e-7, q2: 4.245254e1, p2: 2.407749e1, q3: 4.876212e0, lam: 7.852089e-1, ax: 8.926647e-1, ay: 2.600750e0, gam: 3.326035e-1, b2: -4.233975e-1, b8: 4.000603e-1, am: -1.612937e-1, beta: 1.598666e-1 },
+        Node { kx: 2.433894e0, ky: 2.442335e0, t: 5.643401e-2, ma: 6.455137e-1, mb: 1.000000e0, p1: 6.176125e3, q1: 5.824159e3, q2: 4.687258e4, p2: 5.343067e4, q3: 1.192570e5, lam: 3.404293e-1, ax: 1.188071e0, ay: 7.405491e0, gam: 1.638939e0, b2: -3.072570e-1, b8: 4.426917e-1, am: 2.795895e-1, beta: 0.000000e0 },
+        Node { kx: 2.415942e0, ky: 2.460985e0, t: 1.726315e-2, ma: 1.055389e0, mb: 1.000000e0, p1: 1.426909e2, q1: 1.222452e2, q2: 3.724311e2, p2: 2.136235e2, q3: 4.914907e2, lam: 4.205817e-1, ax: 1.213549e0, ay: 8.563199e0, gam: 1.554396e0, b2: -3.466603e-1, b8: 3.746745e-1, am: 1.763508e-1, beta: 4.868145e-2 },
+        Node { kx: 2.376749e0, ky: 2.508218e0, t: 1.570672e-2, ma: 2.027965e0, mb: 1.000000e0, p1: 8.735168e2, q1: 7.721148e2, q2: 1.687008e3, p2: 1.049834e3, q3: 2.439595e3, lam: 5.117583e-1, ax: 1.238659e0, ay: 9.897607e0, gam: 1.571110e0, b2: -4.207728e-1, b8: 3.966568e-1, am: -1.585533e-1, beta: 1.598666e-1 },
     ],
     [
-        Node { kx: 2.555862e0, ky: 2.586788e0, t: 5.184336e-2, ma: 6.070201e0, mb: 1.000000e0, p1: 4.371958e1, q1: 7.764397e-8, q2: 4.340593e3, p2: 2.607376e3, q3: 7.810729e3, lam: 6.197580e-1, ax: 9.525717e-1, ay: 4.527196e0, gam: 7.206411e-1, b2: -3.269050e-1, b8: 2.379876e-1, am: 3.287091e-2, beta: 0.000000e0 },
-        Node { kx: 2.533300e0, ky: 2.540045e0, t: 8.258566e-3, ma: 1.468439e1, mb: 1.000000e0, p1: 1.676335e1, q1: 4.317054e-14, q2: 2.918999e3, p2: 1.641298e3, q3: 4.627365e3, lam: 6.738019e-1, ax: 9.015706e-1, ay: 3.946064e0, gam: 6.504099e-1, b2: -1.819310e-1, b8: 7.620054e-2, am: 2.199822e-1, beta: 7.344013e-1 },
-        Node { kx: 2.506589e0, ky: 2.592260e0, t: 4.972726e-3, ma: 5.750918e1, mb: 1.000000e0, p1: 5.302734e2, q1: 1.866573e-14, q2: 8.267423e4, p2: 4.024303e4, q3: 1.034083e5, lam: 7.268503e-1, ax: 8.511054e-1, ay: 3.444116e0, gam: 6.646152e-1, b2: -3.094741e-2, b8: -6.023023e-2, am: 4.653899e-1, beta: 7.565872e-1 },
+        Node { kx: 2.555862e0, ky: 2.586788e0, t: 5.211680e-2, ma: 6.065990e0, mb: 1.000000e0, p1: 4.214159e1, q1: 4.031377e-13, q2: 4.200670e3, p2: 2.523722e3, q3: 7.560554e3, lam: 6.197477e-1, ax: 9.527948e-1, ay: 4.530421e0, gam: 7.208130e-1, b2: -3.273544e-1, b8: 2.383107e-1, am: 3.264450e-2, beta: 0.000000e0 },
+        Node { kx: 2.533300e0, ky: 2.540045e0, t: 8.258565e-3, ma: 1.467235e1, mb: 1.000000e0, p1: 3.377731e1, q1: 7.797338e-7, q2: 5.138554e3, p2: 2.884690e3, q3: 8.135320e3, lam: 6.739521e-1, ax: 9.003169e-1, ay: 3.951531e0, gam: 6.477522e-1, b2: -1.673646e-1, b8: 6.188836e-2, am: 2.698223e-1, beta: 7.344013e-1 },
+        Node { kx: 2.506589e0, ky: 2.592260e0, t: 4.972726e-3, ma: 5.744819e1, mb: 1.000000e0, p1: 4.536877e1, q1: 1.467465e-11, q2: 1.195346e4, p2: 8.532349e3, q3: 1.154848e5, lam: 2.651868e-1, ax: 1.018653e0, ay: 1.517589e1, gam: 1.479466e0, b2: -1.443217e-1, b8: 5.427902e-2, am: 2.289638e-1, beta: 7.565872e-1 },
     ],
 ];
 
