@@ -94,24 +94,32 @@
 //!   target for pure spin is not met between rows** (blending two rows' loads whose spin
 //!   force peaks at different spins leaves a few per cent; more rows would reduce it);
 //! * rows `a/b = 2, 5` (`a > b`): translation within 0.5 %, but the law's form fits the spin
-//!   there poorly: pure spin force 1.8-12 %, combined force 5.8-35 % (a/b = 2 at nu = 0.5 the
-//!   worst), moments up to 15 %; between them (`a/b = 1.4, 3`) spin force up to 24 %, combined
-//!   25 %. Before these rows (the constants of `b/a` were used) spin loads were off by up to
-//!   84 % and combined forces by up to 93 %.
+//!   there poorly: pure spin force 1.7-2.8 % at a/b = 2 and 5.0-8.9 % at a/b = 5, combined
+//!   force 5.8-9.1 % and 18-24 %, moments up to 15 %; between them (`a/b = 1.4, 3`) spin force
+//!   up to 20 %, combined 22 %; below the table (`phi_n = 0.025-0.075`) the spin force within
+//!   3.1 %. The constants of `a/b = 2, 5` were refitted with boundary-element points below
+//!   the table and from the previous `nu` node (before: spin force 12 % and combined 35 % at
+//!   a/b = 2, nu = 0.5; the spin force 18 % off at a/b = 5, nu = 0.5 below the table). Before
+//!   these rows (the constants of `b/a` were used) spin loads were off by up to 84 % and
+//!   combined forces by up to 93 %.
 //!
 //! # Cost
 //!
-//! No `powf`. Without spin one translation (two square roots, two divisions); with spin per
-//! row one division for the spin utilisation and the spin force's shapes, five square roots and
-//! two to three more divisions. Measured (`cargo bench -p creep-law --bench steady3d`, its
-//! first table: the thread's CPU time, variants interleaved, medians of 11 rounds, on a
-//! shared 2-core Xeon under a load of about 19; `F_ss`, Kalker's closed form with
-//! [`crate::kalker::cbrt`], 9.7 ns there): without spin about 34 ns (3.5x `F_ss`); with spin
-//! about 55 ns at a row of the table (5.7x; the law before the row blend: 53 ns) and about
-//! 105 ns between rows (11x; two rows evaluated; before: 65 ns). **Issue #17's 50 ns with spin
-//! is not met**: at a row it is missed by about 10 %, between rows by a factor of two, the
-//! price of the accuracy between rows (the former single interpolated law cost 65 ns there
-//! and put the spin force 13 % off).
+//! No `powf`. Without spin one translation (two square roots, two divisions); with spin one
+//! division for every row's spin utilisation and spin-force shape (a row's two `nu` shapes are
+//! multiplied out into one rational function of `phi_n^2` in [`Steady3d::new`]), and per row
+//! one translation: one division for its utilisation, a square root and a division in parallel
+//! for its direction, two square roots for `(1 - s_t)^(1/4)`; the projection onto `|F| <= 1` is
+//! a rarely taken branch. Measured (`cargo bench -p creep-law --bench steady3d`, its first
+//! table: the thread's CPU time, variants interleaved, medians of 11 rounds; the binaries
+//! before and after alternated, on a shared 2-core Xeon under a load of 16-19; `F_ss`,
+//! Kalker's closed form with [`crate::kalker::cbrt`], 9.7 ns there): without spin about 34 ns
+//! (3.5x `F_ss`, unchanged); with spin 45-57 ns at a row of the table (before 53-63 ns in the
+//! same runs) and 85-105 ns between rows (two rows' translations; before 104-117 ns).
+//! **Issue #17's 50 ns with spin is met at a row only at the lower loads, and not between
+//! rows**; docs/CREEP3D.md has the table and what was tried (one translation on the two rows'
+//! blended spin terms: 64-75 ns between rows, but the lateral force of pure spin between rows
+//! `a <= b` then 9.5 % off instead of 4.6 %: not adopted).
 
 use crate::elliptic::complete_elliptic;
 use crate::error::LawError;
@@ -241,14 +249,14 @@ pub const NODES: [[Node; 3]; 5] = [
         Node { kx: 2.313438e0, ky: 2.443406e0, t: 3.773505e-2, ma: 3.811837e-1, mb: 1.000000e0, p1: 4.416977e-2, q1: 2.246222e-14, q2: 5.021428e-1, p2: 9.362053e-2, q3: 5.045555e-2, lam: 5.263736e-1, ax: 1.199533e0, ay: 3.321848e0, gam: 2.294222e0, b2: 6.976433e-2, b8: 1.342791e-1, am: 5.567834e-1, beta: 2.867301e-1 },
     ],
     [
-        Node { kx: 2.433894e0, ky: 2.442335e0, t: 5.937346e-2, ma: 6.455140e-1, mb: 1.000000e0, p1: 3.345202e1, q1: 2.815614e1, q2: 1.253367e2, p2: 8.526962e1, q3: 1.920796e2, lam: 3.379356e-1, ax: 1.187939e0, ay: 7.395933e0, gam: 1.635289e0, b2: -3.074213e-1, b8: 4.431412e-1, am: 2.795459e-1, beta: 0.000000e0 },
-        Node { kx: 2.415942e0, ky: 2.460985e0, t: 1.726315e-2, ma: 1.055390e0, mb: 1.000000e0, p1: 1.428998e2, q1: 1.224266e2, q2: 3.729890e2, p2: 2.139824e2, q3: 4.923136e2, lam: 4.205850e-1, ax: 1.213549e0, ay: 8.563187e0, gam: 1.554399e0, b2: -3.466599e-1, b8: 3.746743e-1, am: 1.763503e-1, beta: 4.868147e-2 },
-        Node { kx: 2.376749e0, ky: 2.508218e0, t: 1.570672e-2, ma: 2.027595e0, mb: 1.000000e0, p1: 3.044565e0, q1: 2.298794e-7, q2: 4.245254e1, p2: 2.407749e1, q3: 4.876212e0, lam: 7.852089e-1, ax: 8.926647e-1, ay: 2.600750e0, gam: 3.326035e-1, b2: -4.233975e-1, b8: 4.000603e-1, am: -1.612937e-1, beta: 1.598666e-1 },
+        Node { kx: 2.433894e0, ky: 2.442335e0, t: 5.643401e-2, ma: 6.455137e-1, mb: 1.000000e0, p1: 6.176125e3, q1: 5.824159e3, q2: 4.687258e4, p2: 5.343067e4, q3: 1.192570e5, lam: 3.404293e-1, ax: 1.188071e0, ay: 7.405491e0, gam: 1.638939e0, b2: -3.072570e-1, b8: 4.426917e-1, am: 2.795895e-1, beta: 0.000000e0 },
+        Node { kx: 2.415942e0, ky: 2.460985e0, t: 1.726315e-2, ma: 1.055389e0, mb: 1.000000e0, p1: 1.426909e2, q1: 1.222452e2, q2: 3.724311e2, p2: 2.136235e2, q3: 4.914907e2, lam: 4.205817e-1, ax: 1.213549e0, ay: 8.563199e0, gam: 1.554396e0, b2: -3.466603e-1, b8: 3.746745e-1, am: 1.763508e-1, beta: 4.868145e-2 },
+        Node { kx: 2.376749e0, ky: 2.508218e0, t: 1.570672e-2, ma: 2.027965e0, mb: 1.000000e0, p1: 8.735168e2, q1: 7.721148e2, q2: 1.687008e3, p2: 1.049834e3, q3: 2.439595e3, lam: 5.117583e-1, ax: 1.238659e0, ay: 9.897607e0, gam: 1.571110e0, b2: -4.207728e-1, b8: 3.966568e-1, am: -1.585533e-1, beta: 1.598666e-1 },
     ],
     [
-        Node { kx: 2.555862e0, ky: 2.586788e0, t: 5.184336e-2, ma: 6.070201e0, mb: 1.000000e0, p1: 4.371958e1, q1: 7.764397e-8, q2: 4.340593e3, p2: 2.607376e3, q3: 7.810729e3, lam: 6.197580e-1, ax: 9.525717e-1, ay: 4.527196e0, gam: 7.206411e-1, b2: -3.269050e-1, b8: 2.379876e-1, am: 3.287091e-2, beta: 0.000000e0 },
-        Node { kx: 2.533300e0, ky: 2.540045e0, t: 8.258566e-3, ma: 1.468439e1, mb: 1.000000e0, p1: 1.676335e1, q1: 4.317054e-14, q2: 2.918999e3, p2: 1.641298e3, q3: 4.627365e3, lam: 6.738019e-1, ax: 9.015706e-1, ay: 3.946064e0, gam: 6.504099e-1, b2: -1.819310e-1, b8: 7.620054e-2, am: 2.199822e-1, beta: 7.344013e-1 },
-        Node { kx: 2.506589e0, ky: 2.592260e0, t: 4.972726e-3, ma: 5.750918e1, mb: 1.000000e0, p1: 5.302734e2, q1: 1.866573e-14, q2: 8.267423e4, p2: 4.024303e4, q3: 1.034083e5, lam: 7.268503e-1, ax: 8.511054e-1, ay: 3.444116e0, gam: 6.646152e-1, b2: -3.094741e-2, b8: -6.023023e-2, am: 4.653899e-1, beta: 7.565872e-1 },
+        Node { kx: 2.555862e0, ky: 2.586788e0, t: 5.211680e-2, ma: 6.065990e0, mb: 1.000000e0, p1: 4.214159e1, q1: 4.031377e-13, q2: 4.200670e3, p2: 2.523722e3, q3: 7.560554e3, lam: 6.197477e-1, ax: 9.527948e-1, ay: 4.530421e0, gam: 7.208130e-1, b2: -3.273544e-1, b8: 2.383107e-1, am: 3.264450e-2, beta: 0.000000e0 },
+        Node { kx: 2.533300e0, ky: 2.540045e0, t: 8.258565e-3, ma: 1.467235e1, mb: 1.000000e0, p1: 3.377731e1, q1: 7.797338e-7, q2: 5.138554e3, p2: 2.884690e3, q3: 8.135320e3, lam: 6.739521e-1, ax: 9.003169e-1, ay: 3.951531e0, gam: 6.477522e-1, b2: -1.673646e-1, b8: 6.188836e-2, am: 2.698223e-1, beta: 7.344013e-1 },
+        Node { kx: 2.506589e0, ky: 2.592260e0, t: 4.972726e-3, ma: 5.744819e1, mb: 1.000000e0, p1: 4.536877e1, q1: 1.467465e-11, q2: 1.195346e4, p2: 8.532349e3, q3: 1.154848e5, lam: 2.651868e-1, ax: 1.018653e0, ay: 1.517589e1, gam: 1.479466e0, b2: -1.443217e-1, b8: 5.427902e-2, am: 2.289638e-1, beta: 7.565872e-1 },
     ],
 ];
 
@@ -260,16 +268,102 @@ pub const CREEPAGE_CLAMP: f64 = 1e6;
 pub const TINY_CREEPAGE: f64 = 1e-30;
 
 /// The spin constants of one row `a/b = NODE_AB[i]` of the table at the contact's `nu` (module
-/// documentation, "Between nodes"), with the row's weight.
+/// documentation, "Between nodes"), with the row's weight, prepared once per contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct SpinRow {
-    /// Weight of the row's loads in the blend (`0`: not evaluated).
+    /// Weight of the row's spin terms in the blend (`0`: not evaluated).
     w: f64,
     /// Constants of the row interpolated in `nu` (only the spin constants `ma .. am` are used).
     n: Node,
-    /// The spin force's shapes of the row's two `nu` nodes, `[w, p1, q1, q2, p2, q3]` (the
-    /// shapes' outputs are blended with the weights `w`; the second is unused when its `w` is 0).
-    fs: [[f64; 6]; 2],
+    /// The spin force's shape as one rational function of `u = phi_n^2`, `N(u)/D(u)` with
+    /// `N = sum num[k] u^k`, `D = sum den[k] u^k`: at a column of the table the node's own
+    /// `(1 + p1 u + p2 u^2)/(1 + q1 u + q2 u^2 + q3 u^3)`; between columns the blend of the
+    /// two nodes' shapes by their outputs, `w0 n0/d0 + w1 n1/d1 = (w0 n0 d1 + w1 n1 d0)/(d0 d1)`,
+    /// multiplied out here once (every coefficient is `>= 0`: no cancellation).
+    num: [f64; 6],
+    den: [f64; 7],
+}
+
+/// Product of two polynomials (coefficients in increasing powers) into `out` (zeroed first).
+fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
+    out.iter_mut().for_each(|o| *o = 0.0);
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            if x * y != 0.0 {
+                out[i + j] += x * y;
+            }
+        }
+    }
+}
+
+impl SpinRow {
+    /// The row from its weight, its constants interpolated in `nu`, and the spin shapes of the
+    /// row's two `nu` nodes with their weights `(w0, lo), (w1, hi)` (`w1 = 0`: `lo` alone).
+    fn new(w: f64, n: Node, (w0, lo): (f64, &Node), (w1, hi): (f64, &Node)) -> Self {
+        let n0 = [1.0, lo.p1, lo.p2];
+        let d0 = [1.0, lo.q1, lo.q2, lo.q3];
+        let mut num = [0.0; 6];
+        let mut den = [0.0; 7];
+        if w1 == 0.0 {
+            num[..3].copy_from_slice(&n0);
+            den[..4].copy_from_slice(&d0);
+        } else {
+            let n1 = [1.0, hi.p1, hi.p2];
+            let d1 = [1.0, hi.q1, hi.q2, hi.q3];
+            let (mut a, mut b) = ([0.0; 6], [0.0; 6]);
+            poly_mul(&n0, &d1, &mut a);
+            poly_mul(&n1, &d0, &mut b);
+            for k in 0..6 {
+                num[k] = w0 * a[k] + w1 * b[k];
+            }
+            poly_mul(&d0, &d1, &mut den);
+        }
+        SpinRow { w, n, num, den }
+    }
+
+    /// `(N(u), D(u))` of the spin force's shape (Estrin's scheme: short dependency chains).
+    #[inline(always)]
+    fn shape_parts(&self, u: f64, u2: f64, u4: f64) -> (f64, f64) {
+        let (a, b) = (&self.num, &self.den);
+        let num = (a[0] + a[1] * u) + u2 * (a[2] + a[3] * u) + u4 * (a[4] + a[5] * u);
+        let den = (b[0] + b[1] * u) + u2 * (b[2] + b[3] * u) + u4 * (b[4] + b[5] * u + b[6] * u2);
+        (num, den)
+    }
+}
+
+/// The spin's terms of one row (or their blend over two rows) that the translation and the
+/// moment use (module documentation, steps 1-5): `w`, the capacities `w (1 - ax s^2)`,
+/// `w (1 - ay s^4)` (floored at 0), `lam f_s`, `(1 - lam) f_s`, the moment-of-lateral-creepage
+/// factor `1 - am s^2` and the spin moment `M_max s max(0, 1 - b2 e^2 - b8 e^8)` over `M_max`.
+#[derive(Debug, Clone, Copy, Default)]
+struct SpinTerms {
+    w: f64,
+    cap_x: f64,
+    cap_y: f64,
+    f_sat: f64,
+    f_rest: f64,
+    ml_factor: f64,
+    spin_moment: f64,
+}
+
+impl SpinTerms {
+    /// The terms of `row` given its spin utilisation `s`, the lateral force of pure spin `f_s`,
+    /// and `(e^2, e^8)` of the translation alone.
+    #[inline(always)]
+    fn of_row(row: &SpinRow, s: f64, f_s: f64, e2: f64, e8: f64) -> Self {
+        let n = &row.n;
+        let s2 = s * s;
+        let w = 1.0 + n.gam * s2;
+        SpinTerms {
+            w,
+            cap_x: w * (1.0 - n.ax * s2).max(0.0),
+            cap_y: w * (1.0 - n.ay * s2 * s2).max(0.0),
+            f_sat: n.lam * f_s,
+            f_rest: (1.0 - n.lam) * f_s,
+            ml_factor: 1.0 - n.am * s2,
+            spin_moment: s * (1.0 - n.b2 * e2 - n.b8 * e8).max(0.0),
+        }
+    }
 }
 
 /// The law at one axis ratio and Poisson ratio: Kalker's coefficients, the interpolated
@@ -309,6 +403,14 @@ fn saturation_of_ratio(x_over_k: f64, k: f64) -> f64 {
     let u = x_over_k.min(1.0);
     // 1 - (1 - u)^2 (1 + (2 - k) u) expanded, free of cancellation at small u.
     u * (k - u * (2.0 * k - 3.0 + (2.0 - k) * u))
+}
+
+/// `(fx, fy)/sqrt(f2)`, `f2 = fx^2 + fy^2 > 1`: the projection onto the friction limit.
+#[cold]
+#[inline(never)]
+fn project_to_unit(fx: f64, fy: f64, f2: f64) -> (f64, f64) {
+    let inv = 1.0 / f2.sqrt();
+    (fx * inv, fy * inv)
 }
 
 /// Inverse of [`saturation_of_ratio`] on `[0, 1)`: the `x` with `S(x; k) = s`, by Newton's method on the
@@ -387,19 +489,13 @@ impl Steady3d {
             for (o, (x, y)) in n.iter_mut().zip(lo.to_array().iter().zip(hi.to_array())) {
                 *o = (1.0 - wn) * x + wn * y;
             }
-            let mut fs = [
-                [1.0 - wn, lo.p1, lo.q1, lo.q2, lo.p2, lo.q3],
-                [wn, hi.p1, hi.q1, hi.q2, hi.p2, hi.q3],
-            ];
-            if fs[0][0] == 0.0 {
-                // At the column nu = 0.5: that shape alone (the second is skipped at weight 0).
-                fs.swap(0, 1);
-            }
-            law.rows[k] = SpinRow {
-                w,
-                n: Node::from_array(n),
-                fs,
+            // At the column nu = 0.5 the shape of `hi` alone.
+            let shapes = if wn == 1.0 {
+                ((1.0, hi), (0.0, lo))
+            } else {
+                ((1.0 - wn, lo), (wn, hi))
             };
+            law.rows[k] = SpinRow::new(w, Node::from_array(n), shapes.0, shapes.1);
         }
         if law.rows[0].w == 0.0 {
             // At a row (ab at or beyond the last row): evaluate that row only.
@@ -425,11 +521,7 @@ impl Steady3d {
         // a_M / c = sqrt(a_M / b_m) = 1/sqrt(g).
         let m_max = 0.375 * e / g.sqrt();
         let n = node;
-        let row = SpinRow {
-            w: 1.0,
-            n,
-            fs: [[1.0, n.p1, n.q1, n.q2, n.p2, n.q3], [0.0; 6]],
-        };
+        let row = SpinRow::new(1.0, n, (1.0, &n), (0.0, &n));
         Ok(Steady3d {
             c,
             n,
@@ -491,101 +583,108 @@ impl Steady3d {
         if phi_n == 0.0 {
             return self.translation_only(xi_n, eta_n, tx0, ty0, t02);
         }
-        // Shared by the rows: the spin utilisation's argument, u, and the lateral creepage's
-        // moment with the utilisation of the translation alone (step 5).
-        let m = self.m_per_phi * phi_n.abs();
-        let u = phi_n * phi_n;
         let (e, ml) = if t02 > 0.0 {
             self.lateral_moment(xi_n, eta_n, tx0, ty0, t02)
         } else {
             (0.0, 0.0)
         };
-        let first = self.spin_row(&self.rows[0], phi_n, m, u, tx0, ty0, e, ml);
-        let r1 = &self.rows[1];
-        if r1.w == 0.0 {
-            return first;
-        }
-        let second = self.spin_row(r1, phi_n, m, u, tx0, ty0, e, ml);
-        let w0 = self.rows[0].w;
-        Loads {
-            fx: w0 * first.fx + r1.w * second.fx,
-            fy: w0 * first.fy + r1.w * second.fy,
-            mz: w0 * first.mz + r1.w * second.mz,
+        // 1-2 for the (one or two) rows, then 3-5 per row; between rows their loads blended.
+        if self.rows[1].w == 0.0 {
+            let [t] = self.spin_terms::<1>(phi_n, e);
+            self.with_spin(phi_n, tx0, ty0, ml, &t)
+        } else {
+            let [t0, t1] = self.spin_terms::<2>(phi_n, e);
+            let a = self.with_spin(phi_n, tx0, ty0, ml, &t0);
+            let b = self.with_spin(phi_n, tx0, ty0, ml, &t1);
+            let (w0, w1) = (self.rows[0].w, self.rows[1].w);
+            Loads {
+                fx: w0 * a.fx + w1 * b.fx,
+                fy: w0 * a.fy + w1 * b.fy,
+                mz: w0 * a.mz + w1 * b.mz,
+            }
         }
     }
 
-    /// The loads of one row at nonzero spin (module documentation, steps 1-5), given the shared
-    /// `m = C33 |phi_n|/M_max`, `u = phi_n^2`, the linear translation `t_0 = (tx0, ty0)` and
-    /// `(e, M_l)` of step 5. One division serves the spin utilisation and the spin force's
-    /// shapes, one the translation's utilisation, one its direction.
-    #[inline]
-    #[allow(clippy::too_many_arguments)]
-    fn spin_row(
-        &self,
-        row: &SpinRow,
-        phi_n: f64,
-        m: f64,
-        u: f64,
-        tx0: f64,
-        ty0: f64,
-        e: f64,
-        ml: f64,
-    ) -> Loads {
-        let n = &row.n;
-        // 1-2: s = ns/ds and the shape sum_k w_k nk/dk with one division.
-        let ns = m * (1.0 + n.ma * m);
-        let ds = 1.0 + m * (n.mb + n.ma * m);
-        let [f0, f1] = &row.fs;
-        let n0 = 1.0 + u * (f0[1] + f0[4] * u);
-        let d0 = 1.0 + u * (f0[2] + u * (f0[3] + f0[5] * u));
-        let (s, shape) = if f1[0] == 0.0 {
-            let inv = 1.0 / (ds * d0);
-            (ns * d0 * inv, f0[0] * n0 * ds * inv)
+    /// The spin terms of the first `R` rows (module documentation, steps 1-2); `e` is the
+    /// utilisation of the translation alone. One division serves every row's spin utilisation
+    /// `s = ns/ds` and spin-force shape `N/D`.
+    #[inline(always)]
+    fn spin_terms<const R: usize>(&self, phi_n: f64, e: f64) -> [SpinTerms; R] {
+        let m = self.m_per_phi * phi_n.abs();
+        let u = phi_n * phi_n;
+        let (u2, u4) = (u * u, (u * u) * (u * u));
+        let e2 = e * e;
+        let e8 = (e2 * e2) * (e2 * e2);
+        let mut ns = [0.0; R];
+        let mut ds = [0.0; R];
+        let mut num = [0.0; R];
+        let mut den = [0.0; R];
+        for r in 0..R {
+            let n = &self.rows[r].n;
+            ns[r] = m * (1.0 + n.ma * m);
+            ds[r] = 1.0 + m * (n.mb + n.ma * m);
+            (num[r], den[r]) = self.rows[r].shape_parts(u, u2, u4);
+        }
+        let c23_phi = self.c.c23 * phi_n;
+        // inv_r = 1/A_r, A_r = ds_r den_r; with two rows 1/(A0 A1) gives both.
+        let mut inv = [0.0; R];
+        if R == 1 {
+            inv[0] = 1.0 / (ds[0] * den[0]);
         } else {
-            let n1 = 1.0 + u * (f1[1] + f1[4] * u);
-            let d1 = 1.0 + u * (f1[2] + u * (f1[3] + f1[5] * u));
-            let inv = 1.0 / (ds * d0 * d1);
-            (
-                ns * d0 * d1 * inv,
-                (f0[0] * n0 * d1 + f1[0] * n1 * d0) * ds * inv,
+            let (a0, a1) = (ds[0] * den[0], ds[1] * den[1]);
+            let i = 1.0 / (a0 * a1);
+            inv[0] = a1 * i;
+            inv[1] = a0 * i;
+        }
+        std::array::from_fn(|r| {
+            SpinTerms::of_row(
+                &self.rows[r],
+                ns[r] * den[r] * inv[r],
+                c23_phi * num[r] * ds[r] * inv[r],
+                e2,
+                e8,
             )
-        };
-        let f_s = self.c.c23 * phi_n * shape;
-        let s2 = s * s;
-        let w = 1.0 + n.gam * s2;
+        })
+    }
+
+    /// Steps 3-5 of the module documentation at nonzero spin, given the spin terms, the linear
+    /// translation `t_0 = (tx0, ty0)` and the moment `M_l` of lateral creepage. One division
+    /// serves the translation's utilisation; the direction's square root and division run in
+    /// parallel.
+    #[inline(always)]
+    fn with_spin(&self, phi_n: f64, tx0: f64, ty0: f64, ml: f64, t: &SpinTerms) -> Loads {
         // 3: translation t = t'/w, t' = (C11 xi, C22 eta + lam f_s).
         let (kx, ky) = (self.n.kx, self.n.ky);
         let tx = tx0;
-        let ty = ty0 + n.lam * f_s;
+        let ty = ty0 + t.f_sat;
         let tm2 = tx * tx + ty * ty;
         let (mut fx, mut fy, st) = if tm2 > 0.0 {
             let q = kx * tx * tx + ky * ty * ty;
-            let wq = w * q;
+            let wq = t.w * q;
             let inv = 1.0 / (wq * tm2);
             // |t|/k = |t'|^3/(w q) and k = q/|t'|^2 with one division.
             let st = saturation_of_ratio(tm2.sqrt() * tm2 * tm2 * inv, q * wq * inv);
             let b = self.n.beta * (st * st) * (st * st);
             let dx = tx * (1.0 + b * self.turn);
-            let scale = st / (dx * dx + ty * ty).sqrt();
+            // st/|d| as (st/|d|^2) |d|: the square root and the division in parallel.
+            let d2 = dx * dx + ty * ty;
+            let scale = (st / d2) * d2.sqrt();
             (dx * scale, ty * scale, st)
         } else {
             (0.0, 0.0, 0.0)
         };
-        fx *= w * (1.0 - n.ax * s2).max(0.0);
-        fy *= w * (1.0 - n.ay * s2 * s2).max(0.0);
+        fx *= t.cap_x;
+        fy *= t.cap_y;
         // 4: the rest of the spin's lateral force, the friction limit.
-        fy += (1.0 - n.lam) * f_s * (1.0 - st).sqrt().sqrt();
+        fy += t.f_rest * (1.0 - st).sqrt().sqrt();
         let f2 = fx * fx + fy * fy;
         if f2 > 1.0 {
-            let inv = 1.0 / f2.sqrt();
-            fx *= inv;
-            fy *= inv;
+            // Rare: a real branch (a select would put a square root and a division on every
+            // evaluation's critical path).
+            (fx, fy) = project_to_unit(fx, fy, f2);
         }
         // 5: moment.
-        let spin_moment = self.m_max * s.copysign(phi_n);
-        let e2 = e * e;
-        let e8 = (e2 * e2) * (e2 * e2);
-        let mz = ml * (1.0 - n.am * s2) + spin_moment * (1.0 - n.b2 * e2 - n.b8 * e8).max(0.0);
+        let mz = ml * t.ml_factor + self.m_max * t.spin_moment.copysign(phi_n);
         Loads { fx, fy, mz }
     }
 
@@ -614,7 +713,8 @@ impl Steady3d {
         let (e, mz) = self.lateral_moment(xi_n, eta_n, tx0, ty0, t02);
         let b = self.n.beta * (e * e) * (e * e);
         let dx = tx0 * (1.0 + b * self.turn);
-        let scale = e / (dx * dx + ty0 * ty0).sqrt();
+        let d2 = dx * dx + ty0 * ty0;
+        let scale = (e / d2) * d2.sqrt();
         Loads {
             fx: dx * scale,
             fy: ty0 * scale,

@@ -116,6 +116,33 @@ pub fn default_grid(ab: f64) -> usize {
     if ab.min(1.0 / ab) >= 0.5 { 32 } else { 20 }
 }
 
+/// Pure spins below the table's smallest ([`SPIN`]) for the rows `a/b > 1`
+/// (`data/steady3d_bem_lowspin.csv`): there the lateral force of spin peaks at `phi_n ~
+/// 0.2-0.4`, and without these points nothing constrains the fitted shapes below `0.1`.
+pub const LOW_SPIN: [f64; 3] = [0.025, 0.05, 0.075];
+
+/// Solves pure spins `phis` for one `(a/b, nu)` on grids `grid/2` and `grid` (as
+/// [`solve_case`], warm-started along `phis`).
+pub fn solve_spins(ab: f64, nu: f64, grid: usize, phis: &[f64]) -> Result<Vec<Point>, RefError> {
+    let contact = EllipticContact::normalised(nu, ab)?;
+    let mut coarse = EllipticSteadySolver::new(contact, SolverOptions::with_grid(grid / 2))?;
+    let mut fine = EllipticSteadySolver::new(contact, SolverOptions::with_grid(grid))?;
+    let mut out = Vec::new();
+    for &phi in phis {
+        let p = coarse.solve_normalised(0.0, 0.0, phi)?;
+        let q = fine.solve_normalised(0.0, 0.0, phi)?;
+        out.push(Point {
+            ab,
+            nu,
+            kind: Kind::Spin,
+            creepage: [0.0, 0.0, phi],
+            load: [2.0 * q.0 - p.0, 2.0 * q.1 - p.1, 2.0 * q.2 - p.2],
+            fine: [q.0, q.1, q.2],
+        });
+    }
+    Ok(out)
+}
+
 /// Solves every case of the table for one `(a/b, nu)` on grids `grid/2` and `grid`.
 pub fn solve_case(ab: f64, nu: f64, grid: usize) -> Result<Vec<Point>, RefError> {
     let contact = EllipticContact::normalised(nu, ab)?;
@@ -204,6 +231,12 @@ pub fn read_csv(text: &str) -> Result<Vec<Point>, RefError> {
 /// The checked-in table (`data/steady3d_bem.csv`).
 pub fn table() -> Result<Vec<Point>, RefError> {
     read_csv(include_str!("../data/steady3d_bem.csv"))
+}
+
+/// The checked-in pure spins below the table for `a > b` (`data/steady3d_bem_lowspin.csv`,
+/// [`LOW_SPIN`]), which the fit uses with the table.
+pub fn low_spin_table() -> Result<Vec<Point>, RefError> {
+    read_csv(include_str!("../data/steady3d_bem_lowspin.csv"))
 }
 
 /// Largest errors of creep-law's fast 3-D steady law (`creep_law::steady3d::Steady3d`) against
