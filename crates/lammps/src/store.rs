@@ -304,6 +304,15 @@ where
         surface: Surface::Sphere(atoms.radius[a]),
         mass: atoms.mass[a],
     };
+    // The per-contact checks of the models' tier and of the atoms' state, hoisted: when every
+    // model of the table has the store's tier and every atom of the arrays is valid (one pass
+    // over the atoms, cheaper than checking both atoms of every contact, ~3.5 contacts per
+    // atom), the loop skips them; otherwise it checks each contact as before, so an error names
+    // the first contact that meets a bad atom or model, and an invalid atom in no contact is
+    // no error.
+    let tiers_ok =
+        (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
+    let atoms_ok = atoms_valid(atoms);
     let mut dropped = 0;
     for (k, pr) in pairs.iter().enumerate() {
         let (p, q) = (atom(k, pr.p)?, atom(k, pr.q)?);
@@ -317,17 +326,19 @@ where
             })?;
         let m = (table.model_of)(kind(k, p)? * stride + kind(k, q)?)
             .ok_or(ModelError::MissingModel(k))?;
-        if m.tier() != tier {
+        if !tiers_ok && m.tier() != tier {
             return Err(ModelError::MixedTiers);
         }
-        check(k, atoms.radius[p], atoms.mass[p])?;
-        check(k, atoms.radius[q], atoms.mass[q])?;
         let (bp, bq) = (body(p), body(q));
-        let finite = |b: &PairBody| {
-            b.position.is_finite() && b.velocity.is_finite() && b.angular_velocity.is_finite()
-        };
-        if !(finite(&bp) && finite(&bq)) {
-            return Err(ModelError::AtomState { index: k });
+        if !atoms_ok {
+            check(k, atoms.radius[p], atoms.mass[p])?;
+            check(k, atoms.radius[q], atoms.mass[q])?;
+            let finite = |b: &PairBody| {
+                b.position.is_finite() && b.velocity.is_finite() && b.angular_velocity.is_finite()
+            };
+            if !(finite(&bp) && finite(&bq)) {
+                return Err(ModelError::AtomState { index: k });
+            }
         }
         let non_finite = |value: f64| ModelError::History {
             index: k,
@@ -370,6 +381,26 @@ where
         dropped += usize::from(!f.touching);
     }
     Ok(dropped)
+}
+
+/// Whether every atom of the arrays passes the per-contact checks of [`compute_pairs`]: finite
+/// position, velocity and angular velocity, radius and mass finite and > 0. Branch-free
+/// accumulation over the arrays (no early exit: the common answer is yes).
+fn atoms_valid(atoms: &Atoms<'_>) -> bool {
+    let finite3 = |v: &[[f64; 3]]| {
+        v.iter().fold(true, |ok, a| {
+            ok & a[0].is_finite() & a[1].is_finite() & a[2].is_finite()
+        })
+    };
+    let positive = |v: &[f64]| {
+        v.iter()
+            .fold(true, |ok, &a| ok & (a.is_finite() & (a > 0.0)))
+    };
+    finite3(atoms.x)
+        && finite3(atoms.v)
+        && finite3(atoms.omega)
+        && positive(atoms.radius)
+        && positive(atoms.mass)
 }
 
 #[inline(always)]

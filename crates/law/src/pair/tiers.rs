@@ -211,10 +211,12 @@ impl TangentialLaw for Cheap {
             -creep_vec
         };
         let trial = q_old + du_eff * k;
-        let t_abs = trial.length();
-        let (q, slip) = if mu_p.is_finite() && t_abs > mu_p {
-            let q = trial * (mu_p / t_abs);
-            (q, q.dot(trial - q) / k)
+        // `|trial| > mu P`, squared (both sides >= 0): the square root and the division only
+        // for a sliding contact, in a function kept out of line so that the compiler does not
+        // evaluate them for every contact and select (it did: 8 % of the plugin's run).
+        let t2 = trial.length_squared();
+        let (q, slip) = if mu_p.is_finite() && t2 > mu_p * mu_p {
+            onto_coulomb_limit(trial, t2, mu_p, k)
         } else {
             (trial, 0.0)
         };
@@ -260,6 +262,16 @@ impl TangentialLaw for Cheap {
             k: v[2],
         })
     }
+}
+
+/// The trial force `trial` (`|trial|^2 = t2 > mu_p^2`) scaled back onto the Coulomb limit
+/// `mu_p` \[N\], and the slip dissipation of the step, `Q . (trial - Q) / k` \[J\] (stiffness `k`
+/// \[N/m\]): the cheap tier's sliding case.
+#[cold]
+#[inline(never)]
+fn onto_coulomb_limit(trial: Vec2, t2: f64, mu_p: f64, k: f64) -> (Vec2, f64) {
+    let q = trial * (mu_p / t2.sqrt());
+    (q, q.dot(trial - q) / k)
 }
 
 /// [`SteadyLaw::creepage_for_force`] inlined into the cheap tier: for Kuhn's law (Kalker's
