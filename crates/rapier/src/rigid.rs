@@ -75,6 +75,37 @@
 //! target (even rounding noise) into a saturated friction force there; give such bodies their
 //! rotations (the friction-drive scene locks translations only).
 //!
+//! # Cost where things move (issue #14 item 3)
+//! Profile of `creep bench pile --moving --n 1000 --steps 150 --only auto|creep` (1,000 glass
+//! balls poured into a box, one plugin copy interleaved with plain Rapier; `perf record
+//! --call-graph dwarf`, samples split by world, in units of one plain step; machine load
+//! 11-17 on 2 cores, so a few percent of noise), before this round (commit 349bfe1) -> after:
+//!
+//! | part | Auto | creep everywhere | plain Rapier |
+//! |---|---|---|---|
+//! | whole step | 1.67 -> 1.57 | 2.16 -> 1.98 | 1 |
+//! | the hook (`modify_solver_contacts`) | 0.28 -> 0.27 | 0.56 -> 0.48 | - |
+//! | contact updates (`process_pair`, hook included) | 0.89 -> 0.84 | 1.41 -> 1.25 | 0.45-0.47 |
+//! | solver-graph upkeep of non-recycled pairs | 0.14 -> 0.14 | 0.14 -> 0.14 | 0.00-0.01 |
+//! | solver | 0.36 -> 0.32 | 0.33 -> 0.32 | 0.31-0.34 |
+//!
+//! Inside the hook before: the lock 24 %, the record's hash lookup 13 %,
+//! `PairMaterial::with_rule` per manifold 6 %, shape downcasts 7 %, the rotation-gap
+//! correction 5 %, the implicit solve 9 %, `Steady3d::loads` 4 %. After: the pair constants and
+//! the downcasts are gone (crate::pair_cache, one typed-shape call), and what remains is the
+//! lock (19-25 %: a locked instruction pair per manifold, which also waits for the memory
+//! traffic Rapier left in flight), the record lookup (15-17 %) and the law (solve, creepage,
+//! loads: ~25 %). Most of the cost is not the hook's: a pair with any active hook flag is never
+//! recycled (docs/RAPIER_CONTACT_RECYCLING.md), so creep everywhere pays a full contact update
+//! and the solver-graph upkeep of every pair every step (~0.9 plain steps here); creep within
+//! 1.5x of plain Rapier needs a Rapier hook on recycled pairs.
+//!
+//! The per-contact records live in shards keyed by the collider pair (one without feature
+//! `parallel`, 64 with it): a hook call locks only its pair's shard, never a global lock, and
+//! the moments are applied after the step in key order, so that one thread and several step to
+//! the same bits (`tests/parallel.rs`, `--features creep-rapier/parallel`; written with the
+//! sharding but not yet built or run: the feature rebuilds Rapier's whole dependency tree).
+//!
 //! Requirements (checked by [`check_parameters`]): `FrictionModel::Coulomb` (per-point friction
 //! impulses are only written then) and `contact_clustering = false`.
 
