@@ -282,11 +282,20 @@ const SHARDS: usize = if cfg!(feature = "parallel") { 64 } else { 1 };
 
 /// The shard of a collider pair (a multiplicative hash of the two indices; the pair's order
 /// is Rapier's, fixed for the pair's lifetime).
+#[cfg(feature = "parallel")]
 #[inline]
 fn shard_of(c1: ColliderHandle, c2: ColliderHandle) -> usize {
     let (i1, i2) = (c1.into_raw_parts().0, c2.into_raw_parts().0);
     let h = ((u64::from(i1) << 32) | u64::from(i2)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    (h >> 58) as usize % SHARDS
+    // The top 6 bits: one of the 64 shards.
+    (h >> 58) as usize
+}
+
+/// The shard of a collider pair: the only one without feature `parallel`.
+#[cfg(not(feature = "parallel"))]
+#[inline]
+fn shard_of(_: ColliderHandle, _: ColliderHandle) -> usize {
+    0
 }
 
 /// The mark of a collider in its clearing step (see [`CreepHooks::update_activation`]): kept on
