@@ -21,6 +21,19 @@ pub struct PileArgs {
     /// settling).
     #[arg(long, default_value_t = 300)]
     pub steps: usize,
+    /// Step only one of the plugin copies beside plain Rapier (`auto` or `creep`; the other's
+    /// ratio prints as NaN): to profile one fidelity at a time.
+    #[arg(long)]
+    pub only: Option<OnlyWorld>,
+}
+
+/// The plugin copy `creep bench pile --only` steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum OnlyWorld {
+    /// `Fidelity::Auto`.
+    Auto,
+    /// Creep on every contact.
+    Creep,
 }
 
 /// Runs `creep bench pile`.
@@ -32,7 +45,12 @@ pub fn run(args: &PileArgs, out: &mut dyn Write) -> Res {
         return Err("--n must be at least 1".into());
     }
     let side = (args.n as f64).cbrt().round().max(1.0) as usize;
-    let r = creep_scenes::pile::moving_ratios(side, args.steps)?;
+    let worlds = match args.only {
+        None => [true, true],
+        Some(OnlyWorld::Auto) => [true, false],
+        Some(OnlyWorld::Creep) => [false, true],
+    };
+    let r = creep_scenes::pile::moving_ratios_of(side, args.steps, worlds)?;
     writeln!(
         out,
         "moving pile: {} spheres, {} steps of 1/60 s from release, {} active contact pairs at the end; plain Rapier median step {:.3} ms",
@@ -61,6 +79,7 @@ mod tests {
                 moving: true,
                 n: 8,
                 steps: 6,
+                only: None,
             },
             &mut out,
         )
@@ -77,12 +96,28 @@ mod tests {
             .collect();
         assert_eq!(nums.len(), 2, "{last}");
         assert!(nums.iter().all(|r| *r > 0.0 && r.is_finite()));
+        // One copy only: its ratio, the other's NaN.
+        let mut out = Vec::new();
+        run(
+            &PileArgs {
+                moving: true,
+                n: 8,
+                steps: 4,
+                only: Some(OnlyWorld::Creep),
+            },
+            &mut out,
+        )
+        .unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let last = text.lines().last().unwrap();
+        assert!(last.contains("auto/plain NaN creep/plain "), "{last}");
         assert!(
             run(
                 &PileArgs {
                     moving: false,
                     n: 8,
-                    steps: 1
+                    steps: 1,
+                    only: None,
                 },
                 &mut Vec::new()
             )
@@ -93,7 +128,8 @@ mod tests {
                 &PileArgs {
                     moving: true,
                     n: 8,
-                    steps: 0
+                    steps: 0,
+                    only: None,
                 },
                 &mut Vec::new()
             )

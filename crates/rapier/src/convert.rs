@@ -57,11 +57,20 @@ pub(crate) fn inverse_mass(
     t: Vector,
     u: Vector,
 ) -> f64 {
+    inverse_mass_of(handles.map(|h| h.and_then(|h| bodies.get(h))), point, t, u)
+}
+
+/// [`inverse_mass`] of bodies already looked up (the rigid hook looks them up once per
+/// manifold).
+#[inline]
+pub(crate) fn inverse_mass_of(
+    bodies: [Option<&RigidBody>; 2],
+    point: Vector,
+    t: Vector,
+    u: Vector,
+) -> f64 {
     let mut inv = 0.0;
-    for h in handles {
-        let Some(rb) = h.and_then(|h| bodies.get(h)) else {
-            continue;
-        };
+    for rb in bodies.into_iter().flatten() {
         if !rb.is_dynamic() {
             continue;
         }

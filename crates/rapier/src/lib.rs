@@ -20,12 +20,14 @@
 #![forbid(unsafe_code)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod ball_hook;
 pub mod compliant;
 mod convert;
 mod creep3d;
 mod error;
 mod gap;
 mod hooks;
+mod pair_cache;
 mod pipeline;
 mod registry;
 mod rigid;

@@ -3,6 +3,7 @@
 //! and Bevy.
 
 use creep_law::{Material, Surface};
+use rapier3d::parry::shape::TypedShape;
 use rapier3d::prelude::{Collider, ColliderHandle};
 
 /// The fidelity a collider (or pair) asks for.
@@ -181,17 +182,15 @@ pub fn surface_of(collider: &Collider) -> Option<Surface> {
 /// `CreepHooks::set_wheel_crown`, Hertz's ellipse (the crate's `wheel` module). Capsules, cones,
 /// compounds and a cylinder against anything but a flat collider are left to Coulomb.
 pub fn rigid_surface_of(collider: &Collider) -> Option<Surface> {
-    let shape = collider.shape();
-    if let Some(ball) = shape.as_ball() {
-        return Some(Surface::Sphere(f64::from(ball.radius)));
+    // One virtual call (the typed shape), not one downcast per candidate shape: the hook asks
+    // this for both colliders of every manifold.
+    match collider.shape().as_typed_shape() {
+        TypedShape::Ball(ball) => Some(Surface::Sphere(f64::from(ball.radius))),
+        TypedShape::Cuboid(_)
+        | TypedShape::HalfSpace(_)
+        | TypedShape::TriMesh(_)
+        | TypedShape::HeightField(_)
+        | TypedShape::ConvexPolyhedron(_) => Some(Surface::Plane),
+        _ => None,
     }
-    if shape.as_cuboid().is_some()
-        || shape.as_halfspace().is_some()
-        || shape.as_trimesh().is_some()
-        || shape.as_heightfield().is_some()
-        || shape.as_convex_polyhedron().is_some()
-    {
-        return Some(Surface::Plane);
-    }
-    None
 }

@@ -75,24 +75,55 @@
 //! target (even rounding noise) into a saturated friction force there; give such bodies their
 //! rotations (the friction-drive scene locks translations only).
 //!
+//! # Cost where things move (issue #14 item 3)
+//! Profile of `creep bench pile --moving --n 1000 --steps 150 --only auto|creep` (1,000 glass
+//! balls poured into a box, one plugin copy interleaved with plain Rapier; `perf record
+//! --call-graph dwarf`, samples split by world, in units of one plain step; machine load
+//! 11-17 on 2 cores, so a few percent of noise), before this round (commit 349bfe1) -> after:
+//!
+//! | part | Auto | creep everywhere | plain Rapier |
+//! |---|---|---|---|
+//! | whole step | 1.67 -> 1.57 | 2.16 -> 1.98 | 1 |
+//! | the hook (`modify_solver_contacts`) | 0.28 -> 0.27 | 0.56 -> 0.48 | - |
+//! | contact updates (`process_pair`, hook included) | 0.89 -> 0.84 | 1.41 -> 1.25 | 0.45-0.47 |
+//! | solver-graph upkeep of non-recycled pairs | 0.14 -> 0.14 | 0.14 -> 0.14 | 0.00-0.01 |
+//! | solver | 0.36 -> 0.32 | 0.33 -> 0.32 | 0.31-0.34 |
+//!
+//! Inside the hook before: the lock 24 %, the record's hash lookup 13 %,
+//! `PairMaterial::with_rule` per manifold 6 %, shape downcasts 7 %, the rotation-gap
+//! correction 5 %, the implicit solve 9 %, `Steady3d::loads` 4 %. After: the pair constants and
+//! the downcasts are gone (crate::pair_cache, one typed-shape call), and what remains is the
+//! lock (19-25 %: a locked instruction pair per manifold, which also waits for the memory
+//! traffic Rapier left in flight), the record lookup (15-17 %) and the law (solve, creepage,
+//! loads: ~25 %). Most of the cost is not the hook's: a pair with any active hook flag is never
+//! recycled (docs/RAPIER_CONTACT_RECYCLING.md), so creep everywhere pays a full contact update
+//! and the solver-graph upkeep of every pair every step (~0.9 plain steps here); creep within
+//! 1.5x of plain Rapier needs a Rapier hook on recycled pairs.
+//!
+//! The per-contact records live in shards keyed by the collider pair (one without feature
+//! `parallel`, 64 with it): a hook call locks only its pair's shard, never a global lock, and
+//! the moments are applied after the step in key order, so that one thread and several step to
+//! the same bits (`tests/parallel.rs`, `--features creep-rapier/parallel`; it passes clippy
+//! with the feature but has not been run yet: the feature rebuilds Rapier's dependency tree).
+//!
 //! Requirements (checked by [`check_parameters`]): `FrictionModel::Coulomb` (per-point friction
 //! impulses are only written then) and `contact_clustering = false`.
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use creep_law::kinematics::contact_rates;
-use creep_law::steady_law::SteadyLaw;
-use creep_law::{PairMaterial, Surface, Vec3, hertz, kalker};
-use rapier3d::geometry::NEW_CONTACT_BIT;
+use creep_law::{Surface, Vec3};
+use rapier3d::parry::shape::TypedShape;
 use rapier3d::prelude::*;
 
-use crate::convert::{inverse_mass, motion, v3, vf};
-use crate::creep3d::{LawCache, RollFrame, solve_translation};
+use crate::ball_hook::{BallManifold, ball_manifold};
+use crate::convert::{body_motion, v3, vf};
+use crate::creep3d::LawCache;
 use crate::error::PluginError;
 use crate::gap::rotation_gap_correction;
-use crate::registry::{Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of};
-use crate::rolling::{apply_rolling_impulse, rolling_torque};
+use crate::pair_cache::PairCache;
+use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
+use crate::rolling::apply_rolling_impulse;
 use crate::store::{ContactKey, ContactRecord, ContactStore};
 use crate::wheel::Crowns;
 use crate::wheel_hook::{WheelCtx, wheel_manifold};
@@ -211,21 +242,61 @@ pub struct StepCounts {
     pub quiet: usize,
 }
 
-struct Inner {
-    store: ContactStore,
-    counts: StepCounts,
-    /// The 3-D creep laws by contact shape (crate::creep3d).
-    laws: LawCache,
-    /// The wheels' crown radii (crate::wheel).
-    crowns: Crowns,
+impl StepCounts {
+    /// Adds another part's counts (the shards' of one step): sums, and the larger loop gain.
+    fn add(&mut self, o: &StepCounts) {
+        self.coulomb_unregistered += o.coulomb_unregistered;
+        self.coulomb_unsupported += o.coulomb_unsupported;
+        self.coulomb_no_sphere += o.coulomb_no_sphere;
+        self.coulomb_requested += o.coulomb_requested;
+        self.coulomb_auto += o.coulomb_auto;
+        self.creep += o.creep;
+        self.rolling_torque += o.rolling_torque;
+        self.creep_power += o.creep_power;
+        self.max_loop_gain = self.max_loop_gain.max(o.max_loop_gain);
+        self.hooks_on += o.hooks_on;
+        self.quiet += o.quiet;
+    }
 }
 
-/// Rounding ulps of the bodies' angular speeds below which a relative spin about the normal is
-/// taken as f32 noise (no spin creep): the solver resolves angular velocities to about
-/// `eps_f32 |w|`; 16 as for the tangential load's floor (crate::gap). Without it the noise
-/// spin of straight rolling drove the spin terms and the hard-case matrix's mass-ratio case
-/// exceeded its paired energy bound by 1.2 %.
-pub(crate) const SPIN_NOISE_ULPS: f64 = 16.0;
+/// One shard of the hooks' mutable state: the records and counts of the collider pairs that
+/// hash to it, and its own copies of the caches (module docs of crate::pair_cache).
+#[derive(Default)]
+struct Shard {
+    store: ContactStore,
+    counts: StepCounts,
+    /// The 3-D creep laws by contact shape (crate::creep3d; the wheel path's).
+    laws: LawCache,
+    /// The wheels' crown radii (crate::wheel), the same in every shard.
+    crowns: Crowns,
+    /// The per-pair constants (crate::pair_cache).
+    pairs: PairCache,
+}
+
+/// Number of shards of the hooks' state. With feature `parallel` Rapier calls the hook for
+/// different pairs on several threads at once; each call locks only the shard of its collider
+/// pair, never a global lock, so calls on different shards never wait for each other (two
+/// given calls meet on one shard with probability 1/64). Without it there is one thread and one
+/// shard: one uncontended lock per manifold, and the records in one map as before.
+const SHARDS: usize = if cfg!(feature = "parallel") { 64 } else { 1 };
+
+/// The shard of a collider pair (a multiplicative hash of the two indices; the pair's order
+/// is Rapier's, fixed for the pair's lifetime).
+#[cfg(feature = "parallel")]
+#[inline]
+fn shard_of(c1: ColliderHandle, c2: ColliderHandle) -> usize {
+    let (i1, i2) = (c1.into_raw_parts().0, c2.into_raw_parts().0);
+    let h = ((u64::from(i1) << 32) | u64::from(i2)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    // The top 6 bits: one of the 64 shards.
+    (h >> 58) as usize
+}
+
+/// The shard of a collider pair: the only one without feature `parallel`.
+#[cfg(not(feature = "parallel"))]
+#[inline]
+fn shard_of(_: ColliderHandle, _: ColliderHandle) -> usize {
+    0
+}
 
 /// The mark of a collider in its clearing step (see [`CreepHooks::update_activation`]): kept on
 /// the collider itself, not in the hooks, so that a copied world (`clone_physics` with fresh
@@ -233,9 +304,10 @@ pub(crate) const SPIN_NOISE_ULPS: f64 = 16.0;
 /// nothing for a non-sensor pair and the hooks keep Rapier's default for sensors.
 const CLEARING_MARK: ActiveHooks = ActiveHooks::FILTER_INTERSECTION_PAIR;
 
-/// Whether a collider's hook is in its clearing step or off (below the activation speed).
-fn quiet_collider(colliders: &ColliderSet, handle: ColliderHandle) -> bool {
-    colliders.get(handle).is_none_or(|co| {
+/// Whether a collider's hook is in its clearing step or off (below the activation speed); a
+/// collider no longer in the set counts as quiet.
+fn quiet_collider(co: Option<&Collider>) -> bool {
+    co.is_none_or(|co| {
         let f = co.active_hooks();
         !f.contains(ActiveHooks::MODIFY_SOLVER_CONTACTS) || f.contains(CLEARING_MARK)
     })
@@ -255,7 +327,14 @@ pub struct CreepHooks {
     /// Contacts the hook saw while no step was prepared (left to Rapier), reported as
     /// [`PluginError::HookOutsideStep`] by the next step.
     outside: AtomicUsize,
-    inner: Mutex<Inner>,
+    /// The mutable state, sharded by collider pair ([`SHARDS`]).
+    shards: Box<[Mutex<Shard>]>,
+    /// Registered colliders whose hook is on this step (`update_activation`).
+    hooks_on: usize,
+    /// Scratch list of the records with a moment to apply (`end_step`, feature `parallel`:
+    /// applied in key order so that the bodies' sums do not depend on the threads).
+    #[cfg(feature = "parallel")]
+    moments: Vec<(ContactKey, ContactRecord)>,
 }
 
 impl CreepHooks {
@@ -269,12 +348,10 @@ impl CreepHooks {
             substeps: 4,
             prepared: false,
             outside: AtomicUsize::new(0),
-            inner: Mutex::new(Inner {
-                store: ContactStore::default(),
-                counts: StepCounts::default(),
-                laws: LawCache::default(),
-                crowns: Crowns::default(),
-            }),
+            shards: (0..SHARDS).map(|_| Mutex::new(Shard::default())).collect(),
+            hooks_on: 0,
+            #[cfg(feature = "parallel")]
+            moments: Vec::new(),
         })
     }
 
@@ -300,8 +377,11 @@ impl CreepHooks {
         collider: ColliderHandle,
         crown: Option<f64>,
     ) -> Result<(), PluginError> {
-        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
-        inner.crowns.set(collider, crown)
+        for shard in self.shards.iter_mut() {
+            let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
+            shard.crowns.set(collider, crown)?;
+        }
+        Ok(())
     }
 
     /// Prepares a step with its parameters (checks them). Called by [`crate::CreepPipeline`]
@@ -318,9 +398,12 @@ impl CreepHooks {
         self.prepared = true;
         self.dt = f64::from(params.dt);
         self.substeps = params.num_solver_iterations.max(1);
-        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
-        inner.store.begin_step();
-        inner.counts = StepCounts::default();
+        for shard in self.shards.iter_mut() {
+            let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
+            shard.store.begin_step();
+            shard.counts = StepCounts::default();
+        }
+        self.hooks_on = 0;
         Ok(())
     }
 
@@ -385,8 +468,7 @@ impl CreepHooks {
             }
             on_count += usize::from(on);
         }
-        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
-        inner.counts.hooks_on = on_count;
+        self.hooks_on = on_count;
         on_count
     }
 
@@ -398,16 +480,44 @@ impl CreepHooks {
             return Err(PluginError::StepNotPrepared);
         }
         let dt = self.dt;
-        let inner = self.inner.get_mut().unwrap_or_else(|e| e.into_inner());
-        for (_, rec) in inner.store.records.iter() {
-            if (rec.torque == Vec3::ZERO && rec.spin_torque == Vec3::ZERO)
-                || rec.generation != inner.store.generation
-            {
-                continue;
+        let has_moment =
+            |rec: &ContactRecord| rec.torque != Vec3::ZERO || rec.spin_torque != Vec3::ZERO;
+        #[cfg(feature = "parallel")]
+        {
+            // Several threads filled the shards' maps in no fixed order, and the capped
+            // impulses of one body do not commute in f32: apply them in key order.
+            self.moments.clear();
+            for shard in self.shards.iter_mut() {
+                let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
+                let g = shard.store.generation;
+                self.moments.extend(
+                    shard
+                        .store
+                        .records
+                        .iter()
+                        .filter(|(_, r)| r.generation == g && has_moment(r))
+                        .map(|(k, r)| (*k, *r)),
+                );
+                shard.store.sweep();
             }
-            apply_rolling_impulse(bodies, rec, dt);
+            self.moments.sort_unstable_by_key(|(k, _)| k.order());
+            for (_, rec) in &self.moments {
+                apply_rolling_impulse(bodies, rec, dt);
+            }
         }
-        inner.store.sweep();
+        #[cfg(not(feature = "parallel"))]
+        for shard in self.shards.iter_mut() {
+            // One pass: the moments of this step's contacts applied, the ended ones dropped.
+            let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
+            let g = shard.store.generation;
+            shard.store.records.retain(|_, rec| {
+                let live = rec.generation == g;
+                if live && has_moment(rec) {
+                    apply_rolling_impulse(bodies, rec, dt);
+                }
+                live
+            });
+        }
         Ok(())
     }
 
@@ -456,31 +566,44 @@ impl CreepHooks {
     }
 
     /// What the plugin did in the last step.
+    /// (The shards' counts summed in shard order; with feature `parallel` and several threads
+    /// `creep_power` is summed in the threads' order within a shard, so it may differ from one
+    /// run to another in its last bits; the physics does not.)
     pub fn counts(&self) -> StepCounts {
-        self.inner
-            .lock()
-            .map(|i| i.counts)
-            .unwrap_or_else(|e| e.into_inner().counts)
+        let mut c = StepCounts {
+            hooks_on: self.hooks_on,
+            ..StepCounts::default()
+        };
+        for shard in self.shards.iter() {
+            c.add(&shard.lock().unwrap_or_else(|e| e.into_inner()).counts);
+        }
+        c
     }
 
     /// Number of live per-contact records.
     pub fn live_contacts(&self) -> usize {
-        self.inner
-            .lock()
-            .map(|i| i.store.len())
-            .unwrap_or_else(|e| e.into_inner().store.len())
+        self.shards
+            .iter()
+            .map(|s| s.lock().unwrap_or_else(|e| e.into_inner()).store.len())
+            .sum()
     }
 
     /// Copies of all live contact records.
     pub fn records(&self) -> Vec<(ContactKey, ContactRecord)> {
-        let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
-        inner.store.iter().map(|(k, r)| (*k, *r)).collect()
+        let mut all = Vec::new();
+        for shard in self.shards.iter() {
+            let shard = shard.lock().unwrap_or_else(|e| e.into_inner());
+            all.extend(shard.store.iter().map(|(k, r)| (*k, *r)));
+        }
+        all
     }
 
     /// A copy of the record of one contact, if live.
     pub fn record(&self, key: &ContactKey) -> Option<ContactRecord> {
-        let inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
-        inner.store.records.get(key).copied()
+        let shard = self.shards[shard_of(key.collider1, key.collider2)]
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        shard.store.records.get(key).copied()
     }
 }
 
@@ -498,13 +621,6 @@ pub(crate) fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
 
 impl PhysicsHooks for CreepHooks {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
-        let mut inner = self.inner.lock().unwrap_or_else(|e| e.into_inner());
-        let Inner {
-            store,
-            counts,
-            laws,
-            crowns,
-        } = &mut *inner;
         let (c1, c2) = (context.collider1, context.collider2);
         let (h1, h2) = (context.rigid_body1, context.rigid_body2);
         let bodies = context.bodies;
@@ -519,6 +635,17 @@ impl PhysicsHooks for CreepHooks {
             self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
             return;
         }
+        // Only this pair's shard (never a global lock: crate docs of `SHARDS`).
+        let mut shard = self.shards[shard_of(c1, c2)]
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        let Shard {
+            store,
+            counts,
+            laws,
+            crowns,
+            pairs,
+        } = &mut *shard;
         let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
             counts.coulomb_unregistered += n_contacts;
             return;
@@ -529,18 +656,60 @@ impl PhysicsHooks for CreepHooks {
             return;
         }
         // --- end compliant ---
-        if quiet_collider(colliders, c1) && quiet_collider(colliders, c2) {
+        let (co1, co2) = (colliders.get(c1), colliders.get(c2));
+        if quiet_collider(co1) && quiet_collider(co2) {
             // Both below the activation speed: plain Rapier contacts (as with the hook off),
             // rebuilt clean before Rapier starts recycling them.
             counts.quiet += n_contacts;
             return;
         }
-        // For Rapier's rotation gap a wheel (cylinder) turns about its axle like a sphere of its
-        // radius (crate::wheel); the contact law below sees its real shape.
-        let surfaces = (
-            colliders.get(c1).and_then(gap_surface_of),
-            colliders.get(c2).and_then(gap_surface_of),
-        );
+        // The shapes (one typed-shape call per collider): the contact law's surfaces and, for
+        // Rapier's rotation gap, a wheel (cylinder) turning about its axle like a sphere of its
+        // radius (crate::wheel).
+        let (law1, gap1) = co1.map_or((None, None), shape_surfaces);
+        let (law2, gap2) = co2.map_or((None, None), shape_surfaces);
+        // The bodies, looked up once per manifold.
+        let rbs = [
+            h1.and_then(|h| bodies.get(h)),
+            h2.and_then(|h| bodies.get(h)),
+        ];
+        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
+        // A ball on either side of a supported shape: the ball path (crate::ball_hook), with
+        // the pair's constants computed once per pair of materials (crate::pair_cache).
+        let mu = f64::from(*rigid.friction);
+        let ball = match (law1, law2) {
+            (Some(s1), Some(s2)) if is_sphere(s1) || is_sphere(s2) => pairs
+                .get(&m1.material, &m2.material, mu, self.settings.creep_model)
+                .and_then(|k| k.pair_for(s1, s2).map(|p| (s1, s2, k, p))),
+            _ => None,
+        };
+        if let Some((s1, s2, consts, pair)) = ball {
+            let rolling = match (m1.rolling, m2.rolling) {
+                (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
+                _ => None,
+            };
+            let manifold = BallManifold {
+                colliders: (c1, c2),
+                handles: (h1, h2),
+                bodies: rbs,
+                body_set: bodies,
+                surfaces: (s1, s2),
+                pair,
+                consts,
+                fidelity: pair_fidelity(m1.fidelity, m2.fidelity),
+                rolling,
+                dt: self.dt,
+                gap_substeps: self
+                    .settings
+                    .anchor_drift_correction
+                    .then_some(self.substeps),
+                settings: &self.settings,
+            };
+            // (The rotation-gap correction below is done there, contact by contact, on the
+            // same motions as the creep.)
+            ball_manifold(&manifold, rigid, store, counts);
+            return;
+        }
         if self.settings.anchor_drift_correction {
             // Every registered pair, whatever its shapes and fidelity: Rapier's rotation gap
             // (see `rotation_gap`) is the engine's, not creep's.
@@ -549,20 +718,16 @@ impl PhysicsHooks for CreepHooks {
             let flat = Surface::Plane;
             for sc in rigid.solver_contacts.iter_mut() {
                 let (a1, a2) = (v3(sc.anchor1), v3(sc.anchor2));
-                let p_motion = motion(bodies, h1, a1 - n, surfaces.0.unwrap_or(flat));
-                let q_motion = motion(bodies, h2, a2 + n, surfaces.1.unwrap_or(flat));
+                let p_motion = body_motion(rbs[0], a1 - n, gap1.unwrap_or(flat));
+                let q_motion = body_motion(rbs[1], a2 + n, gap2.unwrap_or(flat));
                 let (c, b) =
                     rotation_gap_correction(&p_motion, a1, &q_motion, a2, n, dt, self.substeps);
                 sc.dist -= c as f32;
                 sc.tangent_velocity += vf(n * b);
             }
         }
-        let surfaces = (
-            colliders.get(c1).and_then(rigid_surface_of),
-            colliders.get(c2).and_then(rigid_surface_of),
-        );
         // A cylinder on a flat collider: a wheel (crate::wheel).
-        let wheel_side = match surfaces {
+        let wheel_side = match (law1, law2) {
             (None, Some(Surface::Plane)) => Some(0),
             (Some(Surface::Plane), None) => Some(1),
             _ => None,
@@ -581,186 +746,13 @@ impl PhysicsHooks for CreepHooks {
                 return;
             }
         }
-        let (Some(s1), Some(s2)) = surfaces else {
-            counts.coulomb_unsupported += n_contacts;
-            return;
-        };
-        if !matches!(s1, Surface::Sphere(_)) && !matches!(s2, Surface::Sphere(_)) {
-            // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
-            counts.coulomb_no_sphere += n_contacts;
-            return;
-        }
-        let mu = f64::from(*rigid.friction);
-        let Ok(pair) =
-            PairMaterial::new(&m1.material, &m2.material, s1, s2).and_then(|p| p.with_friction(mu))
-        else {
-            counts.coulomb_unsupported += n_contacts;
-            return;
-        };
-        let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
-        let rolling = match (m1.rolling, m2.rolling) {
-            (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
-            _ => None,
-        };
-        let n = v3(*rigid.normal);
-        let dt = self.dt;
-        for sc in rigid.solver_contacts.iter_mut() {
-            let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
-            let Some(point) = rigid.manifold.points.get(cid) else {
-                continue;
-            };
-            let key = ContactKey {
-                collider1: c1,
-                collider2: c2,
-                feature1: point.fid1.0,
-                feature2: point.fid2.0,
-            };
-            let (a1, a2) = (v3(sc.anchor1), v3(sc.anchor2));
-            let c = (a1 + a2) * 0.5;
-            let p_motion = motion(bodies, h1, a1 - n, s1);
-            let q_motion = motion(bodies, h2, a2 + n, s2);
-            let rates = contact_rates(&p_motion, &q_motion, c, n);
-            let rec = store.touch(key);
-            rec.bodies = (h1, h2);
-            let p_force = f64::from(point.data.impulse) / dt;
-            rec.p = p_force;
-            let n_prev_step = rec.normal;
-            rec.normal = n;
-            let roll = rates.v_roll.length();
-
-            // Contact-torque rolling resistance (computed here, applied in end_step).
-            rec.torque = Vec3::ZERO;
-            rec.spin_torque = Vec3::ZERO;
-            if let Some(model) = rolling {
-                counts.rolling_torque += 1;
-                rec.torque = rolling_torque(
-                    &model,
-                    rec,
-                    bodies,
-                    (h1, h2),
-                    &pair,
-                    p_force,
-                    rates.w_roll,
-                    n,
-                    dt,
-                );
+        match (law1, law2) {
+            (Some(s1), Some(s2)) if !is_sphere(s1) && !is_sphere(s2) => {
+                // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
+                counts.coulomb_no_sphere += n_contacts;
             }
-
-            if fidelity == Fidelity::Coulomb {
-                counts.coulomb_requested += 1;
-                rec.target = Vec3::ZERO;
-                continue;
-            }
-            if !(p_force > 0.0) || !(roll > 0.0) || !(mu > 0.0) {
-                // New contact (no impulse yet), no rolling, or frictionless: nothing creeps.
-                rec.q_used = Vec3::ZERO;
-                counts.coulomb_auto += 1;
-                rec.target = Vec3::ZERO;
-                continue;
-            }
-            let a = hertz::contact_radius(&pair, p_force);
-            let mu_p = mu * p_force;
-            let bound = kalker::steady_creepage(1.0, mu_p, pair.g, a, pair.c11) * roll;
-            if fidelity == Fidelity::Auto && bound < self.settings.auto_tolerance {
-                counts.coulomb_auto += 1;
-                rec.q_used = Vec3::ZERO;
-                rec.target = Vec3::ZERO;
-                continue;
-            }
-            // Measured friction force of the last step, on body 1: the step's total tangent
-            // impulse in the solver's tangent basis, built from the normal of that step.
-            // (`warmstart_tangent_world` holds the last substep only and reads zero on most
-            // rolling steps: a direction taken from it never follows a reversal.)
-            let ti = point.data.tangent_impulse;
-            let n_prev = if n_prev_step == Vec3::ZERO {
-                n
-            } else {
-                n_prev_step
-            };
-            let (t1, t2) = solver_tangents(n_prev);
-            let q_meas = (t1 * f64::from(ti.x) + t2 * f64::from(ti.y)).reject(n) * (1.0 / dt);
-            // Local implicit solve of the creep relation (module docs): the force the solver
-            // would transmit for a target tau is Q* - (m_t/dt) tau, with
-            // Q* = Q_meas + (m_t/dt) tau_prev; tau = F_ss(|Q|/mu P) |v_roll| Q/|Q|.
-            // Always the last target (dropping it makes the solve explicit: gain > 1 runs away).
-            let tau_prev = rec.target.reject(n);
-            let probe = (q_meas + tau_prev).try_normalize().unwrap_or(Vec3::X);
-            let inv_m = inverse_mass(bodies, [h1, h2], vf(c), vf(probe), vf(probe));
-            let q_star = if inv_m > 0.0 {
-                q_meas + tau_prev * (1.0 / (inv_m * dt))
-            } else {
-                q_meas
-            };
-            let noise = crate::gap::solver_noise_force(&p_motion, &q_motion, c, inv_m, dt);
-            let k = if inv_m > 0.0 {
-                roll / (inv_m * dt)
-            } else {
-                0.0
-            };
-            let law = SteadyLaw::with_c11(self.settings.creep_model, pair.nu, pair.c11);
-            // 3-D creep (crate::creep3d): the rolling frame, the spin's lateral force, the
-            // anisotropic implicit solve of the translation, the twisting moment.
-            let (Some(frame), Some(law3)) = (
-                RollFrame::new(rates.v_roll, n),
-                laws.get(1.0, pair.nu.clamp(0.0, 0.5)),
-            ) else {
-                rec.q_used = Vec3::ZERO;
-                rec.target = Vec3::ZERO;
-                counts.coulomb_auto += 1;
-                continue;
-            };
-            let coef = law3.coefficients();
-            // A relative spin within the f32 rounding of the bodies' angular velocities is
-            // noise, not spin (as the tangential load's floor, crate::gap): no spin creep.
-            let w_scale = p_motion.angular_velocity.length() + q_motion.angular_velocity.length();
-            let w_twist =
-                if rates.w_twist.abs() > SPIN_NOISE_ULPS * f64::from(f32::EPSILON) * w_scale {
-                    rates.w_twist
-                } else {
-                    0.0
-                };
-            let phi_n = w_twist / roll * pair.g * a * a * a / mu_p;
-            let spin = if phi_n != 0.0 {
-                law3.loads(0.0, 0.0, phi_n)
-            } else {
-                Default::default()
-            };
-            let q_s = frame.y * (spin.fy * mu_p);
-            let q_star_t = q_star - q_s;
-            if !(q_star_t.length() > noise) {
-                rec.q_used = Vec3::ZERO;
-                rec.target = Vec3::ZERO;
-                counts.coulomb_auto += 1;
-                continue;
-            }
-            let mu_t = (mu_p - spin.fy.abs() * mu_p).max(0.0);
-            let creepage = |q: f64| law.creepage_for_force(q, mu_t, pair.g, a);
-            let slope0 = law.creepage_for_force(1.0, f64::INFINITY, pair.g, a);
-            let r = coef.c11 / coef.c22;
-            let (q_t, ux, uy) =
-                solve_translation(frame.split(q_star_t), k, r, mu_t, slope0, &creepage);
-            let dq = 1e-6 * mu_t;
-            let gain =
-                k * (creepage((q_t + dq).min(mu_t)) - creepage((q_t - dq).max(0.0))) / (2.0 * dq);
-            counts.max_loop_gain = counts.max_loop_gain.max(gain);
-            let f = creepage(q_t);
-            let (cx, cy) = (f * ux, f * r * uy);
-            let q_used = frame.join(q_t * ux, q_t * uy) + q_s;
-            rec.q_used = q_used;
-            let target = frame.join(cx, cy) * roll;
-            rec.target = target;
-            // Twisting moment on p about n (Kalker's Mz), applied after the step as an angular
-            // impulse that never reverses the relative spin (crate::rolling).
-            let mz = if phi_n != 0.0 || cy != 0.0 {
-                let scale = pair.g * a * a / mu_p;
-                law3.loads(cx * scale, cy * scale, phi_n).mz * mu_p * a
-            } else {
-                0.0
-            };
-            rec.spin_torque = n * (-mz);
-            counts.creep += 1;
-            counts.creep_power += (q_used.dot(target) + mz * w_twist).max(0.0);
-            sc.tangent_velocity += vf(target);
+            // No supported shape, or a ball pair the law refuses (a bad radius or friction).
+            _ => counts.coulomb_unsupported += n_contacts,
         }
     }
 }
@@ -778,12 +770,14 @@ pub fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
     (t1, d.cross(t1))
 }
 
-/// The surface of a collider for the rotation-gap correction: [`rigid_surface_of`], and a
-/// cylinder as a sphere of its radius (a wheel turning about its axle).
-fn gap_surface_of(co: &Collider) -> Option<Surface> {
-    rigid_surface_of(co).or_else(|| {
-        co.shape()
-            .as_cylinder()
-            .map(|c| Surface::Sphere(f64::from(c.radius)))
-    })
+/// The surfaces a collider presents to the rigid hook, from one typed-shape call: the contact
+/// law's ([`crate::rigid_surface_of`]) and the rotation-gap correction's (the same, and a
+/// cylinder as a sphere of its radius: a wheel turning about its axle).
+fn shape_surfaces(co: &Collider) -> (Option<Surface>, Option<Surface>) {
+    let law = crate::registry::rigid_surface_of(co);
+    let gap = law.or_else(|| match co.shape().as_typed_shape() {
+        TypedShape::Cylinder(c) => Some(Surface::Sphere(f64::from(c.radius))),
+        _ => None,
+    });
+    (law, gap)
 }

@@ -21,6 +21,16 @@ pub struct ContactKey {
     pub feature2: u32,
 }
 
+impl ContactKey {
+    /// A total order of keys (collider indices and generations, then features): the order in
+    /// which the hooks apply the contacts' moments when several threads filled the store.
+    pub fn order(&self) -> (u32, u32, u32, u32, u32, u32) {
+        let (i1, g1) = self.collider1.into_raw_parts();
+        let (i2, g2) = self.collider2.into_raw_parts();
+        (i1, g1, i2, g2, self.feature1, self.feature2)
+    }
+}
+
 /// Per-contact state that persists across steps.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ContactRecord {

@@ -368,6 +368,16 @@ pub struct MovingRatios {
 /// order rotating every step so that the machine's load drifts hit all alike. Returns the
 /// medians of the per-step ratios over `steps` steps (the pour and the settling).
 pub fn moving_ratios(n: usize, steps: usize) -> Result<MovingRatios, SceneError> {
+    moving_ratios_of(n, steps, [true, true])
+}
+
+/// [`moving_ratios`] with only some of the plugin copies stepped (`[auto, creep]`; a copy left
+/// out has a NaN ratio): for profiling one fidelity at a time (`creep bench pile --only`).
+pub fn moving_ratios_of(
+    n: usize,
+    steps: usize,
+    worlds: [bool; 2],
+) -> Result<MovingRatios, SceneError> {
     if steps == 0 {
         return Err(SceneError::Parameter("steps must be at least 1".into()));
     }
@@ -379,9 +389,12 @@ pub fn moving_ratios(n: usize, steps: usize) -> Result<MovingRatios, SceneError>
     touch_all(&mut c.physics);
     let (mut ra, mut rc, mut tp) = (vec![], vec![], vec![]);
     for i in 0..steps {
-        let mut t = [0.0f64; 3];
+        let mut t = [f64::NAN; 3];
         for k in 0..3 {
             let which = (i + k) % 3;
+            if which > 0 && !worlds[which - 1] {
+                continue;
+            }
             let t0 = Instant::now();
             match which {
                 0 => p.step(),
@@ -395,14 +408,18 @@ pub fn moving_ratios(n: usize, steps: usize) -> Result<MovingRatios, SceneError>
             t[which] = t0.elapsed().as_secs_f64();
         }
         tp.push(t[0]);
-        ra.push(t[1] / t[0]);
-        rc.push(t[2] / t[0]);
+        if worlds[0] {
+            ra.push(t[1] / t[0]);
+        }
+        if worlds[1] {
+            rc.push(t[2] / t[0]);
+        }
     }
     Ok(MovingRatios {
         spheres: n * n * n,
         steps,
-        auto: median(&mut ra),
-        creep: median(&mut rc),
+        auto: if worlds[0] { median(&mut ra) } else { f64::NAN },
+        creep: if worlds[1] { median(&mut rc) } else { f64::NAN },
         plain_step: median(&mut tp),
         contacts: active_contact_pairs(&p),
     })
