@@ -482,6 +482,19 @@ impl<T: TangentialLaw> BoundarySet<T> {
         self.boundaries.get(k).map(|b| b.collider)
     }
 
+    /// The grains (ids) touching boundary `k` at the last sub-step (their contact histories
+    /// hold a load; a contact that opened was reset); nothing for an unknown `k`. Read-only,
+    /// for display (e.g. a viewer marking the grains under a wheel).
+    pub fn touching(&self, k: usize) -> impl Iterator<Item = usize> + '_ {
+        self.boundaries.get(k).into_iter().flat_map(|b| {
+            b.cand_id
+                .iter()
+                .zip(&b.cand_h)
+                .filter(|(_, h)| !h.is_virgin())
+                .map(|(&id, _)| id as usize)
+        })
+    }
+
     /// Energy of the grain-boundary contacts of the bed `dem`, with the current elastic
     /// energies.
     pub fn energy(&self, dem: &Dem<T>) -> BoundaryEnergy {

@@ -467,6 +467,17 @@ impl<T: TangentialLaw> Landed<T> {
     /// Drives a clone of the landed state at slip `slip` in `[0, 1)` for `drive_steps` game
     /// steps; `row` is called after every game step. Returns the steady state.
     pub fn drive(&self, slip: f64, mut row: impl FnMut(WheelRow)) -> Result<WheelSteady, BedError> {
+        let mut d = self.start(slip)?;
+        for _ in 0..self.spec.drive_steps {
+            row(d.step()?);
+        }
+        d.finish()
+    }
+
+    /// Starts a drive at slip `slip` in `[0, 1)` from a clone of the landed state, to be
+    /// advanced one game step at a time ([`Driving::step`]; what [`Landed::drive`] does
+    /// `drive_steps` times), e.g. by a viewer that draws the grains between steps.
+    pub fn start(&self, slip: f64) -> Result<Driving<T>, BedError> {
         if !(slip.is_finite() && (0.0..1.0).contains(&slip)) {
             return Err(BedError::Parameter {
                 name: "slip",
@@ -474,60 +485,162 @@ impl<T: TangentialLaw> Landed<T> {
                 why: "must be in [0, 1)",
             });
         }
-        let clock = std::time::Instant::now();
         let s = &self.spec;
-        let mut bed = self.bed.clone();
-        let mut wheel = s.world(self.pose, self.linvel, self.angvel)?;
+        let bed = self.bed.clone();
+        let wheel = s.world(self.pose, self.linvel, self.angvel)?;
         if bed.boundaries().collider(0) != Some(wheel.collider) {
             return Err(BedError::MissingCollider(wheel.collider));
         }
-        let dt_rigid = s.dt_rigid()?;
-        let rw = s.wheel_radius();
-        let v = s.spin * rw * (1.0 - slip);
         let x0 = f64::from(wheel.world.bodies[wheel.body].translation().x);
-        let mut rows = Vec::with_capacity(s.drive_steps);
-        for k in 0..s.drive_steps {
-            wheel.drive(v, s.spin);
-            bed.step(dt_rigid, &mut wheel.world.bodies)?;
-            // The carriage and the motor hold the prescribed speed and spin: the bed's impulse
-            // along x and its torque impulse are theirs to absorb (the pull and the torque the
-            // scene reports); only the vertical part moves the wheel. Without this Rapier
-            // would integrate `v + J/m`, and the wheel would travel slower than prescribed
-            // (at slip 0 and a pull of -0.36 W, 16 % slower: an actual slip of 0.16).
-            wheel.drive(v, s.spin);
-            let e = bed.boundaries().exchange(0).unwrap_or_default();
-            wheel.world.step();
-            let r = WheelRow {
-                t: (k + 1) as f64 * dt_rigid,
-                slip,
-                sinkage: self.surface - (wheel.height() - rw),
-                drawbar_pull: e.mean_force.x,
-                torque: e.mean_torque.z,
-            };
-            rows.push(r);
-            row(r);
-        }
-        let x1 = f64::from(wheel.world.bodies[wheel.body].translation().x);
-        let (m, drift, rate) = steady(&rows).ok_or(BedError::Parameter {
+        Ok(Driving {
+            spec: *s,
+            creep: self.creep,
+            surface: self.surface,
+            weight: self.weight,
+            slip,
+            speed: s.spin * s.wheel_radius() * (1.0 - slip),
+            dt_rigid: s.dt_rigid()?,
+            clock: std::time::Instant::now(),
+            bed,
+            wheel,
+            x0,
+            rows: Vec::with_capacity(s.drive_steps),
+        })
+    }
+}
+
+/// A drive in progress ([`Landed::start`]): the bed and the wheel's Rapier world, advanced one
+/// game step at a time.
+pub struct Driving<T: TangentialLaw> {
+    spec: WheelOnSand,
+    creep: Option<CreepModel>,
+    surface: f64,
+    weight: f64,
+    slip: f64,
+    speed: f64,
+    dt_rigid: f64,
+    clock: std::time::Instant,
+    bed: Bed<T>,
+    wheel: Wheel,
+    x0: f64,
+    rows: Vec<WheelRow>,
+}
+
+impl<T: TangentialLaw> std::fmt::Debug for Driving<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Driving")
+            .field("slip", &self.slip)
+            .field("creep", &self.creep)
+            .field("steps", &self.rows.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<T: TangentialLaw> Driving<T> {
+    /// The settings.
+    pub fn spec(&self) -> &WheelOnSand {
+        &self.spec
+    }
+
+    /// The slip ratio of this drive [-].
+    pub fn slip(&self) -> f64 {
+        self.slip
+    }
+
+    /// The prescribed forward speed `w R (1 - s)` \[m/s\].
+    pub fn speed(&self) -> f64 {
+        self.speed
+    }
+
+    /// Whether creep acts at the grain contacts.
+    pub fn creep(&self) -> Option<CreepModel> {
+        self.creep
+    }
+
+    /// One game step: the bed's DEM sub-steps with the wheel at its prescribed speed and spin,
+    /// then Rapier's step. Returns the step's row.
+    pub fn step(&mut self) -> Result<WheelRow, BedError> {
+        let (v, w) = (self.speed, self.spec.spin);
+        self.wheel.drive(v, w);
+        self.bed.step(self.dt_rigid, &mut self.wheel.world.bodies)?;
+        // The carriage and the motor hold the prescribed speed and spin: the bed's impulse
+        // along x and its torque impulse are theirs to absorb (the pull and the torque the
+        // scene reports); only the vertical part moves the wheel. Without this Rapier
+        // would integrate `v + J/m`, and the wheel would travel slower than prescribed
+        // (at slip 0 and a pull of -0.36 W, 16 % slower: an actual slip of 0.16).
+        self.wheel.drive(v, w);
+        let e = self.bed.boundaries().exchange(0).unwrap_or_default();
+        self.wheel.world.step();
+        let r = WheelRow {
+            t: (self.rows.len() + 1) as f64 * self.dt_rigid,
+            slip: self.slip,
+            sinkage: self.surface - (self.wheel.height() - self.spec.wheel_radius()),
+            drawbar_pull: e.mean_force.x,
+            torque: e.mean_torque.z,
+        };
+        self.rows.push(r);
+        Ok(r)
+    }
+
+    /// The bed (read-only: its grains, `Bed::dem`, and the wheel's contacts,
+    /// `Bed::boundaries`).
+    pub fn bed(&self) -> &Bed<T> {
+        &self.bed
+    }
+
+    /// The wheel's pose (Rapier's, f32): its centre and its rotation (the cylinder's axis is
+    /// the body's z).
+    pub fn wheel_pose(&self) -> Pose {
+        *self.wheel.world.bodies[self.wheel.body].position()
+    }
+
+    /// The game steps taken so far.
+    pub fn steps(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// The undisturbed surface level of the settled bed \[m\].
+    pub fn surface(&self) -> f64 {
+        self.surface
+    }
+
+    /// The wheel's weight `m g` \[N\].
+    pub fn weight(&self) -> f64 {
+        self.weight
+    }
+
+    /// Whether the wheel would reach the far end wall's margin (1.5 wheel radii) in the next
+    /// game step: a viewer stops there.
+    pub fn at_track_end(&self) -> bool {
+        let (lx, _) = self.spec.bed.footprint();
+        let x = f64::from(self.wheel_pose().translation.x);
+        x + self.speed * self.dt_rigid > lx - 1.5 * self.spec.wheel_radius()
+    }
+
+    /// The steady state of the rows so far (module docs); an error before 4 game steps.
+    pub fn finish(self) -> Result<WheelSteady, BedError> {
+        let s = &self.spec;
+        let x1 = f64::from(self.wheel.world.bodies[self.wheel.body].translation().x);
+        let (m, drift, rate) = steady(&self.rows).ok_or(BedError::Parameter {
             name: "drive_steps",
-            value: s.drive_steps as f64,
+            value: self.rows.len() as f64,
             why: "at least 4",
         })?;
         Ok(WheelSteady {
-            slip,
+            slip: self.slip,
             creep: self.creep.is_some(),
             sinkage: m[0],
             drawbar_pull: m[1],
             torque: m[2],
             weight: self.weight,
-            radius: rw,
+            radius: s.wheel_radius(),
             sinkage_rate: rate,
             drift,
-            travel: x1 - x0,
-            duration: s.drive_steps as f64 * dt_rigid,
-            seconds: clock.elapsed().as_secs_f64(),
+            travel: x1 - self.x0,
+            duration: self.rows.len() as f64 * self.dt_rigid,
+            seconds: self.clock.elapsed().as_secs_f64(),
             spin: s.spin,
-            speed: v,
+            speed: self.speed,
         })
     }
 }

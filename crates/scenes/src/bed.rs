@@ -11,7 +11,7 @@ pub use creep_bed::scene::{
     BedSpec, RestingReport, RestingSphere, highest_under, resting_sphere, surface_height,
 };
 pub use creep_bed::wheel::{
-    Drive, Landed, Progress, SettledBed, WheelOnSand, WheelRow, WheelSteady, settle, steady,
-    surface_level, sweep,
+    Drive, Driving, Landed, Progress, SettledBed, WheelOnSand, WheelRow, WheelSteady, settle,
+    steady, surface_level, sweep,
 };
 pub use creep_bed::{Bed, BedConfig, BedError};
