@@ -48,6 +48,17 @@
 //! it with the chassis in the next solve. The Coulomb twin's wheels touch at one patch point
 //! each (creep-rapier's wheel module), with no twisting friction: they dissipate only where
 //! Rapier's rows slip (bounces).
+//!
+//! Each wheel's creepages, forces and moments per step, or a whole run with its means:
+//!
+//! ```
+//! use creep_scenes::robot::{self, Fidelity, Robot, RobotParams, WheelSpeeds};
+//! let mut r = Robot::new(&RobotParams::default(), Fidelity::Creep).unwrap();
+//! r.set_speeds(WheelSpeeds::spot(0.1)).unwrap(); // rim speeds -0.1, +0.1 m/s
+//! let s = r.step().unwrap();                     // wheels' creepages, forces, moments, power
+//! // or the whole run with its means over the second half:
+//! let run = robot::run(&RobotParams::default(), WheelSpeeds::arc(0.1, 0.15), Fidelity::Creep).unwrap();
+//! ```
 
 use std::f64::consts::FRAC_PI_2;
 
