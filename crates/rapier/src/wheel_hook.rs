@@ -9,10 +9,10 @@ use creep_law::kinematics::contact_rates;
 use creep_law::{PairMaterial, Surface, Vec3};
 use rapier3d::prelude::*;
 
+use crate::ball_hook::SPIN_NOISE_ULPS;
 use crate::convert::{inverse_mass, motion, v3, vf};
 use crate::creep3d::{LawCache, RollFrame, solve_translation};
 use crate::registry::Fidelity;
-use crate::ball_hook::SPIN_NOISE_ULPS;
 use crate::rigid::{CreepSettings, StepCounts, pair_fidelity, solver_tangents};
 use crate::store::{ContactKey, ContactStore};
 use crate::wheel::{Crowns, WheelContact, carter_creepage, line_half_width};
