@@ -103,8 +103,8 @@
 //! The per-contact records live in shards keyed by the collider pair (one without feature
 //! `parallel`, 64 with it): a hook call locks only its pair's shard, never a global lock, and
 //! the moments are applied after the step in key order, so that one thread and several step to
-//! the same bits (`tests/parallel.rs`, `--features creep-rapier/parallel`; it passes clippy
-//! with the feature but has not been run yet: the feature rebuilds Rapier's dependency tree).
+//! the same bits (`tests/parallel.rs`, run with `cargo test -p creep-rapier --features
+//! parallel --release --test parallel`; it passes).
 //!
 //! Requirements (checked by [`check_parameters`]): `FrictionModel::Coulomb` (per-point friction
 //! impulses are only written then) and `contact_clustering = false`.
