@@ -741,6 +741,7 @@ impl PhysicsHooks for CreepHooks {
                 colliders_set: colliders,
                 dt: self.dt,
                 settings: &self.settings,
+                consts: pairs.get(&m1.material, &m2.material, mu, self.settings.creep_model),
             };
             if wheel_manifold(&ctx, rigid, side, store, counts, laws, crowns) {
                 return;

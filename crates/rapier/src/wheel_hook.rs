@@ -6,12 +6,13 @@
 //! `modify_solver_contacts` (crate::rigid), whose implicit per-contact solve it shares.
 
 use creep_law::kinematics::contact_rates;
-use creep_law::{PairMaterial, Surface, Vec3};
+use creep_law::{Surface, Vec3};
 use rapier3d::prelude::*;
 
 use crate::ball_hook::SPIN_NOISE_ULPS;
 use crate::convert::{inverse_mass, motion, v3, vf};
 use crate::creep3d::{LawCache, RollFrame, solve_translation};
+use crate::pair_cache::PairConsts;
 use crate::registry::Fidelity;
 use crate::rigid::{CreepSettings, StepCounts, pair_fidelity, solver_tangents};
 use crate::store::{ContactKey, ContactStore};
@@ -29,6 +30,8 @@ pub(crate) struct WheelCtx<'a> {
     pub(crate) colliders_set: &'a ColliderSet,
     pub(crate) dt: f64,
     pub(crate) settings: &'a CreepSettings,
+    /// The pair's constants (crate::pair_cache; `None`: a pair the law refuses).
+    pub(crate) consts: Option<&'a PairConsts>,
 }
 
 /// The wheel path of the hook (crate::wheel): one record and one slip target for the whole
@@ -62,9 +65,8 @@ pub(crate) fn wheel_manifold(
         (Surface::Plane, wheel_surface)
     };
     let mu = f64::from(*rigid.friction);
-    let Ok(pair) =
-        PairMaterial::new(&m1.material, &m2.material, s1, s2).and_then(|p| p.with_friction(mu))
-    else {
+    // The pair's constants once per pair of materials (crate::pair_cache), as the ball path.
+    let Some(pair) = ctx.consts.and_then(|k| k.pair_for(s1, s2)) else {
         counts.coulomb_unsupported += n_contacts;
         return true;
     };
