@@ -322,6 +322,9 @@ pub struct CreepHooks {
     settings: CreepSettings,
     dt: f64,
     substeps: usize,
+    /// Rapier's prediction distance of the step \[m\] (`IntegrationParameters::prediction_distance`;
+    /// the wheel path keeps a patch contact by Rapier's own rule, crate::wheel_hook).
+    prediction: f64,
     /// Whether the step owner has prepared the current step (dt, substeps, counts, store).
     prepared: bool,
     /// Contacts the hook saw while no step was prepared (left to Rapier), reported as
@@ -346,6 +349,7 @@ impl CreepHooks {
             settings,
             dt: 1.0 / 60.0,
             substeps: 4,
+            prediction: 0.002,
             prepared: false,
             outside: AtomicUsize::new(0),
             shards: (0..SHARDS).map(|_| Mutex::new(Shard::default())).collect(),
@@ -398,6 +402,7 @@ impl CreepHooks {
         self.prepared = true;
         self.dt = f64::from(params.dt);
         self.substeps = params.num_solver_iterations.max(1);
+        self.prediction = f64::from(params.prediction_distance());
         for shard in self.shards.iter_mut() {
             let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
             shard.store.begin_step();
@@ -740,6 +745,11 @@ impl PhysicsHooks for CreepHooks {
                 bodies,
                 colliders_set: colliders,
                 dt: self.dt,
+                prediction: self.prediction,
+                gap_substeps: self
+                    .settings
+                    .anchor_drift_correction
+                    .then_some(self.substeps),
                 settings: &self.settings,
                 consts: pairs.get(&m1.material, &m2.material, mu, self.settings.creep_model),
             };

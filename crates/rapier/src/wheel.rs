@@ -23,8 +23,8 @@
 //!   `C11/C22 = 1/(1 - nu)`: the ratio of the plane-strain to the antiplane shear compliance of
 //!   the strip (this crate's assumption for the slender limit, not a quoted solution); Kalker's
 //!   table tends to it as `a/b -> 0` (Kalker 1990, Table E.3: `C11/C22` = 1.31 and 1.92 at
-//!   `a/b = 0.1`, `nu = 0.25, 0.5`, against 1.33 and 2). Not checked by a scene (the wheel's
-//!   lateral scene is engine-limited, creep-scenes `wheels`).
+//!   `a/b = 0.1`, `nu = 0.25, 0.5`, against 1.33 and 2). Not checked by a scene (creep-scenes'
+//!   lateral scene runs a crowned wheel).
 //!
 //! # The patch contact
 //!
@@ -41,6 +41,22 @@
 //! has the same contact): its friction row acts where the law's patch is, with the limit
 //! `mu P` of the whole wheel. The contact has no tilt stiffness (hold a wheel upright by its
 //! axle: a joint, or locked tilt) and no Coulomb twisting friction.
+//!
+//! On a **cuboid or a half-space** the patch contact's normal and separation come from the two
+//! shapes themselves, not from Rapier's manifold (crate::wheel_hook `ExactPatch`): the floor's
+//! face under the wheel (the face whose slab the wheel's centre lies farthest outside of, its
+//! line of contact on the face) and the distance of the wheel's mid-plane rim point from it.
+//! Rapier's narrow phase computes a cylinder on a cuboid by GJK and EPA in f32 on the
+//! Minkowski difference, whose support points are the cuboid's corners; on a 1000 m floor their
+//! rounding exceeds the 5e-5 m a resting wheel overlaps by, and some steps came back with a
+//! wrong normal and points 0.7-1.4 mm apart while the wheel overlapped: the wheel lost its
+//! contact for one to five steps, then took an impact of 2-7 `m g dt` (a wheel sliding
+//! sideways at `mu P` averaged 0.82-0.89 `mu P`; the robot's wheels lost contact too). When
+//! Rapier's points are left without a solver contact the hook adds one by Rapier's own rule
+//! (within the prediction distance now or after the step), named after the manifold point
+//! with the largest impulse; a manifold without any point gets none. On other floors (meshes,
+//! heightfields, convex polyhedra, a cuboid's edge) the patch takes Rapier's normal and fits
+//! its separation along the axle from Rapier's points.
 //!
 //! **Spin**: a crowned wheel's patch has Kalker's spin creep as a ball's contact has (crate
 //! module `creep3d`): the lateral force of spin takes its share of `mu P` and the twisting moment
@@ -105,6 +121,8 @@ pub(crate) struct Crowns {
     axles: Vec<Option<AxleTrack>>,
     /// Elliptic Hertz at unit load by `(kx, ky, E*)`: `(a1, b1)` (a short list).
     hertz: Vec<([f64; 3], (f64, f64))>,
+    /// A copy of a solver contact Rapier built (see [`Crowns::solver_contact`]).
+    template: Option<SolverContact>,
 }
 
 impl Crowns {
@@ -163,6 +181,35 @@ impl Crowns {
         *slot = Some(track);
         let before = track.before?;
         Some(before.cross(track.now).dot(n).atan2(before.dot(track.now)))
+    }
+
+    /// Remembers a solver contact Rapier built for a wheel, the first time one is seen.
+    pub fn keep_template(&mut self, sc: Option<&SolverContact>) {
+        if self.template.is_none() {
+            self.template = sc.copied();
+        }
+    }
+
+    /// A solver contact with the given public fields, for a wheel manifold whose points Rapier
+    /// left without one (crate::wheel_hook's exact patch contact), or `None` before any was
+    /// seen. Rapier 0.36 has no public constructor of `SolverContact` (its one private field
+    /// is SIMD padding, which the solver never reads), so the hook copies one Rapier built
+    /// ([`Crowns::keep_template`]) and overwrites every public field.
+    pub fn solver_contact(
+        &self,
+        contact_id: u32,
+        anchor1: Vector,
+        anchor2: Vector,
+        dist: f32,
+        tangent_velocity: Vector,
+    ) -> Option<SolverContact> {
+        let mut sc = self.template?;
+        sc.contact_id = [contact_id];
+        sc.anchor1 = anchor1;
+        sc.anchor2 = anchor2;
+        sc.dist = dist;
+        sc.tangent_velocity = tangent_velocity;
+        Some(sc)
     }
 
     /// The crown radius of a collider, if set.

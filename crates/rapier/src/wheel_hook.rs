@@ -12,6 +12,7 @@ use rapier3d::prelude::*;
 use crate::ball_hook::SPIN_NOISE_ULPS;
 use crate::convert::{inverse_mass, motion, v3, vf};
 use crate::creep3d::{LawCache, RollFrame, solve_translation};
+use crate::gap::rotation_gap_correction;
 use crate::pair_cache::PairConsts;
 use crate::registry::Fidelity;
 use crate::rigid::{CreepSettings, StepCounts, pair_fidelity, solver_tangents};
@@ -29,6 +30,10 @@ pub(crate) struct WheelCtx<'a> {
     pub(crate) bodies: &'a RigidBodySet,
     pub(crate) colliders_set: &'a ColliderSet,
     pub(crate) dt: f64,
+    /// Rapier's prediction distance \[m\] (`IntegrationParameters::prediction_distance`).
+    pub(crate) prediction: f64,
+    /// The rotation-gap correction's substeps (`None`: the correction is off).
+    pub(crate) gap_substeps: Option<usize>,
     pub(crate) settings: &'a CreepSettings,
     /// The pair's constants (crate::pair_cache; `None`: a pair the law refuses).
     pub(crate) consts: Option<&'a PairConsts>,
@@ -73,17 +78,45 @@ pub(crate) fn wheel_manifold(
     let Some(wheel) = crowns.wheel(wc, co, pair.e_star) else {
         return false;
     };
-    let n = v3(*rigid.normal);
-    // Last step's loads of the whole manifold, read before the manifold becomes one patch.
-    let loads = manifold_loads(rigid);
+    crowns.keep_template(rigid.solver_contacts.first());
+    let centre = v3(co.translation());
+    let floor = ctx.colliders_set.get(if side == 0 { c2 } else { c1 });
+    // The floor's face under the wheel from the shapes themselves (a cuboid or a half-space),
+    // not from Rapier's manifold (`ExactPatch`).
+    let face = floor
+        .and_then(|f| floor_face(f, centre, wheel.axle, radius, f64::from(cyl.half_height)))
+        .filter(|f| wheel.axle.dot(f.m).abs() < UPRIGHT);
     // One solver contact at the centre of the wheel's contact patch (module docs of
     // crate::wheel), for every fidelity, so that a Coulomb twin has the same contact.
-    let patched = wheel.axle.dot(n).abs() < UPRIGHT;
-    if patched {
+    let n_manifold = v3(*rigid.normal);
+    let patched = if let Some(face) = face {
+        let n = if side == 0 { -face.m } else { face.m };
+        *rigid.normal = vf(n);
+        let skins =
+            f64::from(co.contact_skin()) + floor.map_or(0.0, |f| f64::from(f.contact_skin()));
+        let patch = ExactPatch {
+            face,
+            centre,
+            axle: wheel.axle,
+            radius,
+            n,
+            skins,
+            surfaces: (s1, s2),
+        };
+        patch.apply(ctx, rigid, crowns);
+        true
+    } else if wheel.axle.dot(n_manifold).abs() < UPRIGHT {
+        let n = n_manifold;
         let towards_floor = if side == 0 { n } else { -n };
-        let centre = v3(co.translation());
         patch_contact(rigid, centre, wheel.axle, radius, towards_floor, n);
-    }
+        true
+    } else {
+        false
+    };
+    let n = v3(*rigid.normal);
+    // Last step's loads: of the patch contact's manifold point (the one solved last step), or
+    // of a tilted wheel's solver contacts.
+    let loads = manifold_loads(rigid);
     let n_contacts = rigid.solver_contacts.len();
     let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
     if fidelity == Fidelity::Coulomb {
@@ -284,6 +317,184 @@ fn manifold_loads(rigid: &ModifiableManifold) -> (f64, f64, f64) {
     (p, q1, q2)
 }
 
+/// A flat face of the floor under a wheel (world): its outward unit normal `m` (from the floor
+/// towards the wheel) and a point of it \[m\].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Face {
+    m: Vec3,
+    point: Vec3,
+}
+
+/// The face of a cuboid or half-space `floor` that a wheel (centre `centre`, unit axle `axle`,
+/// radius \[m\], half-width \[m\] along the axle) stands on, from the shapes alone; `None` for
+/// other shapes, for a wheel whose centre is inside the cuboid's slab of every face, or whose
+/// line of contact (its mid-plane rim point +- the half-width along the axle) leaves the face
+/// (at an edge: Rapier's manifold then stays). A cuboid's face is the one whose slab the
+/// centre lies farthest outside of (`max_i |p_i| - h_i`, `p` the centre in the cuboid's frame,
+/// `h` its half-extents).
+fn floor_face(
+    floor: &Collider,
+    centre: Vec3,
+    axle: Vec3,
+    radius: f64,
+    half_width: f64,
+) -> Option<Face> {
+    let rot = floor.rotation();
+    let t = v3(floor.translation());
+    if let Some(hs) = floor.shape().as_halfspace() {
+        let m = v3(rot * hs.normal).try_normalize()?;
+        return (m.dot(centre - t) > 0.0).then_some(Face { m, point: t });
+    }
+    let h = floor.shape().as_cuboid()?.half_extents;
+    let h = [f64::from(h.x), f64::from(h.y), f64::from(h.z)];
+    let inv = rot.inverse();
+    let local = |v: Vec3| {
+        let l = v3(inv * vf(v));
+        [l.x, l.y, l.z]
+    };
+    let p = local(centre - t);
+    let mut i = 0;
+    for j in 1..3 {
+        if p[j].abs() - h[j] > p[i].abs() - h[i] {
+            i = j;
+        }
+    }
+    if !(p[i].abs() > h[i]) {
+        return None;
+    }
+    let mut m_local = [0.0f32; 3];
+    m_local[i] = if p[i] > 0.0 { 1.0 } else { -1.0 };
+    let m = v3(rot * Vector::new(m_local[0], m_local[1], m_local[2]));
+    let point = t + m * h[i];
+    let d = (-m).reject(axle).try_normalize()?;
+    let rim = local(centre + d * radius - t);
+    let ax = local(axle);
+    for j in (0..3).filter(|&j| j != i) {
+        if !(rim[j].abs() + half_width * ax[j].abs() <= h[j]) {
+            return None;
+        }
+    }
+    Some(Face { m, point })
+}
+
+/// The patch contact of an upright wheel on a flat face known exactly ([`floor_face`]): the
+/// normal is the face's, the separation that of the wheel's mid-plane rim point from the face
+/// plane (less the colliders' contact skins), both from the two colliders' poses and shapes
+/// alone. Rapier's narrow phase (parry3d 0.31 `contact_manifold_pfm_pfm`: GJK, and EPA once
+/// the shapes overlap) computes a cylinder on a cuboid in f32 on the Minkowski difference,
+/// whose support points lie at the cuboid's corners: on the scenes' 1000 m floor their
+/// rounding (~6e-5 m at 1000 m) swamps the 5e-5 m a resting wheel overlaps by, and on some
+/// steps the manifold came back with a wrong normal (`(0.970, 0.017, 0.242)` for the floor's
+/// `(0, 1, 0)`) and points separated by +0.7..+1.4 mm while the wheel overlapped by 1.5 mm:
+/// no solver contact, or one that carried nothing, the wheel falling for one to five steps and
+/// then stopped by 2-7 `m g dt` (the lateral slide's "intermittent impacts", creep-scenes'
+/// `slip_angle_saturation`). The face's contact has Rapier's own rule for a solver contact
+/// (`dist < prediction`, or within it after the step at the current approach speed, rapier3d
+/// 0.36 `pair_update.rs`), the rotation-gap correction of the rigid hook (crate::gap), and
+/// the contact id of the manifold point that carried last step's load (or, when Rapier left
+/// the manifold's points without a solver contact, a solver contact built on the point with
+/// the largest impulse; none when the manifold has no point at all).
+struct ExactPatch {
+    face: Face,
+    centre: Vec3,
+    axle: Vec3,
+    radius: f64,
+    /// The manifold's normal, from collider 1 to collider 2 (`-m` or `m`).
+    n: Vec3,
+    /// Sum of the two colliders' contact skins \[m\].
+    skins: f64,
+    /// The two bodies' surfaces for the rotation-gap correction (the wheel a sphere of its
+    /// radius, the floor a plane).
+    surfaces: (Surface, Surface),
+}
+
+impl ExactPatch {
+    fn apply(&self, ctx: &WheelCtx, rigid: &mut ModifiableManifold, crowns: &Crowns) {
+        let Face { m, point } = self.face;
+        let n = self.n;
+        let Some(d) = (-m).reject(self.axle).try_normalize() else {
+            return;
+        };
+        let on_wheel = self.centre + d * self.radius;
+        let dist0 = m.dot(on_wheel - point) - self.skins;
+        let (h1, h2) = ctx.handles;
+        let on_floor = on_wheel - m * m.dot(on_wheel - point);
+        // anchor1 on collider 1 (the wheel when `n = -m`).
+        let (a1, a2) = if n.dot(m) < 0.0 {
+            (on_wheel, on_floor)
+        } else {
+            (on_floor, on_wheel)
+        };
+        let (c, b) = match ctx.gap_substeps {
+            Some(substeps) => {
+                let (s1, s2) = self.surfaces;
+                let p_motion = motion(ctx.bodies, h1, a1 - n, s1);
+                let q_motion = motion(ctx.bodies, h2, a2 + n, s2);
+                rotation_gap_correction(&p_motion, a1, &q_motion, a2, n, ctx.dt, substeps)
+            }
+            None => (0.0, 0.0),
+        };
+        let dist = dist0 - c;
+        let tv = n * b;
+        let (a1, a2) = if n.dot(m) < 0.0 {
+            (on_wheel, on_wheel + n * dist)
+        } else {
+            (on_wheel - n * dist, on_wheel)
+        };
+        if rigid.solver_contacts.is_empty() {
+            // Rapier's rule for a solver contact, on the exact separation.
+            let velocity = |h: Option<RigidBodyHandle>| {
+                h.and_then(|h| ctx.bodies.get(h))
+                    .map_or(Vec3::ZERO, |rb| v3(rb.velocity_at_point(vf(on_wheel))))
+            };
+            let approach = (velocity(h2) - velocity(h1)).dot(n) * ctx.dt;
+            if !(dist0 < ctx.prediction || dist0 + approach < ctx.prediction) {
+                return;
+            }
+            let mut best: Option<(usize, f32)> = None;
+            for (i, p) in rigid.manifold.points.iter().enumerate() {
+                if best.is_none_or(|(_, load)| p.data.impulse > load) {
+                    best = Some((i, p.data.impulse));
+                }
+            }
+            let Some((cid, load)) = best else {
+                return;
+            };
+            let id = cid as u32 | if load == 0.0 { NEW_CONTACT_BIT } else { 0 };
+            if let Some(sc) = crowns.solver_contact(id, vf(a1), vf(a2), dist as f32, vf(tv)) {
+                rigid.solver_contacts.push(sc);
+            }
+            return;
+        }
+        let keep = loaded_contact(rigid);
+        rigid.solver_contacts.swap(0, keep);
+        rigid.solver_contacts.truncate(1);
+        let sc = &mut rigid.solver_contacts[0];
+        sc.anchor1 = vf(a1);
+        sc.anchor2 = vf(a2);
+        sc.dist = dist as f32;
+        sc.tangent_velocity = vf(tv);
+    }
+}
+
+/// The index of the solver contact whose manifold point carried the largest normal impulse
+/// last step (the first on a tie).
+fn loaded_contact(rigid: &ModifiableManifold) -> usize {
+    let (mut keep, mut best) = (0, f32::NEG_INFINITY);
+    for (i, sc) in rigid.solver_contacts.iter().enumerate() {
+        let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+        let load = rigid
+            .manifold
+            .points
+            .get(cid)
+            .map_or(0.0, |p| p.data.impulse);
+        if load > best {
+            (keep, best) = (i, load);
+        }
+    }
+    keep
+}
+
 /// Replaces a wheel's solver contacts by one at the centre of its contact patch: the point of
 /// the wheel's mid-plane rim nearest the floor, `c = x_w + R d`, `d` the unit direction towards
 /// the floor in the wheel's plane (`towards_floor` less its part along the axle), with the
@@ -307,20 +518,11 @@ fn patch_contact(
     let Some(d) = towards_floor.reject(axle).try_normalize() else {
         return;
     };
-    let (mut keep, mut best) = (0, f32::NEG_INFINITY);
+    let keep = loaded_contact(rigid);
     // The separation at the mid-plane: least squares of the points' separations against
     // their positions `s` along the axle (the mean for points at one `s`).
     let (mut s1, mut s2, mut d1, mut sd, mut tv) = (0.0, 0.0, 0.0, 0.0, Vec3::ZERO);
-    for (i, sc) in rigid.solver_contacts.iter().enumerate() {
-        let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
-        let load = rigid
-            .manifold
-            .points
-            .get(cid)
-            .map_or(0.0, |p| p.data.impulse);
-        if load > best {
-            (keep, best) = (i, load);
-        }
+    for sc in rigid.solver_contacts.iter() {
         let s = (v3(sc.anchor1) - centre).dot(axle);
         let dist = f64::from(sc.dist);
         s1 += s;

@@ -111,6 +111,10 @@ pub struct WheelMeasure {
     pub eta: f64,
     /// Mean number of contact points of the pair.
     pub points: f64,
+    /// Smallest normal force of one measured step \[N\] (0: a step without contact).
+    pub p_min: f64,
+    /// Largest normal force of one measured step \[N\] (an impact shows as a multiple of `p`).
+    pub p_max: f64,
 }
 
 fn v3(v: Vector) -> Vec3 {
@@ -230,6 +234,7 @@ fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, Sc
     let steps = (params.duration / params.dt).round() as usize;
     let mut sum = WheelMeasure::default();
     let mut count = 0.0;
+    let (mut p_min, mut p_max) = (f64::INFINITY, 0.0f64);
     let n = Vec3::new(0.0, -1.0, 0.0);
     for i in 0..steps {
         ww.w.step()?;
@@ -255,6 +260,8 @@ fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, Sc
         let y = n.cross(x);
         let speed = v_roll.dot(x).abs();
         sum.p += p;
+        p_min = p_min.min(p);
+        p_max = p_max.max(p);
         sum.qx += q.dot(x);
         sum.qy += q.dot(y);
         sum.xi += v_disp.dot(x) / speed;
@@ -270,6 +277,8 @@ fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, Sc
         xi: sum.xi * k,
         eta: sum.eta * k,
         points: sum.points * k,
+        p_min,
+        p_max,
     })
 }
 

@@ -193,24 +193,39 @@ fn slip_angle_lateral_force() {
     assert!(worst_curve < 0.02, "lateral curve error {worst_curve}");
 }
 
-/// The same wheel pushed beyond `mu P` (1.2 `mu m g`) slides sideways with the floor's force
-/// at `mu P` within 2 %. Not met: sliding sideways at up to 1.5 m/s the cylinder takes
-/// intermittent impacts (steps with no contact, then a normal impulse of 1.5 `m g dt` that
-/// stops most of the lateral speed at once), so the window's mean `|F|/(mu P)` is 0.82 (at
-/// pushes of 1.05 and 1.5 `mu m g` it is 0.999 and 0.9994).
+/// The same wheel pushed beyond `mu P` (by 1.05, 1.2 and 1.5 `mu m g`) slides sideways with
+/// the floor's force at `mu P` within 2 %, in contact on every step: no measured step's normal
+/// force leaves 0.9-1.1 of the mean (measured: |F|/(mu P) 1.0000 at all three pushes, normal
+/// force within 1e-4 of its mean). Before the wheel's patch contact took its normal and
+/// separation from the floor's face (creep-rapier's `wheel_hook`, `ExactPatch`), Rapier's
+/// narrow phase lost the sliding cylinder on the 1000 m floor now and then (a wrong normal and
+/// points separated by up to 1.4 mm while it overlapped; steps with no contact, then impulses
+/// of 2-7 `m g dt`): 0.82, 0.999 and 0.9994 at 1.2, 1.05, 1.5 in the round that wrote this test,
+/// 0.8901, 0.9997 and 0.9999 on the main branch it was fixed on (the impacts fall on different
+/// steps as the code around them changes).
 #[test]
-#[ignore = "engine limit: a cylinder sliding sideways fast takes intermittent impacts; run it to see the numbers"]
 fn slip_angle_saturation() {
     let mut p = WheelParams::default();
     p.crown = Some(crown_for_ratio(p.radius, 0.5).unwrap());
     let mu = p.material.friction();
-    let m = wheels::lateral(&p, 1.2).unwrap();
-    let f = m.qx.hypot(m.qy) / (mu * m.p);
-    eprintln!(
-        "push 1.2: slip angle {:.4} rad, |F|/(mu P) {f:.4}",
-        m.eta.atan()
-    );
-    assert!((f - 1.0).abs() < 0.02, "saturation {f}");
+    for push in [1.05, 1.2, 1.5] {
+        let m = wheels::lateral(&p, push).unwrap();
+        let f = m.qx.hypot(m.qy) / (mu * m.p);
+        eprintln!(
+            "push {push}: slip angle {:.4} rad, |F|/(mu P) {f:.4}, P per step {:.4}..{:.4} of its mean",
+            m.eta.atan(),
+            m.p_min / m.p,
+            m.p_max / m.p
+        );
+        assert!((f - 1.0).abs() < 0.02, "push {push}: saturation {f}");
+        assert!(
+            m.p_min > 0.9 * m.p && m.p_max < 1.1 * m.p,
+            "push {push}: normal force {}..{} of mean {}",
+            m.p_min,
+            m.p_max,
+            m.p
+        );
+    }
 }
 
 /// Lateral creep of a ball (the law the wheels share, creep-rapier's `creep3d`): a rolling
