@@ -40,14 +40,27 @@
 //! plugin applies after the step, read from its contact record): the **measured** dissipation.
 //! The rigid hook books its own estimate, `q_used . target + M_z w_twist` per creep contact
 //! (`StepCounts::creep_power`): in a steady creep run the two agree up to the engine's own slip
-//! (measured -15 % turning on the spot, +6 % on the arc: the wheels' measured creepages include
-//! Rapier's slip, of the order of the Coulomb twin's, 1e-3 to 1.4e-2, which works against the
-//! spin's lateral force; `ContactMean::law_creepage` gives the law's own creepages). A wheel's
+//! (measured -6.6 % turning on the spot, +0.3 % on the arc: the wheels' velocities Rapier
+//! reports after the step carry a lateral slip against their joints, ~3.6e-4 m/s turning on the
+//! spot, that does not move them, and it works against the spin's lateral force;
+//! `ContactMean::law_creepage` gives the law's own creepages). The power is taken at the
+//! contact's point (a wheel's patch, a ball's lowest point), where Rapier applied the impulse. A
+//! wheel's
 //! angular velocity is taken as its joint holds it (the chassis' plus its own about the axle):
 //! the plugin applies the twisting moment to the wheel alone after the step and the joint shares
 //! it with the chassis in the next solve. The Coulomb twin's wheels touch at one patch point
 //! each (creep-rapier's wheel module), with no twisting friction: they dissipate only where
-//! Rapier's rows slip (bounces).
+//! Rapier's rows slip.
+//!
+//! # The wheels' lateral forces
+//!
+//! Turning on the spot each wheel presses on the floor sideways with 1.31 N (0.32 `mu P`), in
+//! opposite directions (the axle is squeezed): the **lateral force of spin** (Kalker's `C23`
+//! term; the wheels spin at `phi_n = phi G c^3/(mu P) = 0.33`), which the creep law gives at
+//! the wheels' creepages within 1 % (creep-scenes' `tests/robot.rs`; Kalker's exact theory for
+//! pure spin, the boundary elements, 1.23 N). On an arc the spin's lateral forces (+0.37 N
+//! inner, +0.25 N outer at 0.1 and 0.15 m/s) are balanced by lateral creep, the two wheels
+//! slipping sideways at one speed (one rigid axle), and what is left is the centripetal force.
 //!
 //! Each wheel's creepages, forces and moments per step, or a whole run with its means:
 //!
@@ -521,7 +534,14 @@ impl Robot {
         };
         let y = n.cross(x);
         let speed = rates.v_roll.dot(x).abs();
-        let (p, force, power) = self.impulses(collider, &p_motion, &q_motion, n);
+        let (p, force) = self.impulses(collider);
+        // The contact's power at the point Rapier applied its impulses: a wheel's one patch
+        // contact (creep-rapier's wheel module) and a ball's contact both act at `point`. The
+        // manifold point a wheel's patch contact names (for its impulses) lies elsewhere on the
+        // cylinder; evaluated there, the slip turning on the spot read -2.6e-3 W against
+        // -4.7e-4 W at the patch.
+        let v_disp = (q_motion.velocity_at(point) - p_motion.velocity_at(point)).reject(n);
+        let power = force.dot(v_disp);
         // The creep law's twisting moment on the body (the plugin applies it after the step)
         // and the hook's booked power, from the pair's records.
         let (mut mz, mut hook_power, mut target) = (0.0, 0.0, Vec3::ZERO);
@@ -582,16 +602,9 @@ impl Robot {
         if count > 0.0 { sum / count } else { 0.0 }
     }
 
-    /// Normal force, the floor's tangential force on the body \[N\] and its power
-    /// `sum Q_i . v_disp(c_i)` \[W\] over the solver contacts of the last step (Rapier's
-    /// impulses over `dt`).
-    fn impulses(
-        &self,
-        collider: ColliderHandle,
-        body: &BodyMotion,
-        floor: &BodyMotion,
-        n: Vec3,
-    ) -> (f64, Vec3, f64) {
+    /// Normal force and the floor's tangential force on the body \[N\] over the solver
+    /// contacts of the last step (Rapier's impulses over `dt`).
+    fn impulses(&self, collider: ColliderHandle) -> (f64, Vec3) {
         let w = &self.world;
         let dt = self.params.dt;
         let Some(pair) = w
@@ -599,20 +612,14 @@ impl Robot {
             .narrow_phase
             .contact_pair(collider, self.floor_collider)
         else {
-            return (0.0, Vec3::ZERO, 0.0);
+            return (0.0, Vec3::ZERO);
         };
         let sign = if pair.collider1 == collider {
             1.0
         } else {
             -1.0
         };
-        let (Some(co1), Some(co2)) = (
-            w.physics.colliders.get(pair.collider1),
-            w.physics.colliders.get(pair.collider2),
-        ) else {
-            return (0.0, Vec3::ZERO, 0.0);
-        };
-        let (mut p, mut q, mut power) = (0.0, Vec3::ZERO, 0.0);
+        let (mut p, mut q) = (0.0, Vec3::ZERO);
         for m in pair.manifolds() {
             let (t1, t2) = creep_rapier::solver_tangents(v3(m.data.normal));
             for sc in &m.data.solver_contacts {
@@ -622,14 +629,10 @@ impl Robot {
                 };
                 p += f64::from(pt.data.impulse) / dt;
                 let ti = pt.data.tangent_impulse;
-                let qi = (t1 * f64::from(ti.x) + t2 * f64::from(ti.y)) * (sign / dt);
-                q += qi;
-                let c = (v3(co1.position() * pt.local_p1) + v3(co2.position() * pt.local_p2)) * 0.5;
-                let v_disp = (floor.velocity_at(c) - body.velocity_at(c)).reject(n);
-                power += qi.dot(v_disp);
+                q += (t1 * f64::from(ti.x) + t2 * f64::from(ti.y)) * (sign / dt);
             }
         }
-        (p, q, power)
+        (p, q)
     }
 }
 
