@@ -49,3 +49,122 @@ fn a_cylinder_on_a_box_is_a_wheel() {
         assert!(v.is_finite() && v.x > 0.0, "{v:?}");
     }
 }
+
+/// One step's normal force on a wheel \[N\], the number of its pair's solver contacts and the
+/// manifold's normal, from the contact impulses.
+fn wheel_contact(
+    world: &CreepWorld,
+    wheel: ColliderHandle,
+    floor: ColliderHandle,
+) -> (f32, usize, Vector) {
+    let Some(pair) = world.physics.narrow_phase.contact_pair(wheel, floor) else {
+        return (0.0, 0, Vector::ZERO);
+    };
+    let (mut impulse, mut count, mut normal) = (0.0, 0, Vector::ZERO);
+    for m in pair.manifolds() {
+        for sc in &m.data.solver_contacts {
+            let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
+            impulse += m.points[cid].data.impulse;
+            count += 1;
+        }
+        normal = if pair.collider1 == wheel {
+            m.data.normal
+        } else {
+            -m.data.normal
+        };
+    }
+    (
+        impulse / world.physics.integration_parameters.dt,
+        count,
+        normal,
+    )
+}
+
+/// A crowned rubber wheel (R 5 cm, 4 cm wide, its tilt and heading locked) rolling at 0.1
+/// m/s and pushed sideways by 1.5 `mu m g` slides along its axle at up to 2.7 m/s; on a
+/// cuboid (half-extents 1000 x 0.5 x 1000 m, as creep-scenes' floors, upright or turned
+/// upside down and about the vertical) and on a half-space it keeps one solver contact on
+/// every step, with the floor's face normal to f32 rounding and the normal force within 5 % of
+/// `m g` (the hook's patch contact on a flat face, module `wheel_hook`'s `ExactPatch`).
+/// Without it Rapier's narrow phase lost the cylinder on the big cuboid on some steps (a
+/// wrong normal, no solver contact) and stopped it with impacts of 2-7 `m g dt`.
+#[test]
+fn a_wheel_sliding_sideways_keeps_its_contact_on_a_flat_floor() {
+    let floors = [
+        (
+            "cuboid",
+            ColliderBuilder::cuboid(1.0e3, 0.5, 1.0e3),
+            Vector::ZERO,
+        ),
+        (
+            "cuboid turned",
+            ColliderBuilder::cuboid(1.0e3, 0.5, 1.0e3),
+            // Half a turn about a horizontal axis 0.15 rad off x: upside down (its local -y face
+            // up), turned by 0.3 rad about the vertical.
+            Vector::new(0.15f32.cos(), 0.0, -0.15f32.sin()) * std::f32::consts::PI,
+        ),
+        (
+            "half-space",
+            ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y)),
+            Vector::ZERO,
+        ),
+    ];
+    for (name, floor_shape, rotation) in floors {
+        let mut world = CreepWorld::new(1.0 / 240.0, CreepSettings::default()).unwrap();
+        world.physics.integration_parameters.num_solver_iterations = 1;
+        world
+            .physics
+            .integration_parameters
+            .num_internal_pgs_iterations = 16;
+        world.physics.integration_parameters.length_unit = 0.05;
+        let rubber = CreepMaterial::new(creep_law::Material::new(1.0e6, 0.5, 0.9, 1100.0).unwrap())
+            .with_fidelity(Fidelity::Creep);
+        // The top face at y = 0.
+        let top = if floor_shape.shape.as_halfspace().is_some() {
+            0.0
+        } else {
+            -0.5
+        };
+        let (_, floor) = world.insert(
+            RigidBodyBuilder::fixed()
+                .translation(Vector::new(0.0, top, 0.0))
+                .rotation(rotation),
+            floor_shape.friction(0.9),
+            Some(rubber),
+        );
+        let (body, wheel) = world.insert(
+            RigidBodyBuilder::dynamic()
+                .translation(Vector::new(0.0, 0.05, 0.0))
+                .rotation(Vector::new(std::f32::consts::FRAC_PI_2, 0.0, 0.0))
+                .linvel(Vector::new(0.1, 0.0, 0.0))
+                .angvel(Vector::new(0.0, 0.0, -2.0))
+                .enabled_rotations(false, false, true)
+                .can_sleep(false),
+            ColliderBuilder::cylinder(0.02, 0.05).friction(0.9),
+            Some(rubber),
+        );
+        world.hooks.set_wheel_crown(wheel, Some(0.2)).unwrap();
+        let mg = world.physics.bodies[body].mass() * 9.81;
+        world.physics.bodies[body].add_force(Vector::new(0.0, 0.0, 1.5 * 0.9 * mg), true);
+        for step in 0..240 {
+            world.step().unwrap();
+            let (p, count, normal) = wheel_contact(&world, wheel, floor);
+            // The first steps settle the wheel onto the floor.
+            if step < 10 {
+                continue;
+            }
+            assert_eq!(count, 1, "{name}, step {step}: {count} solver contacts");
+            assert!(
+                (normal - Vector::new(0.0, -1.0, 0.0)).length() < 1e-6,
+                "{name}, step {step}: normal {normal:?}"
+            );
+            assert!(
+                (p / mg - 1.0).abs() < 0.05,
+                "{name}, step {step}: normal force {} m g",
+                p / mg
+            );
+        }
+        let v = world.physics.bodies[body].linvel();
+        assert!(v.z > 2.0, "{name}: lateral speed {}", v.z);
+    }
+}
