@@ -88,6 +88,15 @@ fn wheel_contact(
 /// `m g` (the hook's patch contact on a flat face, module `wheel_hook`'s `ExactPatch`).
 /// Without it Rapier's narrow phase lost the cylinder on the big cuboid on some steps (a
 /// wrong normal, no solver contact) and stopped it with impacts of 2-7 `m g dt`.
+///
+/// Both pair orders run (the floor inserted first, or the wheel: Rapier's collider 1). With
+/// the wheel as collider 1 on the cuboid parry's manifold comes back **without any point** on
+/// some steps (measured 10 and 11 of 230 at 1000 m, 2-3 at 100 m, 0-1 at 10 m; none on the
+/// half-space, whose manifold parry computes in closed form, and none with the floor first): a
+/// solver contact must name a manifold point, so the hook cannot restore those (asserted: no
+/// step lacks a solver contact while its manifold has a point; at most 12 such steps). The
+/// first steps of a world are skipped: until Rapier has built one solver contact the hook has
+/// none to copy (`wheel::Crowns::keep_template`; the turned cuboid's first 3 steps).
 #[test]
 fn a_wheel_sliding_sideways_keeps_its_contact_on_a_flat_floor() {
     let floors = [
@@ -109,7 +118,12 @@ fn a_wheel_sliding_sideways_keeps_its_contact_on_a_flat_floor() {
             Vector::ZERO,
         ),
     ];
-    for (name, floor_shape, rotation) in floors {
+    // Which collider Rapier makes collider 1 of the pair (the wheel path has both cases).
+    let mut wheel_first_seen = [false; 2];
+    for ((name, floor_shape, rotation), wheel_first) in floors
+        .into_iter()
+        .flat_map(|f| [(f.clone(), false), (f, true)])
+    {
         let mut world = CreepWorld::new(1.0 / 240.0, CreepSettings::default()).unwrap();
         world.physics.integration_parameters.num_solver_iterations = 1;
         world
@@ -125,32 +139,52 @@ fn a_wheel_sliding_sideways_keeps_its_contact_on_a_flat_floor() {
         } else {
             -0.5
         };
-        let (_, floor) = world.insert(
-            RigidBodyBuilder::fixed()
-                .translation(Vector::new(0.0, top, 0.0))
-                .rotation(rotation),
-            floor_shape.friction(0.9),
-            Some(rubber),
-        );
-        let (body, wheel) = world.insert(
-            RigidBodyBuilder::dynamic()
-                .translation(Vector::new(0.0, 0.05, 0.0))
-                .rotation(Vector::new(std::f32::consts::FRAC_PI_2, 0.0, 0.0))
-                .linvel(Vector::new(0.1, 0.0, 0.0))
-                .angvel(Vector::new(0.0, 0.0, -2.0))
-                .enabled_rotations(false, false, true)
-                .can_sleep(false),
-            ColliderBuilder::cylinder(0.02, 0.05).friction(0.9),
-            Some(rubber),
-        );
+        let floor_body = RigidBodyBuilder::fixed()
+            .translation(Vector::new(0.0, top, 0.0))
+            .rotation(rotation);
+        let wheel_body = RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, 0.05, 0.0))
+            .rotation(Vector::new(std::f32::consts::FRAC_PI_2, 0.0, 0.0))
+            .linvel(Vector::new(0.1, 0.0, 0.0))
+            .angvel(Vector::new(0.0, 0.0, -2.0))
+            .enabled_rotations(false, false, true)
+            .can_sleep(false);
+        let wheel_shape = ColliderBuilder::cylinder(0.02, 0.05).friction(0.9);
+        let ((body, wheel), (_, floor)) = if wheel_first {
+            let w = world.insert(wheel_body, wheel_shape, Some(rubber));
+            (
+                w,
+                world.insert(floor_body, floor_shape.friction(0.9), Some(rubber)),
+            )
+        } else {
+            let f = world.insert(floor_body, floor_shape.friction(0.9), Some(rubber));
+            (world.insert(wheel_body, wheel_shape, Some(rubber)), f)
+        };
         world.hooks.set_wheel_crown(wheel, Some(0.2)).unwrap();
         let mg = world.physics.bodies[body].mass() * 9.81;
         world.physics.bodies[body].add_force(Vector::new(0.0, 0.0, 1.5 * 0.9 * mg), true);
+        let (mut lost, mut caught) = (0, true);
         for step in 0..240 {
             world.step().unwrap();
+            if let Some(pair) = world.physics.narrow_phase.contact_pair(wheel, floor) {
+                wheel_first_seen[usize::from(pair.collider1 == wheel)] = true;
+            }
             let (p, count, normal) = wheel_contact(&world, wheel, floor);
             // The first steps settle the wheel onto the floor.
             if step < 10 {
+                continue;
+            }
+            if count == 0 && wheel_first && name.starts_with("cuboid") {
+                // Rapier's narrow phase left the manifold without a point: nothing for the hook
+                // to name (module docs of this test).
+                let pair = world.physics.narrow_phase.contact_pair(wheel, floor);
+                let points = pair.map_or(0, |p| p.manifolds().iter().map(|m| m.points.len()).sum());
+                assert_eq!(
+                    points, 0,
+                    "{name}, step {step}: points without a solver contact"
+                );
+                lost += 1;
+                caught = false;
                 continue;
             }
             assert_eq!(count, 1, "{name}, step {step}: {count} solver contacts");
@@ -158,13 +192,20 @@ fn a_wheel_sliding_sideways_keeps_its_contact_on_a_flat_floor() {
                 (normal - Vector::new(0.0, -1.0, 0.0)).length() < 1e-6,
                 "{name}, step {step}: normal {normal:?}"
             );
+            // The step after a lost one stops the fall (2 m g dt).
+            let catching = !std::mem::replace(&mut caught, true);
             assert!(
-                (p / mg - 1.0).abs() < 0.05,
+                catching || (p / mg - 1.0).abs() < 0.05,
                 "{name}, step {step}: normal force {} m g",
                 p / mg
             );
         }
         let v = world.physics.bodies[body].linvel();
+        eprintln!(
+            "{name}, wheel first {wheel_first}: {lost} of 230 steps without a manifold point"
+        );
         assert!(v.z > 2.0, "{name}: lateral speed {}", v.z);
+        assert!(lost <= 12, "{name}: {lost} steps lost");
     }
+    assert_eq!(wheel_first_seen, [true, true], "pair orders seen");
 }
