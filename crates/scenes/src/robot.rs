@@ -40,10 +40,15 @@
 //! plugin applies after the step, read from its contact record): the **measured** dissipation.
 //! The rigid hook books its own estimate, `q_used . target + M_z w_twist` per creep contact
 //! (`StepCounts::creep_power`): in a steady creep run the two agree up to the engine's own slip
-//! (measured -6.6 % turning on the spot, +0.3 % on the arc: the wheels' velocities Rapier
-//! reports after the step carry a lateral slip against their joints, ~3.6e-4 m/s turning on the
-//! spot, that does not move them, and it works against the spin's lateral force;
-//! `ContactMean::law_creepage` gives the law's own creepages). The power is taken at the
+//! (measured -6.6 % turning on the spot, +0.3 % on the arc). The measured lateral creepage
+//! `eta` reads about `-Omega dt` more than the motion: a wheel's velocity after a step is
+//! tangent to its circle at the step's start (Rapier's symplectic Euler: velocities from the
+//! start-of-step geometry, then positions), while the sample's axes have turned with the
+//! chassis by `Omega dt` (turning on the spot at 1/240 s: -3.6e-3 and -4.0e-3 against
+//! `Omega dt` = 4.1e-3, in the creep run and its Coulomb twin alike; on the arc -1.1e-3 in the
+//! twin against 1.0e-3; the wheels' positions along the axle stay constant to 1e-6 m). Times
+//! the spin's lateral force it reads -4.7e-4 W per wheel turning on the spot;
+//! `ContactMean::law_creepage` gives the law's own creepages. The power is taken at the
 //! contact's point (a wheel's patch, a ball's lowest point), where Rapier applied the impulse. A
 //! wheel's
 //! angular velocity is taken as its joint holds it (the chassis' plus its own about the axle):

@@ -101,9 +101,10 @@ fn print(name: &str, r: &RobotRun) {
 /// spin creepage is `2/b` within 3 % (it rolls on a circle of radius `b/2`; measured -0.57 %,
 /// +0.26 %); the creep run's dissipation is mostly the wheels' spin creep (Kalker's twisting
 /// moment times the relative spin, over 90 %), and equals the hook's booked creep energy within
-/// 10 % (measured -6.6 %: the wheels' velocities Rapier reports after the step carry a lateral
-/// slip of ~3.6e-4 m/s against the joint that does not move them, which times the spin's
-/// lateral force reads as -4.7e-4 W per wheel). The Coulomb twin's single patch point has no
+/// 10 % (measured -6.6 %: the measured lateral creepage reads `-Omega dt` more than the motion,
+/// the wheels' velocities after a step belonging to the step's start and the sample's axes to
+/// its end (module docs of `robot`), which times the spin's lateral force reads as -4.7e-4 W
+/// per wheel). The Coulomb twin's single patch point has no
 /// twisting friction: it dissipates under a tenth of the creep run (measured 1.3 %).
 ///
 /// The wheels' lateral force (the axle squeezed by 1.31 N per wheel) is the **lateral force of
