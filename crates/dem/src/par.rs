@@ -5,8 +5,8 @@
 //! chunk, then chunk by chunk, as the serial loop sums them too. So the results are the same
 //! bits as the serial loop's, for any thread count (test `parallel_force_loop_is_deterministic`).
 
-use crate::step::{CHUNK, WallOut, add_partial};
 use crate::step::weight;
+use crate::step::{CHUNK, WallOut, add_partial};
 use crate::{Dem, DemCounts, DemEnergy, tally};
 use creep_law::Vec3;
 use creep_law::pair::{ContactHistory, PairForces, TangentialLaw};

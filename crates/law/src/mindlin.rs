@@ -62,7 +62,9 @@ use crate::hertz;
 use crate::material::PairMaterial;
 use crate::vector::Vec2;
 
-/// The most pieces (annuli of distinct load history) one contact remembers.
+/// The most pieces (annuli of distinct load history) one contact remembers: the capacity of
+/// [`MindlinState`] and the largest capacity of a [`MindlinMemory`] (whose storage, and so
+/// the flat layout, always has `MAX_PIECES + 1` slots).
 pub const MAX_PIECES: usize = 8;
 
 /// Largest displacement increment one update accepts \[m\]; longer ones are shortened to it (a
@@ -123,30 +125,41 @@ pub struct MindlinStep {
     /// the energy springs had when they left the contact, plus any energy a merge of the memory
     /// removed.
     pub slip_dissipation: f64,
-    /// Energy the springs gained when the memory was over [`MAX_PIECES`] and had to be
+    /// Energy the springs gained when the memory was over its capacity and had to be
     /// simplified by the last-resort rule \[J\] (>= 0; zero in all but rare, long 2-D histories).
     /// The energy balance is `work = stored + slip_dissipation - truncation_energy`.
     pub truncation_energy: f64,
 }
 
-/// Load-history state of one contact's Cattaneo-Mindlin tangential law. `Default` is a virgin,
-/// open contact.
+/// Load-history state of one contact's Cattaneo-Mindlin tangential law, remembering at most
+/// [`MAX_PIECES`] pieces: the memory every host uses.
+pub type MindlinState = MindlinMemory<MAX_PIECES>;
+
+/// Load-history state of one contact's Cattaneo-Mindlin tangential law, remembering at most `N`
+/// pieces (`1 <= N <= MAX_PIECES`, checked at compile time): a smaller memory merges sooner
+/// (see `merge`), trading accuracy of long 2-D histories for speed. The storage is the same
+/// for every `N` (`MAX_PIECES + 1` slots, the flat layout of [`MindlinState::to_array`]).
+/// `Default` is a virgin, open contact.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct MindlinState {
+pub struct MindlinMemory<const N: usize> {
     /// Contact radius of the last update \[m\].
     a: f64,
     /// Number of pieces in use.
     n: usize,
-    /// The pieces, inner to outer. Between updates `n <= MAX_PIECES`; the spare slot holds the
+    /// The pieces, inner to outer. Between updates `n <= N`; the spare slot holds the
     /// springs that enter the contact during an update until `merge` has made room for them.
     pieces: [Piece; MAX_PIECES + 1],
     /// Tangential force after the last update \[N\].
     q: Vec2,
 }
 
-impl MindlinState {
+impl<const N: usize> MindlinMemory<N> {
+    /// `1 <= N <= MAX_PIECES`, evaluated where a memory is created or updated.
+    const CAPACITY_OK: () = assert!(N >= 1 && N <= MAX_PIECES, "capacity out of range");
+
     /// A virgin, open contact (no force, no memory).
     pub fn new() -> Self {
+        let () = Self::CAPACITY_OK;
         Self::default()
     }
 
@@ -208,6 +221,7 @@ impl MindlinState {
     /// [`MindlinState::update`] with the contact radius `a` \[m\] given directly (e.g. from the
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
+        let () = Self::CAPACITY_OK;
         let a = if a.is_finite() && a > 0.0 { a } else { 0.0 };
         let du = if !du.is_finite() {
             Vec2::ZERO
@@ -342,7 +356,7 @@ impl MindlinState {
                 }
                 x_lo = x_hi.max(x_lo);
             }
-            merge(&mut self.pieces, self.n, a, kappa, touched)
+            merge::<N>(&mut self.pieces, self.n, a, kappa, touched)
         } else {
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
             let mut m = 0;
@@ -364,7 +378,7 @@ impl MindlinState {
                 }
                 x_lo = p.x_hi;
             }
-            let (n, d_u2) = merge(&mut out, m, a, kappa, touched_out);
+            let (n, d_u2) = merge::<N>(&mut out, m, a, kappa, touched_out);
             for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
                 *dst = *src;
             }
@@ -599,7 +613,7 @@ fn shifted_slip_work(
     w
 }
 
-/// Merges equal neighbours and drops empty pieces in place, then enforces [`MAX_PIECES`].
+/// Merges equal neighbours and drops empty pieces in place, then enforces the capacity `N`.
 /// Returns the number of pieces kept and the change of `integral |u|^2 dx` [m^3] that the
 /// enforcement caused (<= 0 means energy was lost, which the caller books as dissipation).
 ///
@@ -611,7 +625,13 @@ fn shifted_slip_work(
 /// over it (taken only if within the limit and not adding energy); as a last resort the inner
 /// piece whose absorption by its outer neighbour
 /// (extended inwards) adds the least energy.
-fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64, touched: u32) -> (usize, f64) {
+fn merge<const N: usize>(
+    out: &mut [Piece],
+    m: usize,
+    a: f64,
+    kappa: f64,
+    touched: u32,
+) -> (usize, f64) {
     let a2 = a * a;
     let mut n = 0;
     let mut x_lo = 0.0;
@@ -636,7 +656,7 @@ fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64, touched: u32) -> (usiz
         x_lo = p.x_hi;
     }
     let mut d_u2 = 0.0;
-    while n > MAX_PIECES {
+    while n > N {
         // The adjacent pair of limit pieces with the closest directions, if any.
         let mut best_pair = None;
         let mut best_cos = f64::NEG_INFINITY;
