@@ -102,6 +102,15 @@ fn int_s(a: f64, x1: f64, x2: f64) -> f64 {
     h / 6.0 * (depth(a, x1) + 4.0 * depth(a, 0.5 * (x1 + x2)) + depth(a, x2))
 }
 
+/// [`int_s`] from the width `h = x2 - x1` and the depths `d1`, `d2` at the ends (shared by
+/// neighbouring pieces): `h ((d1 + d2) / 2 + h^2 / 6)`, exact for the quadratic `s` (from
+/// `a^2 - (x1^2 + x1 x2 + x2^2)/3` with `a^2 - x1 x2 = (d1 + d2)/2 + h^2/2`); every term is
+/// positive, so thin annuli at the edge lose no digits either.
+#[inline(always)]
+fn int_s_ends(h: f64, d1: f64, d2: f64) -> f64 {
+    h * (0.5 * (d1 + d2) + h * h * (1.0 / 6.0))
+}
+
 /// `integral_{x1}^{x2} s^2 dx` [m^5] by 3-point Gauss-Legendre quadrature (exact for the quartic
 /// `s^2`; Abramowitz & Stegun 1964, §25.4), free of cancellation like [`int_s`].
 #[inline]
@@ -406,13 +415,17 @@ impl<const N: usize> MindlinMemory<N> {
         }
     }
 
-    /// `Q = 8 G* sum_pieces integral u(x) dx`.
+    /// `Q = 8 G* sum_pieces integral u(x) dx` (each boundary's depth evaluated once).
     fn integrate_force(&self, pair: &PairMaterial) -> Vec2 {
+        let a = self.a;
         let mut x_lo = 0.0;
+        let mut d_lo = a * a;
         let mut sum = Vec2::ZERO;
         for p in &self.pieces[..self.n] {
-            sum += p.c * (p.x_hi - x_lo) + p.beta * int_s(self.a, x_lo, p.x_hi);
-            x_lo = p.x_hi;
+            let h = p.x_hi - x_lo;
+            let d_hi = depth(a, p.x_hi);
+            sum += p.c * h + p.beta * int_s_ends(h, d_lo, d_hi);
+            (x_lo, d_lo) = (p.x_hi, d_hi);
         }
         sum * (8.0 * pair.g_star)
     }
@@ -649,7 +662,9 @@ fn merge<const N: usize>(
             out[n - 1].x_hi = p.x_hi;
             prev_touched = true;
         } else {
-            out[n] = p;
+            if n != i {
+                out[n] = p;
+            }
             n += 1;
             prev_touched = t;
         }
