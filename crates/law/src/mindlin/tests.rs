@@ -27,13 +27,13 @@ fn q_branch(mu_p: f64, ds: f64, d0: f64, q0: f64, d: f64) -> f64 {
     q0 + s * 2.0 * q_load(mu_p, ds, (d - d0).abs() / 2.0)
 }
 
-/// Drives the state collinearly along `dir` through `targets` in `steps` equal steps per leg and
-/// checks every step against the closed-form curve.
-fn check_path(steps: usize, dir: Vec2) -> f64 {
+/// Drives a memory of capacity `N` collinearly along `dir` through `targets` in `steps` equal
+/// steps per leg and checks every step against the closed-form curve.
+fn check_path<const N: usize>(steps: usize, dir: Vec2) -> f64 {
     let pair = pair();
     let mu_p = pair.mu * P;
     let ds = delta_s(&pair, P);
-    let mut st = MindlinState::new();
+    let mut st = MindlinMemory::<N>::new();
     st.update(&pair, P, Vec2::ZERO);
     let (d1, d2, d3) = (0.8 * ds, -0.6 * ds, 0.95 * ds);
     let q1 = q_load(mu_p, ds, d1);
@@ -65,20 +65,20 @@ fn check_path(steps: usize, dir: Vec2) -> f64 {
 
 #[test]
 fn reproduces_mindlin_deresiewicz_with_1000_steps() {
-    let err = check_path(1000, Vec2::new(1.0, 0.0));
+    let err = check_path::<MAX_PIECES>(1000, Vec2::new(1.0, 0.0));
     println!("Mindlin-Deresiewicz, 1000 steps/branch: max |Q - closed form| = {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
-    let err = check_path(1000, Vec2::new(0.6, -0.8));
+    let err = check_path::<MAX_PIECES>(1000, Vec2::new(0.6, -0.8));
     println!("Mindlin-Deresiewicz, 1000 steps/branch, oblique axis: {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
 }
 
 #[test]
 fn reproduces_mindlin_deresiewicz_with_10_steps() {
-    let err = check_path(10, Vec2::new(1.0, 0.0));
+    let err = check_path::<MAX_PIECES>(10, Vec2::new(1.0, 0.0));
     println!("Mindlin-Deresiewicz, 10 steps/branch: max |Q - closed form| = {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
-    let err = check_path(10, Vec2::new(-0.28, 0.96));
+    let err = check_path::<MAX_PIECES>(10, Vec2::new(-0.28, 0.96));
     println!("Mindlin-Deresiewicz, 10 steps/branch, oblique axis: {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
 }
@@ -761,4 +761,76 @@ fn reference_to_rounding_on_cycles_and_rolling() {
         })
         .collect();
     run_against_reference(&pair, &rolling);
+}
+
+/// A smaller memory (`MindlinMemory<N>`, N < MAX_PIECES) is the same law until it is full: the
+/// collinear Mindlin-Deresiewicz paths (which never need more than a few pieces) are reproduced
+/// to rounding at N = 4 and 6 as at 8.
+#[test]
+fn smaller_capacities_reproduce_mindlin_deresiewicz() {
+    for (n, err) in [
+        (4, check_path::<4>(10, Vec2::new(0.6, -0.8))),
+        (4, check_path::<4>(1000, Vec2::new(1.0, 0.0))),
+        (6, check_path::<6>(10, Vec2::new(-0.28, 0.96))),
+        (6, check_path::<6>(1000, Vec2::new(1.0, 0.0))),
+    ] {
+        println!("capacity {n}: max |Q - closed form| = {err:.2e} mu P");
+        assert!(err < 1e-12, "capacity {n}: {err:e}");
+    }
+}
+
+/// A smaller memory keeps its bound and the law's invariants on a jittering, turning DEM-like
+/// path that keeps it full: at most `N` pieces, `|Q| <= mu P`, non-negative slip and truncation
+/// energies; and the flat form of a deeper memory is refused, not truncated.
+#[test]
+fn smaller_capacities_keep_their_bound_and_coulomb() {
+    fn run<const N: usize>() -> usize {
+        let pair = pair();
+        let ds = delta_s(&pair, P);
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut st = MindlinMemory::<N>::new();
+        let (mut p, mut dir) = (P, 0.0f64);
+        let mut full = 0;
+        for i in 0..4000 {
+            p = (p * (1.0 + 1e-2 * rng.sym())).clamp(0.5 * P, 1.5 * P);
+            dir += 0.3 * rng.sym();
+            if i % 400 == 200 {
+                dir += std::f64::consts::PI;
+            }
+            let len = ds * 10f64.powf(-3.0 + 2.0 * rng.sym());
+            let step = st.update(&pair, p, Vec2::new(dir.cos(), dir.sin()) * len);
+            assert!(st.memory_depth() <= N, "depth {} > {N}", st.memory_depth());
+            assert!(
+                step.q.length() <= pair.mu * p * (1.0 + 1e-12),
+                "step {i}: |Q| {} > mu P {}",
+                step.q.length(),
+                pair.mu * p
+            );
+            assert!(step.slip_dissipation >= 0.0 && step.truncation_energy >= 0.0);
+            full += usize::from(st.memory_depth() == N);
+        }
+        full
+    }
+    for (n, full) in [(4, run::<4>()), (6, run::<6>()), (8, run::<8>())] {
+        println!("capacity {n}: full in {full} of 4000 steps");
+        assert!(full > 1000, "capacity {n} full in only {full} steps");
+    }
+    // An 8-piece memory's flat form does not fit a 4-piece memory.
+    let pair = pair();
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    let ds = delta_s(&pair, P);
+    let mut d = 0.0;
+    for k in 0..12 {
+        let target = if k % 2 == 0 { 0.9 } else { -0.9 } * ds * 0.7f64.powi(k);
+        st.update(
+            &pair,
+            P * (1.0 - 0.01 * k as f64),
+            Vec2::new(0.6, -0.8) * (target - d),
+        );
+        d = target;
+    }
+    assert!(st.memory_depth() > 4);
+    assert!(MindlinMemory::<4>::from_array(&st.to_array()).is_err());
+    assert!(MindlinMemory::<8>::from_array(&st.to_array()).is_ok());
 }
