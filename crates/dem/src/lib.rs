@@ -24,7 +24,9 @@
 //!   axis (minimum image);
 //! * with the `parallel` feature and [`DemConfig::parallel`], the force loop runs on rayon's
 //!   threads: each pair's force goes to a buffer, then each particle sums its pairs' forces in
-//!   list order, so results are identical run to run and for any number of threads.
+//!   list order, the order in which the serial loop adds them (energies and counts per block of
+//!   particles in both), so results are the same bits as the serial loop's, run to run and for
+//!   any number of threads.
 //!
 //! Conventions are creep-law's: in a pair the particle with the smaller id is body p, the
 //! normal points from p to q; for a wall contact the wall is p, its normal points into the

@@ -1,10 +1,12 @@
 //! The force loop on rayon's threads with a deterministic reduction: each list entry's force
 //! goes to a buffer (the entries of a fixed-size chunk of particles per task), then each
-//! particle sums, in list order, the entries it owns and the entries it is the partner of.
-//! The sums do not depend on the number of threads, so the results are identical run to run
-//! and for any thread count.
+//! particle sums the entries it owns and the entries it is the partner of, merged in list
+//! order: the order in which the serial loop adds them. Energies and counts are summed per
+//! chunk, then chunk by chunk, as the serial loop sums them too. So the results are the same
+//! bits as the serial loop's, for any thread count (test `parallel_force_loop_is_deterministic`).
 
-use crate::step::WallOut;
+use crate::step::weight;
+use crate::step::{CHUNK, WallOut, add_partial};
 use crate::{Dem, DemCounts, DemEnergy, tally};
 use creep_law::Vec3;
 use creep_law::pair::{ContactHistory, PairForces, TangentialLaw};
@@ -12,9 +14,6 @@ use rayon::prelude::*;
 
 /// One task: the first particle of a chunk, its entries' histories and outputs.
 type Task<'a, T> = (usize, &'a mut [ContactHistory<T>], &'a mut [Entry]);
-
-/// Particles per task.
-const CHUNK: usize = 128;
 
 /// One entry's contribution: force and torque on its owner `i`, torque on its partner `j`
 /// (the force on `j` is `-force_i`).
@@ -142,18 +141,16 @@ impl<T: TangentialLaw> Dem<T> {
                 (c, e)
             })
             .collect();
-        for (c, e) in partial {
-            counts.contacts += c.contacts;
-            counts.sliding += c.sliding;
-            counts.creeping += c.creeping;
-            energy.damping += e.damping;
-            energy.slip += e.slip;
-            energy.creep += e.creep;
-            energy.rolling += e.rolling;
-            energy.truncation += e.truncation;
+        for (c, e) in &partial {
+            add_partial(counts, energy, c, e);
         }
-        // Gather, in list order per particle, from the particle's weight (`forces` leaves the
-        // arrays to this loop in parallel mode: one pass over them instead of two).
+        // Gather from the particle's weight (`forces` leaves the arrays to this loop in
+        // parallel mode: one pass over them instead of two), the owned entries (one range of
+        // the list) and the partnered ones (ascending in the reverse index) merged by entry
+        // number: the serial loop's order. An open pair's entry is zero, which the serial loop
+        // does not add; adding `+0.0` changes no sum except `-0.0`, and these sums never are
+        // `-0.0`: they start from `+0.0` or a nonzero weight (`forces` makes the weight's zero
+        // components `+0.0`), and in round-to-nearest a sum is `-0.0` only if both terms are.
         let (start, rev_start, rev_k) = (&self.nl_start, &self.par.rev_start, &self.par.rev_k);
         let (outs, mass, g) = (&out, &self.mass, self.cfg.gravity);
         self.f
@@ -162,15 +159,22 @@ impl<T: TangentialLaw> Dem<T> {
             .enumerate()
             .with_min_len(CHUNK)
             .for_each(|(i, (f, t))| {
-                *f = g * mass[i];
+                *f = weight(g, mass[i]);
                 *t = Vec3::ZERO;
-                for k in start[i] as usize..start[i + 1] as usize {
-                    *f += outs[k].force_i;
-                    *t += outs[k].torque_i;
+                let (mut k, end) = (start[i] as usize, start[i + 1] as usize);
+                for &r in &rev_k[rev_start[i] as usize..rev_start[i + 1] as usize] {
+                    let r = r as usize;
+                    while k < end && k < r {
+                        *f += outs[k].force_i;
+                        *t += outs[k].torque_i;
+                        k += 1;
+                    }
+                    *f -= outs[r].force_i;
+                    *t += outs[r].torque_j;
                 }
-                for &k in &rev_k[rev_start[i] as usize..rev_start[i + 1] as usize] {
-                    *f -= outs[k as usize].force_i;
-                    *t += outs[k as usize].torque_j;
+                for o in &outs[k..end] {
+                    *f += o.force_i;
+                    *t += o.torque_i;
                 }
             });
         self.nl_h = hist;

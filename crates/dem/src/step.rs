@@ -92,7 +92,7 @@ impl<T: TangentialLaw> Dem<T> {
         let init = true;
         if init {
             for i in 0..n {
-                self.f[i] = g * self.mass[i];
+                self.f[i] = weight(g, self.mass[i]);
                 self.t[i] = Vec3::ZERO;
             }
         }
@@ -186,25 +186,38 @@ impl<T: TangentialLaw> Dem<T> {
         }
     }
 
+    /// The pair forces, one particle after another. Each particle's force and torque sum its
+    /// entries' contributions in list order (whether it owns the entry or is its partner), and
+    /// the energies and counts are summed per block of [`CHUNK`] particles, then block by
+    /// block: the parallel loop (`par`) sums in exactly these orders, so both give the same
+    /// bits.
     fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
-        for i in 0..n {
-            let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
-            for k in a..b {
-                let j = self.nl_j[k] as usize;
-                match self.pair(i, j, &mut hist[k], dt) {
-                    Ok((p, q, out)) => {
-                        self.f[p] += out.force_p;
-                        self.f[q] -= out.force_p;
-                        self.t[p] += out.torque_p;
-                        self.t[q] += out.torque_q;
-                        tally(counts, energy, &out);
-                        counts.contacts += 1;
+        let mut i0 = 0;
+        while i0 < n {
+            let i1 = (i0 + CHUNK).min(n);
+            let mut c = DemCounts::default();
+            let mut e = DemEnergy::default();
+            for i in i0..i1 {
+                let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
+                for k in a..b {
+                    let j = self.nl_j[k] as usize;
+                    match self.pair(i, j, &mut hist[k], dt) {
+                        Ok((p, q, out)) => {
+                            self.f[p] += out.force_p;
+                            self.f[q] -= out.force_p;
+                            self.t[p] += out.torque_p;
+                            self.t[q] += out.torque_q;
+                            tally(&mut c, &mut e, &out);
+                            c.contacts += 1;
+                        }
+                        Err(released) => e.slip += released,
                     }
-                    Err(released) => energy.slip += released,
                 }
             }
+            add_partial(counts, energy, &c, &e);
+            i0 = i1;
         }
         self.nl_h = hist;
     }
@@ -280,6 +293,35 @@ impl<T: TangentialLaw> Dem<T> {
             Err(released) => energy.slip += released,
         }
     }
+}
+
+/// The weight `g m` \[N\] a particle's force sum starts from, with `+0.0` for `-0.0`
+/// components (so that no force sum is ever `-0.0`: see `par`'s gather).
+#[inline]
+pub(crate) fn weight(g: Vec3, m: f64) -> Vec3 {
+    g * m + Vec3::ZERO
+}
+
+/// Particles per block of the force loop: a task of the parallel loop, and the block over
+/// which both loops sum energies and counts before adding them to the totals.
+pub(crate) const CHUNK: usize = 128;
+
+/// Adds one block's counts and energies to the totals (both loops, block by block in order).
+#[inline]
+pub(crate) fn add_partial(
+    counts: &mut DemCounts,
+    energy: &mut DemEnergy,
+    c: &DemCounts,
+    e: &DemEnergy,
+) {
+    counts.contacts += c.contacts;
+    counts.sliding += c.sliding;
+    counts.creeping += c.creeping;
+    energy.damping += e.damping;
+    energy.slip += e.slip;
+    energy.creep += e.creep;
+    energy.rolling += e.rolling;
+    energy.truncation += e.truncation;
 }
 
 pub(crate) fn tally(

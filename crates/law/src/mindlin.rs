@@ -62,12 +62,18 @@ use crate::hertz;
 use crate::material::PairMaterial;
 use crate::vector::Vec2;
 
-/// The most pieces (annuli of distinct load history) one contact remembers.
+/// The most pieces (annuli of distinct load history) one contact remembers: the capacity of
+/// [`MindlinState`] and the largest capacity of a [`MindlinMemory`] (whose storage, and so
+/// the flat layout, always has `MAX_PIECES + 1` slots).
 pub const MAX_PIECES: usize = 8;
 
 /// Largest displacement increment one update accepts \[m\]; longer ones are shortened to it (a
 /// guard that keeps every output finite for any finite input, e.g. with `mu = +inf`).
 pub const MAX_INCREMENT: f64 = 1e100;
+
+/// Relative width (of the contact radius) below which a stick-slip cut is snapped to the end of
+/// its piece (see `update_with_radius`).
+const SLIVER: f64 = 1e-12;
 
 /// One annulus `x_lo < x <= x_hi` of the spring row, where `u(x) = s(x) beta + c` with the depth
 /// `s(x) = a^2 - x^2` [m^2] (the slip limit is `kappa s(x)`).
@@ -96,6 +102,15 @@ fn int_s(a: f64, x1: f64, x2: f64) -> f64 {
     h / 6.0 * (depth(a, x1) + 4.0 * depth(a, 0.5 * (x1 + x2)) + depth(a, x2))
 }
 
+/// [`int_s`] from the width `h = x2 - x1` and the depths `d1`, `d2` at the ends (shared by
+/// neighbouring pieces): `h ((d1 + d2) / 2 + h^2 / 6)`, exact for the quadratic `s` (from
+/// `a^2 - (x1^2 + x1 x2 + x2^2)/3` with `a^2 - x1 x2 = (d1 + d2)/2 + h^2/2`); every term is
+/// positive, so thin annuli at the edge lose no digits either.
+#[inline(always)]
+fn int_s_ends(h: f64, d1: f64, d2: f64) -> f64 {
+    h * (0.5 * (d1 + d2) + h * h * (1.0 / 6.0))
+}
+
 /// `integral_{x1}^{x2} s^2 dx` [m^5] by 3-point Gauss-Legendre quadrature (exact for the quartic
 /// `s^2`; Abramowitz & Stegun 1964, §25.4), free of cancellation like [`int_s`].
 #[inline]
@@ -119,30 +134,41 @@ pub struct MindlinStep {
     /// the energy springs had when they left the contact, plus any energy a merge of the memory
     /// removed.
     pub slip_dissipation: f64,
-    /// Energy the springs gained when the memory was over [`MAX_PIECES`] and had to be
+    /// Energy the springs gained when the memory was over its capacity and had to be
     /// simplified by the last-resort rule \[J\] (>= 0; zero in all but rare, long 2-D histories).
     /// The energy balance is `work = stored + slip_dissipation - truncation_energy`.
     pub truncation_energy: f64,
 }
 
-/// Load-history state of one contact's Cattaneo-Mindlin tangential law. `Default` is a virgin,
-/// open contact.
+/// Load-history state of one contact's Cattaneo-Mindlin tangential law, remembering at most
+/// [`MAX_PIECES`] pieces: the memory every host uses.
+pub type MindlinState = MindlinMemory<MAX_PIECES>;
+
+/// Load-history state of one contact's Cattaneo-Mindlin tangential law, remembering at most `N`
+/// pieces (`1 <= N <= MAX_PIECES`, checked at compile time): a smaller memory merges sooner
+/// (see `merge`), trading accuracy of long 2-D histories for speed. The storage is the same
+/// for every `N` (`MAX_PIECES + 1` slots, the flat layout of [`MindlinState::to_array`]).
+/// `Default` is a virgin, open contact.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct MindlinState {
+pub struct MindlinMemory<const N: usize> {
     /// Contact radius of the last update \[m\].
     a: f64,
     /// Number of pieces in use.
     n: usize,
-    /// The pieces, inner to outer. Between updates `n <= MAX_PIECES`; the spare slot holds the
+    /// The pieces, inner to outer. Between updates `n <= N`; the spare slot holds the
     /// springs that enter the contact during an update until `merge` has made room for them.
     pieces: [Piece; MAX_PIECES + 1],
     /// Tangential force after the last update \[N\].
     q: Vec2,
 }
 
-impl MindlinState {
+impl<const N: usize> MindlinMemory<N> {
+    /// `1 <= N <= MAX_PIECES`, evaluated where a memory is created or updated.
+    const CAPACITY_OK: () = assert!(N >= 1 && N <= MAX_PIECES, "capacity out of range");
+
     /// A virgin, open contact (no force, no memory).
     pub fn new() -> Self {
+        let () = Self::CAPACITY_OK;
         Self::default()
     }
 
@@ -204,6 +230,7 @@ impl MindlinState {
     /// [`MindlinState::update`] with the contact radius `a` \[m\] given directly (e.g. from the
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
+        let () = Self::CAPACITY_OK;
         let a = if a.is_finite() && a > 0.0 { a } else { 0.0 };
         let du = if !du.is_finite() {
             Vec2::ZERO
@@ -272,7 +299,11 @@ impl MindlinState {
         // then makes room): giving them the outermost piece's field extended outwards instead
         // would let them enter with that piece's `c` (after a small `da2`, `c = du - beta da2`
         // with a huge `beta`), energy that no work paid for.
+        // Pieces whose field this update changes other than by the common `du` (entering and
+        // slipping springs), one bit per index: only they can become equal to a neighbour.
+        let mut touched: u32 = 0;
         if da2 > 0.0 {
+            touched |= 1 << self.n;
             self.pieces[self.n] = Piece {
                 x_hi: a,
                 beta: du * (1.0 / da2),
@@ -290,16 +321,15 @@ impl MindlinState {
         let k2 = kappa * kappa;
         for (p, cut_out) in self.pieces[..self.n].iter().zip(cuts.iter_mut()) {
             let hi = p.x_hi.max(x_lo);
-            // Most pieces stick wholly (or slip wholly): the cheap test below settles the first
-            // case without the root's chain of square roots and divisions, and gives the
-            // clamped value `stick_radius` would (see `surely_sticks`).
-            let cut = if surely_sticks(p, k2, a, a2) {
-                hi
-            } else if surely_slips(p, k2, a, a2, x_lo) {
-                x_lo
-            } else {
-                stick_radius(p, kappa, a2).clamp(x_lo, hi)
-            };
+            let mut cut = stick_cut(p, kappa, k2, a, a2, x_lo, hi);
+            // A cut within rounding of an end of the piece is at that end: a sliver of
+            // springs split off by rounding would take a slot of the memory (and change which
+            // pieces `merge` joins later) for a field it cannot resolve.
+            if hi - cut <= SLIVER * a {
+                cut = hi;
+            } else if cut - x_lo <= SLIVER * a {
+                cut = x_lo;
+            }
             splits += usize::from(cut > x_lo && cut < p.x_hi);
             *cut_out = cut;
             x_lo = p.x_hi.max(x_lo);
@@ -323,33 +353,41 @@ impl MindlinState {
         };
         let (n, d_u2) = if splits == 0 {
             let mut x_lo = 0.0;
-            for (p, &cut) in self.pieces[..self.n].iter_mut().zip(cuts.iter()) {
+            for (i, (p, &cut)) in self.pieces[..self.n]
+                .iter_mut()
+                .zip(cuts.iter())
+                .enumerate()
+            {
                 let x_hi = p.x_hi;
                 if cut < x_hi && x_hi > x_lo {
                     *p = slip(p, cut, &mut dissipated);
+                    touched |= 1 << i;
                 }
                 x_lo = x_hi.max(x_lo);
             }
-            merge(&mut self.pieces, self.n, a, kappa)
+            merge::<N>(&mut self.pieces, self.n, a, kappa, touched)
         } else {
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
             let mut m = 0;
             let mut x_lo = 0.0;
-            for (p, &cut) in self.pieces[..self.n].iter().zip(cuts.iter()) {
+            let mut touched_out: u32 = 0;
+            for (i, (p, &cut)) in self.pieces[..self.n].iter().zip(cuts.iter()).enumerate() {
                 if p.x_hi <= x_lo {
                     continue;
                 }
                 if cut > x_lo {
                     out[m] = Piece { x_hi: cut, ..*p };
+                    touched_out |= (touched >> i & 1) << m;
                     m += 1;
                 }
                 if cut < p.x_hi {
                     out[m] = slip(p, cut, &mut dissipated);
+                    touched_out |= 1 << m;
                     m += 1;
                 }
                 x_lo = p.x_hi;
             }
-            let (n, d_u2) = merge(&mut out, m, a, kappa);
+            let (n, d_u2) = merge::<N>(&mut out, m, a, kappa, touched_out);
             for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
                 *dst = *src;
             }
@@ -377,13 +415,17 @@ impl MindlinState {
         }
     }
 
-    /// `Q = 8 G* sum_pieces integral u(x) dx`.
+    /// `Q = 8 G* sum_pieces integral u(x) dx` (each boundary's depth evaluated once).
     fn integrate_force(&self, pair: &PairMaterial) -> Vec2 {
+        let a = self.a;
         let mut x_lo = 0.0;
+        let mut d_lo = a * a;
         let mut sum = Vec2::ZERO;
         for p in &self.pieces[..self.n] {
-            sum += p.c * (p.x_hi - x_lo) + p.beta * int_s(self.a, x_lo, p.x_hi);
-            x_lo = p.x_hi;
+            let h = p.x_hi - x_lo;
+            let d_hi = depth(a, p.x_hi);
+            sum += p.c * h + p.beta * int_s_ends(h, d_lo, d_hi);
+            (x_lo, d_lo) = (p.x_hi, d_hi);
         }
         sum * (8.0 * pair.g_star)
     }
@@ -408,58 +450,47 @@ fn piece_u2(p: &Piece, a: f64, x1: f64, x2: f64) -> f64 {
     w
 }
 
-/// Whether all springs of a (trial) piece certainly stick, i.e. [`stick_radius`] certainly
-/// returns at least `p.x_hi`: a test without square roots or divisions, so that the common
-/// wholly-stuck piece skips the root. With `s` the depth at the piece's outer end and
-/// `|s beta + c|^2 <= (1 - 1e-9) kappa^2 s^2`, the concave `g(s) = kappa s - |s beta + c|`
-/// (zero at the root `s*`, slope at most `kappa + |beta| <= 2 kappa`) gives
-/// `s - s* >= g(s) / (2 kappa) >= 2.5e-10 s`; requiring `s >= 1e-4 a^2` makes that gap
-/// (`>= 2.5e-14 a^2`) far larger than the rounding of `stick_radius`' `a^2 - s*` (a few
-/// `1e-16 a^2`, the error of its root being `~1e-6` of the gap), so both give the same clamped
-/// cut bit for bit (checked against the frozen reference by the `reference_*` tests). Only
-/// for `|beta| <= kappa` (where `stick_radius` is the exact root) and finite values; `false`
-/// means "use `stick_radius`", never "slips".
+/// The radius `cut` in `[x_lo, hi]` that divides the stuck springs (`x <= cut`) of a trial piece
+/// on `x_lo < x <= hi` from its slipping ones: the same cut as [`stick_radius`] clamped to the
+/// piece, found with fewer square roots and divisions. For `|beta| <= kappa` the springs stick
+/// where `q(s) = kappa^2 s^2 - |s beta + c|^2 >= 0`, and `q` has one root `s* >= 0` at most
+/// (its roots' product `-|c|^2 / (kappa^2 - |beta|^2)` is not positive), so the stuck set is
+/// `s >= s*` (Mindlin 1949: slip spreads inwards from the edge): the sign of `q` at the piece's
+/// outer end (depth `s_hi`) and inner end (`s_lo`) settles the common cases (wholly stuck,
+/// wholly slipping) exactly; only a piece that changes inside needs the root, the rationalised
+/// `s* = |c|^2 / (sqrt(D) - beta.c)`, `D = (beta.c)^2 + (kappa^2 - |beta|^2) |c|^2`, and its
+/// square root `x = sqrt(a^2 - s*)`. Springs entering the contact can bring `|beta| > kappa`,
+/// and huge or non-finite values may overflow the squares: those go to [`stick_radius`].
 #[inline(always)]
-fn surely_sticks(p: &Piece, k2: f64, a: f64, a2: f64) -> bool {
-    let s = depth(a, p.x_hi);
-    let u = p.beta * s + p.c;
-    let lim = k2 * (s * s);
-    s >= 1e-4 * a2
-        && p.beta.length_squared() <= k2
-        && lim.is_finite()
-        && u.length_squared() <= (1.0 - 1e-9) * lim
-}
-
-/// Whether all springs of a (trial) piece certainly slip, i.e. [`stick_radius`] certainly
-/// returns at most `x_lo`, the piece's inner radius \[m\]: the counterpart of
-/// [`surely_sticks`]. With `s` the depth at `x_lo` and `|s beta + c|^2 >= (1 + 1e-7) kappa^2
-/// s^2`, concavity gives `s* - s >= |g(s)| / (2 kappa) >= 2.4e-8 s`. `stick_radius`
-/// computes `s* = |c| / den` with `den = sqrt(D') - beta.c_hat` (cancellation when `beta.c >
-/// 0`), `D' = (beta.c_hat)^2 + max(0, kappa^2 - |beta|^2)`; its absolute error is below
-/// `~4e-16 (kappa + kappa^2 / sqrt(D'))`, so requiring `D' >= 1e-2 kappa^2` and `|c| >= 1e-4
-/// kappa s` bounds the relative error of `s*` by `~2e-11`, far below the gap; with
-/// `s >= 1e-4 a^2` the gap (`>= 2.4e-12 a^2`) also dwarfs the rounding of `a^2 - s*`. Only for
-/// `kappa > 0`, `|beta| <= kappa` (to rounding) and finite values in a sane range; `false` means
-/// "use `stick_radius`".
-#[inline(always)]
-fn surely_slips(p: &Piece, k2: f64, a: f64, a2: f64, x_lo: f64) -> bool {
-    let s = depth(a, x_lo);
-    let u = p.beta * s + p.c;
-    let lim = k2 * (s * s);
+fn stick_cut(p: &Piece, kappa: f64, k2: f64, a: f64, a2: f64, x_lo: f64, hi: f64) -> f64 {
     let b2 = p.beta.length_squared();
-    let c2 = p.c.length_squared();
-    let bc = p.beta.dot(p.c);
-    let u2 = u.length_squared();
-    k2 > 0.0
-        && (1e-250..=1e250).contains(&a2)
-        && s >= 1e-4 * a2
-        && b2 <= k2 * (1.0 + 1e-12)
-        && lim.is_finite()
-        && u2.is_finite()
-        && u2 >= (1.0 + 1e-7) * lim
-        && c2 >= 1e-8 * lim
-        && c2 <= 1e250
-        && bc * bc + (k2 - b2).max(0.0) * c2 >= 1e-2 * k2 * c2
+    // Pieces at the limit have `|beta| = kappa` to rounding (`e kappa` with `|e| = 1 +- eps`).
+    if b2 <= k2 * (1.0 + 1e-12) && k2 < f64::INFINITY {
+        let (s_hi, s_lo) = (depth(a, hi), depth(a, x_lo));
+        let u_hi = p.beta * s_hi + p.c;
+        let q_hi = k2 * (s_hi * s_hi) - u_hi.length_squared();
+        if q_hi >= 0.0 {
+            return hi;
+        }
+        let u_lo = p.beta * s_lo + p.c;
+        let q_lo = k2 * (s_lo * s_lo) - u_lo.length_squared();
+        if q_lo < 0.0 && q_lo > f64::NEG_INFINITY {
+            return x_lo;
+        }
+        let (c2, bc) = (p.c.length_squared(), p.beta.dot(p.c));
+        let d = bc * bc + (k2 - b2).max(0.0) * c2;
+        let den = d.sqrt() - bc;
+        let s_star = c2 / den;
+        if q_hi.is_finite() && q_lo.is_finite() && s_star.is_finite() && den > 0.0 {
+            let r2 = a2 - s_star;
+            return if r2 > 0.0 {
+                r2.sqrt().clamp(x_lo, hi)
+            } else {
+                x_lo
+            };
+        }
+    }
+    stick_radius(p, kappa, a2).clamp(x_lo, hi)
 }
 
 /// The radius inside which the springs of a (trial) piece satisfy `|s beta + c| <= kappa s`.
@@ -595,7 +626,7 @@ fn shifted_slip_work(
     w
 }
 
-/// Merges equal neighbours and drops empty pieces in place, then enforces [`MAX_PIECES`].
+/// Merges equal neighbours and drops empty pieces in place, then enforces the capacity `N`.
 /// Returns the number of pieces kept and the change of `integral |u|^2 dx` [m^3] that the
 /// enforcement caused (<= 0 means energy was lost, which the caller books as dissipation).
 ///
@@ -607,25 +638,40 @@ fn shifted_slip_work(
 /// over it (taken only if within the limit and not adding energy); as a last resort the inner
 /// piece whose absorption by its outer neighbour
 /// (extended inwards) adds the least energy.
-fn merge(out: &mut [Piece], m: usize, a: f64, kappa: f64) -> (usize, f64) {
+fn merge<const N: usize>(
+    out: &mut [Piece],
+    m: usize,
+    a: f64,
+    kappa: f64,
+    touched: u32,
+) -> (usize, f64) {
     let a2 = a * a;
     let mut n = 0;
     let mut x_lo = 0.0;
+    // Whether the last kept piece is touched: two untouched neighbours were already distinct
+    // after the last update and both moved by the same `du`, so only pairs with a touched
+    // piece are compared.
+    let mut prev_touched = false;
     for i in 0..m {
         let p = out[i];
         if p.x_hi <= x_lo {
             continue;
         }
-        if n > 0 && same_form(&out[n - 1], &p, a2) {
+        let t = touched >> i & 1 != 0;
+        if n > 0 && (t || prev_touched) && same_form(&out[n - 1], &p, a2) {
             out[n - 1].x_hi = p.x_hi;
+            prev_touched = true;
         } else {
-            out[n] = p;
+            if n != i {
+                out[n] = p;
+            }
             n += 1;
+            prev_touched = t;
         }
         x_lo = p.x_hi;
     }
     let mut d_u2 = 0.0;
-    while n > MAX_PIECES {
+    while n > N {
         // The adjacent pair of limit pieces with the closest directions, if any.
         let mut best_pair = None;
         let mut best_cos = f64::NEG_INFINITY;

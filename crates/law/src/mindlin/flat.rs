@@ -8,7 +8,7 @@ use super::*;
 /// contact radius, the piece count, the force (2) and `MAX_PIECES + 1` pieces of 5 numbers.
 pub const MINDLIN_FLAT_LEN: usize = 4 + 5 * (MAX_PIECES + 1);
 
-impl MindlinState {
+impl<const N: usize> MindlinMemory<N> {
     /// The state as a flat array of `f64` (for hosts that pass contact history through a C
     /// ABI, e.g. a LAMMPS pair style): `[a, n, q.x, q.y, (x_hi, beta.x, beta.y, c.x, c.y) x 9]`.
     pub fn to_array(&self) -> [f64; MINDLIN_FLAT_LEN] {
@@ -25,7 +25,7 @@ impl MindlinState {
     }
 
     /// The inverse of [`MindlinState::to_array`]. A non-finite entry, a negative radius or a
-    /// piece count that is not an integer in `[0, MAX_PIECES]` is an error.
+    /// piece count that is not an integer in `[0, N]` is an error.
     pub fn from_array(v: &[f64; MINDLIN_FLAT_LEN]) -> Result<Self, crate::LawError> {
         if let Some(&bad) = v.iter().find(|x| !x.is_finite()) {
             return Err(crate::LawError::OutOfRange {
@@ -35,11 +35,11 @@ impl MindlinState {
             });
         }
         let n = v[1];
-        if !(n >= 0.0 && n <= MAX_PIECES as f64 && n.fract() == 0.0) || v[0] < 0.0 {
+        if !(n >= 0.0 && n <= N as f64 && n.fract() == 0.0) || v[0] < 0.0 {
             return Err(crate::LawError::OutOfRange {
                 name: "Mindlin history piece count",
                 value: n,
-                range: "an integer in [0, 8] with a >= 0",
+                range: "an integer in [0, N] (the capacity, 8 for MindlinState) with a >= 0",
             });
         }
         let mut pieces = [Piece::default(); MAX_PIECES + 1];

@@ -27,13 +27,13 @@ fn q_branch(mu_p: f64, ds: f64, d0: f64, q0: f64, d: f64) -> f64 {
     q0 + s * 2.0 * q_load(mu_p, ds, (d - d0).abs() / 2.0)
 }
 
-/// Drives the state collinearly along `dir` through `targets` in `steps` equal steps per leg and
-/// checks every step against the closed-form curve.
-fn check_path(steps: usize, dir: Vec2) -> f64 {
+/// Drives a memory of capacity `N` collinearly along `dir` through `targets` in `steps` equal
+/// steps per leg and checks every step against the closed-form curve.
+fn check_path<const N: usize>(steps: usize, dir: Vec2) -> f64 {
     let pair = pair();
     let mu_p = pair.mu * P;
     let ds = delta_s(&pair, P);
-    let mut st = MindlinState::new();
+    let mut st = MindlinMemory::<N>::new();
     st.update(&pair, P, Vec2::ZERO);
     let (d1, d2, d3) = (0.8 * ds, -0.6 * ds, 0.95 * ds);
     let q1 = q_load(mu_p, ds, d1);
@@ -65,20 +65,20 @@ fn check_path(steps: usize, dir: Vec2) -> f64 {
 
 #[test]
 fn reproduces_mindlin_deresiewicz_with_1000_steps() {
-    let err = check_path(1000, Vec2::new(1.0, 0.0));
+    let err = check_path::<MAX_PIECES>(1000, Vec2::new(1.0, 0.0));
     println!("Mindlin-Deresiewicz, 1000 steps/branch: max |Q - closed form| = {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
-    let err = check_path(1000, Vec2::new(0.6, -0.8));
+    let err = check_path::<MAX_PIECES>(1000, Vec2::new(0.6, -0.8));
     println!("Mindlin-Deresiewicz, 1000 steps/branch, oblique axis: {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
 }
 
 #[test]
 fn reproduces_mindlin_deresiewicz_with_10_steps() {
-    let err = check_path(10, Vec2::new(1.0, 0.0));
+    let err = check_path::<MAX_PIECES>(10, Vec2::new(1.0, 0.0));
     println!("Mindlin-Deresiewicz, 10 steps/branch: max |Q - closed form| = {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
-    let err = check_path(10, Vec2::new(-0.28, 0.96));
+    let err = check_path::<MAX_PIECES>(10, Vec2::new(-0.28, 0.96));
     println!("Mindlin-Deresiewicz, 10 steps/branch, oblique axis: {err:.2e} mu P");
     assert!(err < 1e-12, "max error {err:e} of mu P");
 }
@@ -574,34 +574,98 @@ impl Rng {
     }
 }
 
+/// Largest differences accepted between one update of the optimised memory and one of the
+/// frozen reference from the same state (the flat layouts are the same): force relative to the
+/// path's largest force, energies relative to the step's work scale `|Q| |du|` plus its
+/// dissipation and the energy stored before the step. The optimised memory classifies sticking and slipping springs and tests merges
+/// in other forms (rounding-level differences), and snaps a stick-slip cut within `1e-12 a` of
+/// a piece's end to that end, where the reference splits off a sliver of springs that then
+/// takes a slot of a full memory and makes `merge` join other neighbours: one such update
+/// differs by up to 2.6e-5 of the largest force (measured on these paths; otherwise the force
+/// differs by at most 6.7e-15 and the energies by at most 4.7e-14 of their scale).
+const STEP_TOL_FORCE: f64 = 1e-4;
+const STEP_TOL_ENERGY: f64 = 1e-12;
+
+/// Largest difference accepted after free-running both versions along a whole path (force
+/// relative to the largest force on the path; summed energies relative to the work scale
+/// `sum |Q| |du|`). Different slivers and merges (see [`STEP_TOL_FORCE`]) make two valid
+/// memories that are not the same list of annuli, so long paths with a full memory drift apart
+/// by more than rounding; every physical test holds for each. Measured on these paths: up to
+/// 3.4e-3 of the largest force and 8.5e-5 of the work (printed with `--nocapture`).
+const PATH_TOL: f64 = 1e-2;
+
 /// Drives the optimised memory and the frozen reference (`mindlin/reference.rs`, the algorithm
-/// before its speed-up) through the same inputs and requires the same bits after every step:
-/// state (`to_array`), force and both energies. Returns the memory-depth histogram.
+/// before its speed-up) through the same inputs: after every step, one update of the optimised
+/// memory from the reference's state must agree with the reference's to [`STEP_TOL_FORCE`] and
+/// [`STEP_TOL_ENERGY`], and the
+/// free-running optimised memory must stay within [`PATH_TOL`]. Returns the memory-depth
+/// histogram of the free-running optimised memory.
 fn run_against_reference(pair: &PairMaterial, inputs: &[(f64, Vec2)]) -> [usize; MAX_PIECES + 1] {
     let mut new = MindlinState::new();
     let mut old = reference::MindlinState::new();
     let mut depth = [0; MAX_PIECES + 1];
-    for (i, &(a, du)) in inputs.iter().enumerate() {
+    let mut q_max = 0.0f64;
+    let mut work = 0.0;
+    let (mut dn, mut d_old, mut tn, mut t_old) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let (mut dq_path, mut de_path) = (0.0f64, 0.0f64);
+    let (mut dq_step, mut de_step) = (0.0f64, 0.0f64);
+    for &(a, du) in inputs {
+        let mut one = MindlinState::from_array(&old.to_array()).expect("valid state");
+        let stored = old.elastic_energy(pair);
+        let s1 = one.update_with_radius(pair, a, du);
         let s = new.update_with_radius(pair, a, du);
         let r = old.update_with_radius(pair, a, du);
-        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(s.a.to_bits(), r.a.to_bits(), "contact radius differs");
+        assert_eq!(s1.a.to_bits(), r.a.to_bits(), "contact radius differs");
+        q_max = q_max.max(r.q.length());
+        let step_work = r.q.length() * du.length();
+        work += step_work;
+        // The step's energies are differences of integrals of the field's square, so their
+        // rounding scales with the stored energy, not with the (possibly tiny) step.
+        let scale = step_work + r.slip_dissipation + r.truncation_energy + stored;
+        if scale > 0.0 {
+            de_step = de_step.max(
+                (s1.slip_dissipation - r.slip_dissipation)
+                    .abs()
+                    .max((s1.truncation_energy - r.truncation_energy).abs())
+                    / scale,
+            );
+        }
+        if q_max > 0.0 {
+            dq_step = dq_step.max((s1.q - r.q).length() / q_max);
+            dq_path = dq_path.max((s.q - r.q).length() / q_max);
+        }
+        dn += s.slip_dissipation;
+        d_old += r.slip_dissipation;
+        tn += s.truncation_energy;
+        t_old += r.truncation_energy;
+        if work > 0.0 {
+            de_path = de_path.max((dn - d_old).abs().max((tn - t_old).abs()) / work);
+        }
         assert_eq!(
-            bits(&new.to_array()),
-            bits(&old.to_array()),
-            "step {i}: state differs from the reference"
-        );
-        assert_eq!(
-            bits(&[s.q.x, s.q.y, s.a, s.slip_dissipation, s.truncation_energy]),
-            bits(&[r.q.x, r.q.y, r.a, r.slip_dissipation, r.truncation_energy]),
-            "step {i}: step result differs from the reference"
+            new.memory_depth() == 0,
+            old.memory_depth() == 0,
+            "open/closed differs"
         );
         depth[new.memory_depth()] += 1;
     }
+    println!(
+        "against the reference: one step {dq_step:.2e} (force) {de_step:.2e} (energies); \
+         free-running path {dq_path:.2e} (force) {de_path:.2e} (energies)"
+    );
+    assert!(
+        dq_step <= STEP_TOL_FORCE && de_step <= STEP_TOL_ENERGY,
+        "one update differs: {dq_step:.2e} {de_step:.2e}"
+    );
+    assert!(
+        dq_path <= PATH_TOL && de_path <= PATH_TOL,
+        "path differs: {dq_path:.2e} {de_path:.2e}"
+    );
     depth
 }
 
 #[test]
-fn reference_bit_for_bit_on_jittering_dem_paths() {
+fn reference_to_rounding_on_jittering_dem_paths() {
     // A contact in a vibrating packing: the radius grows or shrinks every step (the memory is
     // full and merges every step), the displacement turns, reverses, creeps and slides grossly;
     // sometimes the contact opens. Friction from 0 (walls) to +inf.
@@ -646,7 +710,7 @@ fn reference_bit_for_bit_on_jittering_dem_paths() {
 }
 
 #[test]
-fn reference_bit_for_bit_on_cycles_and_rolling() {
+fn reference_to_rounding_on_cycles_and_rolling() {
     let pair = pair();
     let mu_p = pair.mu * P;
     let ds = delta_s(&pair, P);
@@ -697,4 +761,76 @@ fn reference_bit_for_bit_on_cycles_and_rolling() {
         })
         .collect();
     run_against_reference(&pair, &rolling);
+}
+
+/// A smaller memory (`MindlinMemory<N>`, N < MAX_PIECES) is the same law until it is full: the
+/// collinear Mindlin-Deresiewicz paths (which never need more than a few pieces) are reproduced
+/// to rounding at N = 4 and 6 as at 8.
+#[test]
+fn smaller_capacities_reproduce_mindlin_deresiewicz() {
+    for (n, err) in [
+        (4, check_path::<4>(10, Vec2::new(0.6, -0.8))),
+        (4, check_path::<4>(1000, Vec2::new(1.0, 0.0))),
+        (6, check_path::<6>(10, Vec2::new(-0.28, 0.96))),
+        (6, check_path::<6>(1000, Vec2::new(1.0, 0.0))),
+    ] {
+        println!("capacity {n}: max |Q - closed form| = {err:.2e} mu P");
+        assert!(err < 1e-12, "capacity {n}: {err:e}");
+    }
+}
+
+/// A smaller memory keeps its bound and the law's invariants on a jittering, turning DEM-like
+/// path that keeps it full: at most `N` pieces, `|Q| <= mu P`, non-negative slip and truncation
+/// energies; and the flat form of a deeper memory is refused, not truncated.
+#[test]
+fn smaller_capacities_keep_their_bound_and_coulomb() {
+    fn run<const N: usize>() -> usize {
+        let pair = pair();
+        let ds = delta_s(&pair, P);
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut st = MindlinMemory::<N>::new();
+        let (mut p, mut dir) = (P, 0.0f64);
+        let mut full = 0;
+        for i in 0..4000 {
+            p = (p * (1.0 + 1e-2 * rng.sym())).clamp(0.5 * P, 1.5 * P);
+            dir += 0.3 * rng.sym();
+            if i % 400 == 200 {
+                dir += std::f64::consts::PI;
+            }
+            let len = ds * 10f64.powf(-3.0 + 2.0 * rng.sym());
+            let step = st.update(&pair, p, Vec2::new(dir.cos(), dir.sin()) * len);
+            assert!(st.memory_depth() <= N, "depth {} > {N}", st.memory_depth());
+            assert!(
+                step.q.length() <= pair.mu * p * (1.0 + 1e-12),
+                "step {i}: |Q| {} > mu P {}",
+                step.q.length(),
+                pair.mu * p
+            );
+            assert!(step.slip_dissipation >= 0.0 && step.truncation_energy >= 0.0);
+            full += usize::from(st.memory_depth() == N);
+        }
+        full
+    }
+    for (n, full) in [(4, run::<4>()), (6, run::<6>()), (8, run::<8>())] {
+        println!("capacity {n}: full in {full} of 4000 steps");
+        assert!(full > 1000, "capacity {n} full in only {full} steps");
+    }
+    // An 8-piece memory's flat form does not fit a 4-piece memory.
+    let pair = pair();
+    let mut st = MindlinState::new();
+    st.update(&pair, P, Vec2::ZERO);
+    let ds = delta_s(&pair, P);
+    let mut d = 0.0;
+    for k in 0..12 {
+        let target = if k % 2 == 0 { 0.9 } else { -0.9 } * ds * 0.7f64.powi(k);
+        st.update(
+            &pair,
+            P * (1.0 - 0.01 * k as f64),
+            Vec2::new(0.6, -0.8) * (target - d),
+        );
+        d = target;
+    }
+    assert!(st.memory_depth() > 4);
+    assert!(MindlinMemory::<4>::from_array(&st.to_array()).is_err());
+    assert!(MindlinMemory::<8>::from_array(&st.to_array()).is_ok());
 }
