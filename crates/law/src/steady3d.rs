@@ -384,6 +384,10 @@ pub struct Steady3d {
     turn: f64,
     /// The (one or two) rows whose spin loads are blended.
     rows: [SpinRow; 2],
+    /// Between rows: the tabulated correction of the one-translation evaluation's pure spin
+    /// force (module documentation, "Between rows"); off at a row and in
+    /// [`Steady3d::two_row_blend`].
+    corr: correction::SpinCorrection,
 }
 
 /// Normalised loads `(Fx/(mu P), Fy/(mu P), Mz/(mu P c))`.
@@ -479,6 +483,20 @@ impl Steady3d {
     /// Build it once per contact shape and material pair (it interpolates the constants and
     /// prepares the rows, see the module documentation); [`Steady3d::loads`] evaluates per step.
     pub fn new(ab: f64, nu: f64) -> Result<Self, LawError> {
+        let mut law = Self::two_row_blend(ab, nu)?;
+        if law.rows[1].w > 0.0 {
+            // Between rows: one translation on the two rows' blended spin terms, and the
+            // correction that makes its pure spin the blend's (module documentation).
+            law.corr = correction::SpinCorrection::build(&law);
+        }
+        Ok(law)
+    }
+
+    /// The law of the previous round between rows (module documentation, "Between rows"):
+    /// the loads of the two rows around `a/b` blended with convex weights, two translations
+    /// per evaluation. At a row of the table it is [`Steady3d::new`]'s law. [`Steady3d::new`]
+    /// fits its virtual row to this law; kept for that, for comparisons and for the bench.
+    pub fn two_row_blend(ab: f64, nu: f64) -> Result<Self, LawError> {
         kalker3d::coefficients(ab, nu)?;
         let mut law = Self::with_node(ab, nu, node_at(ab, nu))?;
         let (i, wa) = bracket(&NODE_LN_AB, ab.ln());
@@ -530,6 +548,7 @@ impl Steady3d {
             m_per_phi: c.c33 / m_max,
             turn: c.c22 / c.c11 - 1.0,
             rows: [row, SpinRow { w: 0.0, ..row }],
+            corr: correction::SpinCorrection::OFF,
         })
     }
 
@@ -594,6 +613,11 @@ impl Steady3d {
             self.with_spin(phi_n, tx0, ty0, ml, &t)
         } else {
             let [t0, t1] = self.spin_terms::<2>(phi_n, e);
+            if self.corr.on {
+                let mut t = self.blended_terms(&t0, &t1);
+                t.f_rest += self.corr.at(phi_n);
+                return self.with_spin(phi_n, tx0, ty0, ml, &t);
+            }
             let a = self.with_spin(phi_n, tx0, ty0, ml, &t0);
             let b = self.with_spin(phi_n, tx0, ty0, ml, &t1);
             let (w0, w1) = (self.rows[0].w, self.rows[1].w);
@@ -645,6 +669,43 @@ impl Steady3d {
                 e8,
             )
         })
+    }
+
+    /// The two rows' spin terms blended with the rows' weights (every term enters the loads
+    /// linearly but the translation's `w` and `lam f_s`).
+    #[inline(always)]
+    fn blended_terms(&self, t0: &SpinTerms, t1: &SpinTerms) -> SpinTerms {
+        let (w0, w1) = (self.rows[0].w, self.rows[1].w);
+        let b = |a: f64, b: f64| w0 * a + w1 * b;
+        SpinTerms {
+            w: b(t0.w, t1.w),
+            cap_x: b(t0.cap_x, t1.cap_x),
+            cap_y: b(t0.cap_y, t1.cap_y),
+            f_sat: b(t0.f_sat, t1.f_sat),
+            f_rest: b(t0.f_rest, t1.f_rest),
+            ml_factor: b(t0.ml_factor, t1.ml_factor),
+            spin_moment: b(t0.spin_moment, t1.spin_moment),
+        }
+    }
+
+    /// Pure spin `phi_n != 0` between rows, without the correction: the lateral force of the
+    /// one-translation evaluation, the blend's, and `(1 - s_t)^(1/4)` of the one translation
+    /// (what multiplies the correction).
+    pub(crate) fn pure_spin_parts(&self, phi_n: f64) -> (f64, f64, f64) {
+        let [t0, t1] = self.spin_terms::<2>(phi_n, 0.0);
+        let t = self.blended_terms(&t0, &t1);
+        let one = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t).fy;
+        let a = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t0).fy;
+        let b = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t1).fy;
+        let blend = self.rows[0].w * a + self.rows[1].w * b;
+        let ty = t.f_sat;
+        let st = if ty != 0.0 {
+            let q = self.n.ky * ty * ty;
+            saturation_of_ratio(ty.abs() / (t.w * self.n.ky), q / (ty * ty))
+        } else {
+            0.0
+        };
+        (one, blend, (1.0 - st).sqrt().sqrt())
     }
 
     /// Steps 3-5 of the module documentation at nonzero spin, given the spin terms, the linear
@@ -761,6 +822,8 @@ impl Steady3d {
         Ok((tm * dx / dm / self.c.c11, tm * fy / dm / self.c.c22))
     }
 }
+
+mod correction;
 
 #[cfg(test)]
 mod tests;
