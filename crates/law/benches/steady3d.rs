@@ -6,12 +6,12 @@
 //! (the thread's CPU time from `/proc/thread-self/schedstat`, as the `cbrt` bench does), the
 //! variants interleaved in every round, medians over the rounds and their ratios to `F_ss`.
 //!
-//! The table also times main's law before issue #17's one-row evaluation between rows (a
-//! verbatim copy of that evaluation, `steady3d/before.rs`: two rows' translations between
-//! rows), interleaved with the current one in every round, so before/after is one run.
+//! The table also times main's law before this round (a verbatim copy of that evaluation,
+//! `steady3d/before.rs`: two rows' translations between rows, their loads blended),
+//! interleaved with the current one in every round, so before/after is one run.
 //!
 //! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md);
-//! `-- --rounds-only` prints the table alone.
+//! `-- --rounds-only` prints the table alone, `-- --rounds N` takes N rounds (default 11).
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -173,12 +173,17 @@ fn cpu_table(rounds: usize) {
     let mut t_tr = vec![vec![]; laws.len()];
     let mut t_sp = vec![vec![]; laws.len()];
     let mut t_old = vec![vec![]; laws.len()];
+    let mut t_old_tr = vec![vec![]; laws.len()];
     let mut t_inv = vec![];
     for _ in 0..rounds {
         t_fss.push(ns_per_call(&xs, reps, &fss));
         for (k, (_, law, old)) in laws.iter().enumerate() {
             t_tr[k].push(ns_per_call(&xs, reps, &|v| {
                 let l = law.loads(v[0], v[1], 0.0);
+                l.fx + l.fy + l.mz
+            }));
+            t_old_tr[k].push(ns_per_call(&xs, reps, &|v| {
+                let l = old.loads(v[0], v[1], 0.0);
                 l.fx + l.fy + l.mz
             }));
             t_old[k].push(ns_per_call(&xs, reps, &|v| {
@@ -204,16 +209,14 @@ fn cpu_table(rounds: usize) {
     );
     println!("  F_ss (Kuhn, kalker::cbrt)            {f:7.2}");
     for (k, (name, _, _)) in laws.iter().enumerate() {
-        let (a, b, o) = (
-            median(t_tr[k].clone()),
-            median(t_sp[k].clone()),
-            median(t_old[k].clone()),
-        );
+        let (a, b) = (median(t_tr[k].clone()), median(t_sp[k].clone()));
+        let (oa, ob) = (median(t_old_tr[k].clone()), median(t_old[k].clone()));
         println!(
-            "  {name:34} no spin {a:7.2} ({:.2}x)   with spin {b:7.2} ({:.2}x)   before, with spin {o:7.2} ({:.2}x)",
+            "  {name:34} no spin {a:6.2} ({:.2}x)  with spin {b:6.2} ({:.2}x) | before: no spin {oa:6.2} ({:.2}x)  with spin {ob:6.2} ({:.2}x)",
             a / f,
             b / f,
-            o / f
+            oa / f,
+            ob / f
         );
     }
     let i = median(t_inv);
@@ -221,7 +224,8 @@ fn cpu_table(rounds: usize) {
         "  inverse at zero spin (a node)        {i:7.2} ({:.2}x)",
         i / f
     );
-    // Construction (once per contact shape and pair): the virtual row's fit between rows.
+    // Construction (once per contact shape and pair): between rows the correction's table
+    // (81 knots, three pure-spin evaluations of both rows each).
     let t0 = Instant::now();
     let n = 5;
     for k in 0..n {
@@ -244,7 +248,11 @@ criterion_group!(benches, bench_steady3d);
 
 fn main() {
     let rounds_only = std::env::args().any(|a| a == "--rounds-only");
-    cpu_table(11);
+    let rounds = std::env::args()
+        .position(|a| a == "--rounds")
+        .and_then(|i| std::env::args().nth(i + 1)?.parse().ok())
+        .unwrap_or(11);
+    cpu_table(rounds);
     if !rounds_only {
         benches();
         Criterion::default().configure_from_args().final_summary();

@@ -70,14 +70,37 @@
 //!   directions (pure translation stays within 0.8 % between nodes);
 //! * within a row, the spin constants are interpolated in `nu` and the spin force's shape is
 //!   blended by its outputs at the row's two columns;
-//! * across rows, the **loads** of the two rows (each with the contact's own Kalker
-//!   coefficients and `M_max`) are blended with the row weights. Every row's law saturates
-//!   (`|F| <= 1`), is odd and dissipative and is Kalker's linear theory at small creepage, and
-//!   so is their convex blend; at zero spin both rows are the one translation law (no seam).
+//! * across rows (**between rows**), the spin terms of the two rows around `a/b` (steps 1-2
+//!   and the factors of steps 3-5, each row with the contact's own Kalker coefficients and
+//!   `M_max`: `w`, the capacities, `lam f_s`, `(1 - lam) f_s`, `1 - am s^2` and the spin
+//!   moment) are blended with the row weights, and **one** translation (steps 3-5) is
+//!   evaluated on them, plus a correction `g(phi_n)` added to the unsaturated share
+//!   `(1 - lam) f_s` (module `correction`): `g = D/(1 - s_t)^(1/4)` where `D` is the
+//!   difference between the lateral force of pure spin of the two rows' blended loads and of
+//!   the one translation, and `s_t` the one translation's utilisation in pure spin, tabulated
+//!   once per contact at 81 knots (`|phi_n| = 2^-7 ... 2^13`, four per octave) and
+//!   interpolated by cubic Hermite polynomials indexed by the float's bits (below the first
+//!   knot `g ~ phi_n^2`, above the last `g ~ 1/phi_n`).
+//!
+//! What that law is, against the two rows' blended loads ([`Steady3d::two_row_blend`], the
+//! previous round's law between rows, two translations per evaluation): the moment is the
+//! blend's for every creepage (it is linear in the blended terms: test
+//! `between_rows_moment_pure_spin_and_zero_spin_are_the_two_row_blend`); zero spin is the
+//! same law bit for bit; the lateral force of pure spin is the blend's up to the table's
+//! interpolation (measured at most 0.70 % of `mu P`, at a kink of the blend near `phi_n =
+//! 0.72` at `a/b = 3`; 0.08 % at `a/b = 0.35`; exact at the knots); with translation and spin
+//! combined the force differs from the blend's (creep-reference's example `steady3d_virtual`:
+//! up to 10-23 % of `mu P` at the corners of full slip, `|eta_n| = 0.6` with spin), and
+//! against the boundary elements off the nodes it is closer than the blend at five of six
+//! validation cases (below). Saturation `|F| <= 1` (the projection), oddness, dissipation at
+//! zero spin and Kalker's linear theory at small creepage (the correction is `O(phi_n^2)`
+//! there) carry over; test `between_rows_saturates_is_odd_and_dissipates`.
 //!
 //! [`Steady3d::new`] does this interpolation once per contact (build it once per contact shape
-//! and material pair); [`Steady3d::loads`] evaluates one row at a row of the table and two
-//! between rows.
+//! and material pair; between rows it builds the correction's table, 81 knots x three pure
+//! spin evaluations of both rows, about 20 us); [`Steady3d::loads`] evaluates one row's
+//! spin terms and one translation at a row of the table, two rows' spin terms, the table and
+//! one translation between rows.
 //!
 //! # Accuracy
 //!
@@ -90,13 +113,15 @@
 //!   within 5.0 % / 3.7 % (issue #17's targets met);
 //! * between them (`a/b = 0.27, 0.35, 0.7, 0.85` at `nu = 0.125, 0.375`): translation within
 //!   0.8 %, the lateral force of pure spin within 4.7 % (13 % with the former interpolation of
-//!   the constants), the spin moment 1.7 %, combined creepage within 5.4 % / 3.7 %: **the 2 %
-//!   target for pure spin is not met between rows** (blending two rows' loads whose spin
-//!   force peaks at different spins leaves a few per cent; more rows would reduce it);
+//!   the constants), the spin moment 1.7 %, combined creepage within 4.7 % / 3.7 % (5.4 % /
+//!   3.7 % with two translations blended): **the 2 % target for pure spin is not met between
+//!   rows** (blending two rows whose spin force peaks at different spins leaves a few per
+//!   cent; more rows would reduce it);
 //! * rows `a/b = 2, 5` (`a > b`): translation within 0.5 %, but the law's form fits the spin
 //!   there poorly: pure spin force 1.7-2.8 % at a/b = 2 and 5.0-8.9 % at a/b = 5, combined
 //!   force 5.8-9.1 % and 18-24 %, moments up to 15 %; between them (`a/b = 1.4, 3`) spin force
-//!   up to 20 %, combined 22 %; below the table (`phi_n = 0.025-0.075`) the spin force within
+//!   up to 19 %, combined 18 % (14.8 % at `a/b = 1.4`, where two translations blended gave
+//!   14.5 %; 17.6 % at `a/b = 3`, where they gave 22.4 %); below the table (`phi_n = 0.025-0.075`) the spin force within
 //!   3.1 %. The constants of `a/b = 2, 5` were refitted with boundary-element points below
 //!   the table and from the previous `nu` node (before: spin force 12 % and combined 35 % at
 //!   a/b = 2, nu = 0.5; the spin force 18 % off at a/b = 5, nu = 0.5 below the table). Before
@@ -105,21 +130,25 @@
 //!
 //! # Cost
 //!
-//! No `powf`. Without spin one translation (two square roots, two divisions); with spin one
-//! division for every row's spin utilisation and spin-force shape (a row's two `nu` shapes are
-//! multiplied out into one rational function of `phi_n^2` in [`Steady3d::new`]), and per row
-//! one translation: one division for its utilisation, a square root and a division in parallel
-//! for its direction, two square roots for `(1 - s_t)^(1/4)`; the projection onto `|F| <= 1` is
-//! a rarely taken branch. Measured (`cargo bench -p creep-law --bench steady3d`, its first
-//! table: the thread's CPU time, variants interleaved, medians of 11 rounds; the binaries
-//! before and after alternated, on a shared 2-core Xeon under a load of 16-19; `F_ss`,
-//! Kalker's closed form with [`crate::kalker::cbrt`], 9.7 ns there): without spin about 34 ns
-//! (3.5x `F_ss`, unchanged); with spin 45-57 ns at a row of the table (before 53-63 ns in the
-//! same runs) and 85-105 ns between rows (two rows' translations; before 104-117 ns).
-//! **Issue #17's 50 ns with spin is met at a row only at the lower loads, and not between
-//! rows**; docs/CREEP3D.md has the table and what was tried (one translation on the two rows'
-//! blended spin terms: 64-75 ns between rows, but the lateral force of pure spin between rows
-//! `a <= b` then 9.5 % off instead of 4.6 %: not adopted).
+//! No `powf`, no logarithm. Without spin one translation (two square roots, two divisions);
+//! with spin one division for every row's spin utilisation and spin-force shape (a row's two
+//! `nu` shapes are multiplied out into one rational function of `phi_n^2` in
+//! [`Steady3d::new`]), and one translation: one division for its utilisation, a square root
+//! and a division in parallel for its direction, two square roots for `(1 - s_t)^(1/4)`;
+//! between rows also the second row's spin terms (no further division) and the correction's
+//! table (a cubic in the knot interval); the projection onto `|F| <= 1` and the rare inputs
+//! (not finite, beyond the clamp, all tiny) are out-of-line branches. Measured (`cargo bench
+//! -p creep-law --bench steady3d -- --rounds-only`: the thread's CPU time, variants
+//! interleaved, medians; main's law before this round is a copy in the bench, timed in the
+//! same rounds; docs/CREEP3D.md has the table): with spin about 46-53 ns at a row of the
+//! table, 66-73 ns between rows (the two rows' translations before: 89-100 ns in the same
+//! runs); `F_ss` 9.7 ns. **Issue #17's 50 ns with spin is met at a row only at the lower
+//! loads, and not between rows** (about 0.73 of the former cost there). Tried and not
+//! adopted (docs/CREEP3D.md): one row fitted per contact to the two rows' blend
+//! (Levenberg-Marquardt on the 20 spin constants of one row, 10-35 ms per contact): the cost
+//! of a row, but it did not follow the blend (up to 4.6 % of `mu P` in pure spin, 33-55 % in
+//! combined full slip) and the errors against the boundary elements off the nodes rose (spin
+//! moment 1.15 -> 3.56 % at `a/b = 0.7`, combined force 22.4 -> 31.0 % at `a/b = 3`).
 
 use crate::elliptic::complete_elliptic;
 use crate::error::LawError;
@@ -578,11 +607,26 @@ impl Steady3d {
     /// creepages give zero loads (a sanitised no-contact answer, never NaN).
     #[inline]
     pub fn loads(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+        // One test for the rare inputs (not finite, beyond the clamp, all tiny): the sum of
+        // the magnitudes is NaN or above the clamp for the first two.
+        let (ax, ay, az) = (xi_n.abs(), eta_n.abs(), phi_n.abs());
+        if !(ax + ay + az <= CREEPAGE_CLAMP && ax.max(ay).max(az) >= TINY_CREEPAGE) {
+            return self.loads_rare(xi_n, eta_n, phi_n);
+        }
+        self.loads_in_range(xi_n, eta_n, phi_n)
+    }
+
+    /// [`Steady3d::loads`] for inputs not finite (zero loads), beyond [`CREEPAGE_CLAMP`]
+    /// (clamped: far in full slip the loads no longer change, to ~1e-6, and clamping keeps
+    /// the squares below finite overflow for any finite input) or all below
+    /// [`TINY_CREEPAGE`] (Kalker's linear theory, exact to rounding there, where the products
+    /// of the shared divisions would underflow).
+    #[cold]
+    #[inline(never)]
+    fn loads_rare(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         if !(xi_n.is_finite() && eta_n.is_finite() && phi_n.is_finite()) {
             return Loads::default();
         }
-        // Far in full slip the loads no longer change (to ~1e-6); clamping keeps the squares
-        // below finite overflow for any finite input.
         let xi_n = xi_n.clamp(-CREEPAGE_CLAMP, CREEPAGE_CLAMP);
         let eta_n = eta_n.clamp(-CREEPAGE_CLAMP, CREEPAGE_CLAMP);
         let phi_n = phi_n.clamp(-CREEPAGE_CLAMP, CREEPAGE_CLAMP);
@@ -596,6 +640,13 @@ impl Steady3d {
                 mz: -c.c23 * eta_n + c.c33 * phi_n,
             };
         }
+        self.loads_in_range(xi_n, eta_n, phi_n)
+    }
+
+    /// [`Steady3d::loads`] for finite creepages within the clamp, not all tiny.
+    #[inline(always)]
+    fn loads_in_range(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+        let c = &self.c;
         let tx0 = c.c11 * xi_n;
         let ty0 = c.c22 * eta_n;
         let t02 = tx0 * tx0 + ty0 * ty0;
