@@ -75,32 +75,34 @@
 //!   `M_max`: `w`, the capacities, `lam f_s`, `(1 - lam) f_s`, `1 - am s^2` and the spin
 //!   moment) are blended with the row weights, and **one** translation (steps 3-5) is
 //!   evaluated on them, plus a correction `g(phi_n)` added to the unsaturated share
-//!   `(1 - lam) f_s` (module `correction`): `g = D/(1 - s_t)^(1/4)` where `D` is the
-//!   difference between the lateral force of pure spin of the two rows' blended loads and of
-//!   the one translation, and `s_t` the one translation's utilisation in pure spin, tabulated
-//!   once per contact at 81 knots (`|phi_n| = 2^-7 ... 2^13`, four per octave) and
-//!   interpolated by cubic Hermite polynomials indexed by the float's bits (below the first
-//!   knot `g ~ phi_n^2`, above the last `g ~ 1/phi_n`).
+//!   `(1 - lam) f_s`: `g = D/(1 - s_t)^(1/4)` where `D` is the difference between the lateral
+//!   force of pure spin of the two rows' blended loads and of the one translation, and `s_t`
+//!   the one translation's utilisation in pure spin. The rows' utilisations `s_0, s_1` and the
+//!   two blended shares of the spin force (with `g`) are **tabulated** once per contact at
+//!   105 knots (`|phi_n| = 2^-7 ... 2^6`, eight per octave, `f32`) and interpolated linearly,
+//!   indexed by the float's bits; the terms that depend on the utilisations are computed from
+//!   them with each row's constants (module `correction`). Outside the knots the terms come
+//!   from the rows (exact) and `g` continues as `phi_n^2` below, `1/phi_n` above.
 //!
 //! What that law is, against the two rows' blended loads ([`Steady3d::two_row_blend`], the
-//! previous round's law between rows, two translations per evaluation): the moment is the
-//! blend's for every creepage (it is linear in the blended terms: test
-//! `between_rows_moment_pure_spin_and_zero_spin_are_the_two_row_blend`); zero spin is the
-//! same law bit for bit; the lateral force of pure spin is the blend's up to the table's
-//! interpolation (measured at most 0.70 % of `mu P`, at a kink of the blend near `phi_n =
-//! 0.72` at `a/b = 3`; 0.08 % at `a/b = 0.35`; exact at the knots); with translation and spin
-//! combined the force differs from the blend's (creep-reference's example `steady3d_virtual`:
-//! up to 10-23 % of `mu P` at the corners of full slip, `|eta_n| = 0.6` with spin), and
-//! against the boundary elements off the nodes it is closer than the blend at five of six
-//! validation cases (below). Saturation `|F| <= 1` (the projection), oddness, dissipation at
-//! zero spin and Kalker's linear theory at small creepage (the correction is `O(phi_n^2)`
-//! there) carry over; test `between_rows_saturates_is_odd_and_dissipates`.
+//! previous round's law between rows, two translations per evaluation): zero spin is the same
+//! law bit for bit; the lateral force of pure spin is the blend's up to the table's
+//! interpolation (measured at most 0.39 % of `mu P` on `phi_n = 0.01-30`, 1.59 % at a kink of
+//! the blend near `phi_n = 0.72` at `a/b = 3` where one row's pure spin force reaches `mu P`;
+//! exact at the knots to `f32`), the moment within 0.074 % of `mu P c` for every creepage (it
+//! is linear in the blended terms); with translation and spin combined the force differs from
+//! the blend's (creep-reference's example `steady3d_virtual`: up to 10-23 % of `mu P` at the
+//! corners of full slip, `|eta_n| = 0.6` with spin), and against the boundary elements off
+//! the nodes it is closer than the blend at five of six validation cases (below). Saturation
+//! `|F| <= 1` (the projection), oddness, dissipation at zero spin and Kalker's linear theory
+//! at small creepage (below the first knot the terms are the rows', the correction
+//! `O(phi_n^2)`) carry over; tests `between_rows_*`.
 //!
 //! [`Steady3d::new`] does this interpolation once per contact (build it once per contact shape
-//! and material pair; between rows it builds the correction's table, 81 knots x three pure
-//! spin evaluations of both rows, about 20 us); [`Steady3d::loads`] evaluates one row's
-//! spin terms and one translation at a row of the table, two rows' spin terms, the table and
-//! one translation between rows.
+//! and material pair; between rows it builds the table: 105 knots, three pure-spin
+//! evaluations of both rows each, about 30 us); [`Steady3d::loads`] evaluates one row's
+//! spin terms and one translation at a row of the table, the table and one translation
+//! between rows.
 //!
 //! # Accuracy
 //!
@@ -131,24 +133,21 @@
 //! # Cost
 //!
 //! No `powf`, no logarithm. Without spin one translation (two square roots, two divisions);
-//! with spin one division for every row's spin utilisation and spin-force shape (a row's two
-//! `nu` shapes are multiplied out into one rational function of `phi_n^2` in
+//! with spin at a row one division for the row's spin utilisation and spin-force shape (a
+//! row's two `nu` shapes are multiplied out into one rational function of `phi_n^2` in
 //! [`Steady3d::new`]), and one translation: one division for its utilisation, a square root
 //! and a division in parallel for its direction, two square roots for `(1 - s_t)^(1/4)`;
-//! between rows also the second row's spin terms (no further division) and the correction's
-//! table (a cubic in the knot interval); the projection onto `|F| <= 1` and the rare inputs
-//! (not finite, beyond the clamp, all tiny) are out-of-line branches. Measured (`cargo bench
-//! -p creep-law --bench steady3d -- --rounds-only`: the thread's CPU time, variants
-//! interleaved, medians; main's law before this round is a copy in the bench, timed in the
-//! same rounds; docs/CREEP3D.md has the table): with spin about 46-53 ns at a row of the
-//! table, 66-73 ns between rows (the two rows' translations before: 89-100 ns in the same
-//! runs); `F_ss` 9.7 ns. **Issue #17's 50 ns with spin is met at a row only at the lower
-//! loads, and not between rows** (about 0.73 of the former cost there). Tried and not
-//! adopted (docs/CREEP3D.md): one row fitted per contact to the two rows' blend
-//! (Levenberg-Marquardt on the 20 spin constants of one row, 10-35 ms per contact): the cost
-//! of a row, but it did not follow the blend (up to 4.6 % of `mu P` in pure spin, 33-55 % in
-//! combined full slip) and the errors against the boundary elements off the nodes rose (spin
-//! moment 1.15 -> 3.56 % at `a/b = 0.7`, combined force 22.4 -> 31.0 % at `a/b = 3`).
+//! between rows four table lookups instead of the spin division; the projection onto `|F| <=
+//! 1`, the rare inputs (not finite, beyond the clamp, all tiny) and spins outside the table
+//! are out-of-line branches. Measured (`cargo bench -p creep-law --bench steady3d --
+//! --rounds-only`: the thread's CPU time, variants interleaved, medians; main's law before
+//! this round is a copy in the bench, timed in the same rounds; docs/CREEP3D.md has the
+//! table): with spin 46-48 ns between rows (the two rows' translations before: 85-91 ns in
+//! the same runs), 49-51 ns at a row (before 45-47: the same code, compiled in another
+//! crate), without spin 15-16 ns (before 34); `F_ss` 8.8-9.8 ns. Tried and not adopted
+//! (docs/CREEP3D.md): one row fitted per contact to the two rows' blend (Levenberg-Marquardt
+//! on the 20 spin constants of one row): the cost of a row, but it did not follow the blend
+//! and the errors against the boundary elements off the nodes rose.
 
 use crate::elliptic::complete_elliptic;
 use crate::error::LawError;
@@ -413,9 +412,8 @@ pub struct Steady3d {
     turn: f64,
     /// The (one or two) rows whose spin loads are blended.
     rows: [SpinRow; 2],
-    /// Between rows: the tabulated correction of the one-translation evaluation's pure spin
-    /// force (module documentation, "Between rows"); off at a row and in
-    /// [`Steady3d::two_row_blend`].
+    /// Between rows: the tabulated spin terms with the pure-spin correction (module
+    /// documentation, "Between nodes"); off at a row and in [`Steady3d::two_row_blend`].
     corr: correction::SpinCorrection,
 }
 
@@ -658,25 +656,47 @@ impl Steady3d {
         } else {
             (0.0, 0.0)
         };
-        // 1-2 for the (one or two) rows, then 3-5 per row; between rows their loads blended.
+        // 1-2 for the row (at a row of the table) or the tabulated blend of the two rows
+        // (between rows), then 3-5 on those terms (module documentation).
         if self.rows[1].w == 0.0 {
             let [t] = self.spin_terms::<1>(phi_n, e);
             self.with_spin(phi_n, tx0, ty0, ml, &t)
+        } else if self.corr.on {
+            let e2 = e * e;
+            let t = match self
+                .corr
+                .terms(&self.rows, phi_n, e2, (e2 * e2) * (e2 * e2))
+            {
+                Some(t) => t,
+                None => self.blended_terms_beyond(phi_n, e),
+            };
+            self.with_spin(phi_n, tx0, ty0, ml, &t)
         } else {
-            let [t0, t1] = self.spin_terms::<2>(phi_n, e);
-            if self.corr.on {
-                let mut t = self.blended_terms(&t0, &t1);
-                t.f_rest += self.corr.at(phi_n);
-                return self.with_spin(phi_n, tx0, ty0, ml, &t);
-            }
-            let a = self.with_spin(phi_n, tx0, ty0, ml, &t0);
-            let b = self.with_spin(phi_n, tx0, ty0, ml, &t1);
-            let (w0, w1) = (self.rows[0].w, self.rows[1].w);
-            Loads {
-                fx: w0 * a.fx + w1 * b.fx,
-                fy: w0 * a.fy + w1 * b.fy,
-                mz: w0 * a.mz + w1 * b.mz,
-            }
+            self.two_rows_blended(phi_n, e, tx0, ty0, ml)
+        }
+    }
+
+    /// Between rows, `|phi_n|` outside the table's knots (rare): the blended terms from the
+    /// two rows, with the correction's continuation.
+    #[cold]
+    #[inline(never)]
+    fn blended_terms_beyond(&self, phi_n: f64, e: f64) -> SpinTerms {
+        self.blended_terms_exact(phi_n, e, self.corr.g_beyond(phi_n))
+    }
+
+    /// [`Steady3d::two_row_blend`]'s evaluation between rows: the two rows' loads blended
+    /// (the previous round's law: the reference, out of line).
+    #[cold]
+    #[inline(never)]
+    fn two_rows_blended(&self, phi_n: f64, e: f64, tx0: f64, ty0: f64, ml: f64) -> Loads {
+        let [t0, t1] = self.spin_terms::<2>(phi_n, e);
+        let a = self.with_spin(phi_n, tx0, ty0, ml, &t0);
+        let b = self.with_spin(phi_n, tx0, ty0, ml, &t1);
+        let (w0, w1) = (self.rows[0].w, self.rows[1].w);
+        Loads {
+            fx: w0 * a.fx + w1 * b.fx,
+            fy: w0 * a.fy + w1 * b.fy,
+            mz: w0 * a.mz + w1 * b.mz,
         }
     }
 
@@ -739,10 +759,19 @@ impl Steady3d {
         }
     }
 
+    /// Between rows: the two rows' spin terms at `phi_n` blended, with the correction `g`
+    /// added to the unsaturated share (`e` the translation alone's utilisation).
+    fn blended_terms_exact(&self, phi_n: f64, e: f64, g: f64) -> SpinTerms {
+        let [t0, t1] = self.spin_terms::<2>(phi_n, e);
+        let mut t = self.blended_terms(&t0, &t1);
+        t.f_rest += g;
+        t
+    }
+
     /// Pure spin `phi_n != 0` between rows, without the correction: the lateral force of the
     /// one-translation evaluation, the blend's, and `(1 - s_t)^(1/4)` of the one translation
     /// (what multiplies the correction).
-    pub(crate) fn pure_spin_parts(&self, phi_n: f64) -> (f64, f64, f64) {
+    fn pure_spin_parts(&self, phi_n: f64) -> (f64, f64, f64) {
         let [t0, t1] = self.spin_terms::<2>(phi_n, 0.0);
         let t = self.blended_terms(&t0, &t1);
         let one = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t).fy;

@@ -187,11 +187,12 @@ fn fast_law_off_the_fitted_nodes_measured_errors() {
     // rows with the low-spin points) and the combined force by up to 18 % (25 %; 46-80 %
     // before the rows a/b = 2, 5).
     // Between rows the law evaluates one translation on the two rows' blended spin terms
-    // with a tabulated pure-spin correction (issue #17's cost): the spin loads, the moments
-    // and the translation are the two-row blend's (the previous law's; pure spin up to the
-    // table's 0.7 %), the combined force moved from 5.39, 4.91, 3.30, 3.81, 14.46, 22.39 %
-    // to 4.64, 4.15, 2.73, 3.66, 14.84, 17.60 % (a/b = 0.35, 0.7, 0.27, 0.85, 1.4, 3):
-    // better everywhere but a/b = 1.4 (+0.38 points, where the law is 14 % off anyway).
+    // (tabulated per contact in phi_n) with a pure-spin correction (issue #17's cost): the
+    // translation is the two-row blend's (the previous law's), spin and moments within the
+    // table's interpolation of it (here equal or better by up to 0.05 points), and the
+    // combined force moved from 5.39, 4.91, 3.30, 3.81, 14.46, 22.39 % to 4.64, 4.15, 2.73,
+    // 3.66, 14.84, 17.68 % (a/b = 0.35, 0.7, 0.27, 0.85, 1.4, 3): better everywhere but
+    // a/b = 1.4 (+0.38 points, where the law is 14 % off anyway).
     // Pinned (measured, rounded up), so that a regression fails.
     let v = read_csv(include_str!("../data/steady3d_bem_validation.csv")).unwrap();
     assert_eq!(v.len(), 6 * 39);
@@ -265,7 +266,7 @@ const VALIDATION_LIMITS: &[(f64, f64, [f64; 8])] = &[
     (
         3.0,
         0.375,
-        [0.005, 0.001, 0.006, 0.010, 0.194, 0.094, 0.177, 0.126],
+        [0.005, 0.001, 0.006, 0.010, 0.196, 0.094, 0.177, 0.125],
     ),
 ];
 

@@ -350,12 +350,11 @@ fn documented_translation(
     Loads { fx, fy, mz }
 }
 
-/// The documented law between rows: the two rows' spin terms blended with the rows'
-/// weights, the tabulated correction added to the unsaturated share, one translation.
-fn documented_between_rows(law: &Steady3d, ab: f64, nu: f64, cr: (f64, f64, f64)) -> Loads {
+/// The two rows' spin terms at `phi` blended with the rows' weights, as documented, with
+/// `extra` added to the unsaturated share (the correction between rows).
+fn documented_blended_terms(ab: f64, nu: f64, law: &Steady3d, phi: f64, e: f64) -> [f64; 7] {
     let (i, wa) = bracket(&NODE_LN_AB, ab.ln());
     let (j, wn) = bracket(&NODE_NU, nu);
-    let (e, ml) = documented_lateral(law, cr.0, cr.1);
     let mut terms = [0.0; 7];
     for (row, w) in [(i, 1.0 - wa), (i + 1, wa)] {
         let (lo, hi) = (NODES[row][j], NODES[row][j + 1]);
@@ -368,12 +367,12 @@ fn documented_between_rows(law: &Steady3d, ab: f64, nu: f64, cr: (f64, f64, f64)
             };
             (1.0 - wn) * one(&lo) + wn * one(&hi)
         };
-        let t = documented_terms(law, &n, &shape, cr.2, e);
+        let t = documented_terms(law, &n, &shape, phi, e);
         for k in 0..7 {
             terms[k] += w * t[k];
         }
     }
-    documented_translation(law, &terms, law.corr.at(cr.2), ml, cr)
+    terms
 }
 
 #[test]
@@ -435,19 +434,41 @@ fn creepage_sweep(k: usize) -> (f64, f64, f64) {
 
 #[test]
 fn between_rows_one_translation_is_the_documented_law() {
-    // Between rows `loads` evaluates one translation on the two rows' blended spin terms
-    // plus the tabulated correction: the documented formulas written out plainly, to
-    // rounding.
+    // Between rows `loads` evaluates one translation (steps 3-5 as documented) on the
+    // tabulated blended spin terms (module `correction`), and outside the table's knots on
+    // the two rows' blended terms with the correction's continuation: to rounding.
     for (ab, nu) in BETWEEN {
         let law = Steady3d::new(ab, nu).unwrap();
         assert!(
             law.corr.on && law.rows[0].w > 0.0 && law.rows[1].w > 0.0,
             "{ab}"
         );
-        for k in 0..400 {
-            let cr = creepage_sweep(k);
+        for k in 0..800 {
+            let mut cr = creepage_sweep(k);
+            if k % 4 == 3 {
+                // Spins beyond the table's knots (0.0078 ... 64).
+                cr.2 = if k % 8 == 3 { cr.2 * 1e-3 } else { cr.2 * 1e3 };
+            }
             let a = law.loads(cr.0, cr.1, cr.2);
-            let b = documented_between_rows(&law, ab, nu, cr);
+            let (e, ml) = documented_lateral(&law, cr.0, cr.1);
+            let (e2, e8) = (e * e, e.powi(8));
+            let terms = match law.corr.terms(&law.rows, cr.2, e2, e8) {
+                Some(t) => [
+                    t.w,
+                    t.cap_x,
+                    t.cap_y,
+                    t.f_sat,
+                    t.f_rest,
+                    t.ml_factor,
+                    t.spin_moment,
+                ],
+                None => {
+                    let mut t = documented_blended_terms(ab, nu, &law, cr.2, e);
+                    t[4] += law.corr.g_beyond(cr.2);
+                    t
+                }
+            };
+            let b = documented_translation(&law, &terms, 0.0, ml, cr);
             let d = (a.fx - b.fx)
                 .abs()
                 .max((a.fy - b.fy).abs())
@@ -455,53 +476,127 @@ fn between_rows_one_translation_is_the_documented_law() {
             assert!(d < 1e-10, "{ab} {nu} {cr:?}: {a:?} vs {b:?}");
         }
     }
-    // At the rows (and in the two-row blend) no correction.
+    // At the rows (and in the two-row blend) no table.
     assert!(!Steady3d::new(0.5, 0.125).unwrap().corr.on);
     assert!(!Steady3d::two_row_blend(0.35, 0.125).unwrap().corr.on);
 }
 
 #[test]
-fn between_rows_moment_pure_spin_and_zero_spin_are_the_two_row_blend() {
-    // The one-translation law between rows against the two-row blend (the previous
-    // round's law): the moment is the blend's for every creepage (it is linear in the
-    // blended terms), zero spin is the same law bit for bit, and the lateral force of pure
-    // spin is the blend's up to the table's interpolation: measured at most 0.70 % of mu P
-    // (a/b = 3, nu = 0.375, at a kink of the blend near phi_n = 0.72; 0.08 % at a/b = 0.35),
-    // at the knots to rounding.
+fn between_rows_the_table_holds_the_blended_terms() {
+    // At the knots the table gives the documented blended terms (f32: relative 1e-6) with
+    // the correction g = D/(1 - s_t)^(1/4) in the unsaturated share; between the knots the
+    // linear interpolation stays within (measured) 1.88 % of each term (relative to
+    // max(1, |term|)): the largest in the unsaturated share at a/b = 3 near phi_n = 0.72,
+    // where one row's pure spin force reaches mu P and the blend (so the correction) has a
+    // kink; the utilisations and the shares of the spin force are smooth, and the
+    // capacities' floors are applied after the interpolation.
     let mut worst = 0.0f64;
+    for (ab, nu) in BETWEEN {
+        let law = Steady3d::new(ab, nu).unwrap();
+        for k in 0..correction::KNOTS - 1 {
+            let phi = correction::knot(k);
+            for e in [0.0f64, 0.3, 0.8] {
+                let (e2, e8) = (e * e, e.powi(8));
+                let t = law.corr.terms(&law.rows, phi, e2, e8).unwrap();
+                let got = [
+                    t.w,
+                    t.cap_x,
+                    t.cap_y,
+                    t.f_sat,
+                    t.f_rest,
+                    t.ml_factor,
+                    t.spin_moment,
+                ];
+                let mut want = documented_blended_terms(ab, nu, &law, phi, e);
+                want[4] += correction::SpinCorrection::g_exact(&law, phi);
+                for (g, w) in got.iter().zip(want) {
+                    assert!(
+                        (g - w).abs() <= 1e-6 * w.abs().max(1.0),
+                        "{ab} {nu} {k}: {got:?} {want:?}"
+                    );
+                }
+                let n = law.corr.terms(&law.rows, -phi, e2, e8).unwrap();
+                assert!(n.f_sat == -t.f_sat && n.f_rest == -t.f_rest && n.w == t.w);
+            }
+        }
+        for k in 0..4000 {
+            let phi = 0.008 * 8000f64.powf(k as f64 / 4000.0);
+            let t = law.corr.terms(&law.rows, phi, 0.0, 0.0).unwrap();
+            let got = [
+                t.w,
+                t.cap_x,
+                t.cap_y,
+                t.f_sat,
+                t.f_rest,
+                t.ml_factor,
+                t.spin_moment,
+            ];
+            let mut want = documented_blended_terms(ab, nu, &law, phi, 0.0);
+            want[4] += correction::SpinCorrection::g_exact(&law, phi);
+            for (g, w) in got.iter().zip(want) {
+                worst = worst.max((g - w).abs() / w.abs().max(1.0));
+            }
+        }
+    }
+    println!("largest interpolation error of a tabulated term: {worst}");
+    assert!(worst < WORST_TERM, "{worst}");
+}
+
+#[test]
+fn between_rows_zero_spin_pure_spin_and_moment_follow_the_two_row_blend() {
+    // The law between rows against the two-row blend (the previous round's law): zero
+    // spin is the same law bit for bit; the lateral force of pure spin is the blend's up to
+    // the table's interpolation (measured at most 1.59 % of mu P, at a/b = 3 near phi_n =
+    // 0.72 where one row's pure spin force reaches mu P and the blend has a kink; at most
+    // 0.39 % on the grid phi_n = 0.01-30 of creep-reference's steady3d_virtual; at the knots
+    // to the table's f32 rounding), the moment within 0.074 % of mu P c (pure spin and
+    // combined).
+    let (mut worst_f, mut worst_m) = (0.0f64, 0.0f64);
     for (ab, nu) in BETWEEN {
         let law = Steady3d::new(ab, nu).unwrap();
         let blend = Steady3d::two_row_blend(ab, nu).unwrap();
         for k in 0..400 {
             let cr = creepage_sweep(k);
             let (a, b) = (law.loads(cr.0, cr.1, cr.2), blend.loads(cr.0, cr.1, cr.2));
-            assert!((a.mz - b.mz).abs() < 1e-12, "{ab} {nu} {cr:?}");
+            worst_m = worst_m.max((a.mz - b.mz).abs());
             assert_eq!(law.loads(cr.0, cr.1, 0.0), blend.loads(cr.0, cr.1, 0.0));
         }
         for k in 0..=3000 {
             let phi = 1e-4 * 1e8f64.powf(k as f64 / 3000.0);
             for p in [phi, -phi] {
                 let (a, b) = (law.loads(0.0, 0.0, p), blend.loads(0.0, 0.0, p));
-                assert!((a.mz - b.mz).abs() < 1e-12 && a.fx == 0.0);
-                worst = worst.max((a.fy - b.fy).abs());
+                assert!(a.fx == 0.0);
+                worst_f = worst_f.max((a.fy - b.fy).abs());
+                worst_m = worst_m.max((a.mz - b.mz).abs());
             }
         }
         for k in 0..correction::KNOTS {
-            let phi = correction_knot(k);
+            let phi = correction::knot(k);
             let (a, b) = (law.loads(0.0, 0.0, phi), blend.loads(0.0, 0.0, phi));
             assert!(
-                (a.fy - b.fy).abs() < 1e-12,
+                (a.fy - b.fy).abs() < 1e-6,
                 "{ab} {nu} knot {k}: {a:?} {b:?}"
             );
         }
     }
-    assert!(worst < 0.0071, "{worst}");
+    println!("pure spin force {worst_f}, moment {worst_m}");
+    assert!(worst_f < 0.016 && worst_m < 0.00075, "{worst_f} {worst_m}");
 }
 
-/// Knot `k` of the correction's table: `2^(e + j/4)` on the float bits' grid,
-/// `2^e (1 + j/4)`.
-fn correction_knot(k: usize) -> f64 {
-    2f64.powi(-7 + (k / 4) as i32) * (1.0 + 0.25 * (k % 4) as f64)
+#[test]
+fn spin_moment_capacity_is_positive_at_every_node() {
+    // The tabulated spin moment `A - B e^2 - C e^8` is the blend of the rows'
+    // `s max(0, 1 - b2 e^2 - b8 e^8)` only if no node's floor is active: 1 - b2 e^2 - b8 e^8
+    // > 0 on [0, 1] at every node (then also for the rows' interpolation in nu, linear in
+    // b2, b8).
+    for row in NODES {
+        for n in row {
+            for k in 0..=1000 {
+                let e = k as f64 / 1000.0;
+                assert!(1.0 - n.b2 * e * e - n.b8 * e.powi(8) > 0.5, "{n:?} {e}");
+            }
+        }
+    }
 }
 
 #[test]
@@ -529,3 +624,6 @@ fn between_rows_saturates_is_odd_and_dissipates() {
         }
     }
 }
+
+/// Bound of [`between_rows_the_table_holds_the_blended_terms`] (measured, rounded up).
+const WORST_TERM: f64 = 0.0188;
