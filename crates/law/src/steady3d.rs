@@ -288,6 +288,11 @@ pub const NODES: [[Node; 3]; 5] = [
     ],
 ];
 
+/// Below this `|t_0|^2` (normalised translation creepage below ~1e-70) the translation alone
+/// is taken as linear (`e = 0`, `M_l = -C23 eta_n`, exact to ~1e-70 relative; the products
+/// of its shared division would underflow).
+const T02_MIN: f64 = 1e-140;
+
 /// Normalised creepages are clamped to `[-CREEPAGE_CLAMP, CREEPAGE_CLAMP]` (deep in full slip).
 pub const CREEPAGE_CLAMP: f64 = 1e6;
 
@@ -519,7 +524,7 @@ impl Steady3d {
         Ok(law)
     }
 
-    /// The law of the previous round between rows (module documentation, "Between rows"):
+    /// The law of the previous round between rows (module documentation, "Between nodes"):
     /// the loads of the two rows around `a/b` blended with convex weights, two translations
     /// per evaluation. At a row of the table it is [`Steady3d::new`]'s law. [`Steady3d::new`]
     /// fits its virtual row to this law; kept for that, for comparisons and for the bench.
@@ -651,17 +656,18 @@ impl Steady3d {
         if phi_n == 0.0 {
             return self.translation_only(xi_n, eta_n, tx0, ty0, t02);
         }
-        let (e, ml) = if t02 > 0.0 {
+        if self.rows[1].w == 0.0 {
+            // At a row of the table.
+            return self.one_row(xi_n, eta_n, phi_n, tx0, ty0, t02);
+        }
+        let (e, ml) = if t02 > T02_MIN {
             self.lateral_moment(xi_n, eta_n, tx0, ty0, t02)
         } else {
-            (0.0, 0.0)
+            (0.0, -self.c.c23 * eta_n)
         };
-        // 1-2 for the row (at a row of the table) or the tabulated blend of the two rows
-        // (between rows), then 3-5 on those terms (module documentation).
-        if self.rows[1].w == 0.0 {
-            let [t] = self.spin_terms::<1>(phi_n, e);
-            self.with_spin(phi_n, tx0, ty0, ml, &t)
-        } else if self.corr.on {
+        // 1-2 for the tabulated blend of the two rows (between rows), then 3-5 on those
+        // terms (module documentation).
+        if self.corr.on {
             let e2 = e * e;
             let t = match self
                 .corr
@@ -698,6 +704,48 @@ impl Steady3d {
             fy: w0 * a.fy + w1 * b.fy,
             mz: w0 * a.mz + w1 * b.mz,
         }
+    }
+
+    /// [`Steady3d::loads`] at a row of the table with spin: steps 1-5, the division of the
+    /// translation alone's utilisation and the row's spin division shared (`1/(A B)`).
+    #[inline(always)]
+    fn one_row(&self, xi_n: f64, eta_n: f64, phi_n: f64, tx0: f64, ty0: f64, t02: f64) -> Loads {
+        let row = &self.rows[0];
+        let nr = &row.n;
+        let m = self.m_per_phi * phi_n.abs();
+        let u = phi_n * phi_n;
+        let (u2, u4) = (u * u, (u * u) * (u * u));
+        let ns = m * (1.0 + nr.ma * m);
+        let ds = 1.0 + m * (nr.mb + nr.ma * m);
+        let (num, den) = row.shape_parts(u, u2, u4);
+        let b = ds * den;
+        // The translation alone (module documentation, step 5): |t0|/k = |t0|^3/q,
+        // k = q/|t0|^2 and 1/r^4 from 1/A, A = q r^4 |t0|^2.
+        let n = &self.n;
+        let has_t = t02 > T02_MIN;
+        let q = n.kx * tx0 * tx0 + n.ky * ty0 * ty0;
+        let r2 = xi_n * xi_n + eta_n * eta_n;
+        let r4 = r2 * r2;
+        let a = if has_t { q * r4 * t02 } else { 1.0 };
+        let i = 1.0 / (a * b);
+        let (inv_a, inv_b) = (b * i, a * i);
+        let (e, ml) = if has_t {
+            let e = saturation_of_ratio(t02.sqrt() * t02 * t02 * r4 * inv_a, q * q * r4 * inv_a);
+            let ml = -self.c.c23 * eta_n * (1.0 - e)
+                - self.nu_t * e * e * e * eta_n * eta_n * eta_n * q * t02 * inv_a;
+            (e, ml)
+        } else {
+            (0.0, -self.c.c23 * eta_n)
+        };
+        let e2 = e * e;
+        let t = SpinTerms::of_row(
+            row,
+            ns * den * inv_b,
+            self.c.c23 * phi_n * num * ds * inv_b,
+            e2,
+            (e2 * e2) * (e2 * e2),
+        );
+        self.with_spin(phi_n, tx0, ty0, ml, &t)
     }
 
     /// The spin terms of the first `R` rows (module documentation, steps 1-2); `e` is the
