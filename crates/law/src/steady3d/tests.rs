@@ -116,6 +116,18 @@ fn tiny_creepages_are_the_linear_theory_without_a_seam() {
     assert_eq!(l.fx, c.c11 * e);
     assert!((l.fy - (2.0 * c.c22 - 3.0 * c.c23) * e).abs() < 1e-12 * e);
     assert!((l.mz - (-2.0 * c.c23 - 3.0 * c.c33) * e).abs() < 1e-12 * e);
+    // A vanishing translation next to a finite spin (at a row and between rows): the spin's
+    // loads, not full slip of the translation (the shared division's products underflow
+    // below |t0|^2 = 1e-140; before, e came out as 1 there).
+    for law in [
+        Steady3d::new(0.5, 0.25).unwrap(),
+        Steady3d::new(0.7, 0.3).unwrap(),
+    ] {
+        let (a, b) = (law.loads(1e-100, 0.0, 0.5), law.loads(0.0, 0.0, 0.5));
+        assert!((a.mz - b.mz).abs() < 1e-12 && (a.fy - b.fy).abs() < 1e-12, "{a:?} {b:?}");
+        let (a, b) = (law.loads(0.0, 1e-100, 0.5), law.loads(0.0, 0.0, 0.5));
+        assert!((a.mz - b.mz).abs() < 1e-12 && (a.fy - b.fy).abs() < 1e-12, "{a:?} {b:?}");
+    }
     // Just above the threshold the non-linear path agrees to rounding.
     let e = 2.0 * TINY_CREEPAGE;
     let l = law.loads(e, 2.0 * e, -3.0 * e);
