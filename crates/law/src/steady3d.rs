@@ -123,7 +123,7 @@
 //!   there poorly: pure spin force 1.7-2.8 % at a/b = 2 and 5.0-8.9 % at a/b = 5, combined
 //!   force 5.8-9.1 % and 18-24 %, moments up to 15 %; between them (`a/b = 1.4, 3`) spin force
 //!   up to 19 %, combined 18 % (14.8 % at `a/b = 1.4`, where two translations blended gave
-//!   14.5 %; 17.6 % at `a/b = 3`, where they gave 22.4 %); below the table (`phi_n = 0.025-0.075`) the spin force within
+//!   14.5 %; 17.7 % at `a/b = 3`, where they gave 22.4 %); below the table (`phi_n = 0.025-0.075`) the spin force within
 //!   3.1 %. The constants of `a/b = 2, 5` were refitted with boundary-element points below
 //!   the table and from the previous `nu` node (before: spin force 12 % and combined 35 % at
 //!   a/b = 2, nu = 0.5; the spin force 18 % off at a/b = 5, nu = 0.5 below the table). Before
@@ -142,9 +142,12 @@
 //! are out-of-line branches. Measured (`cargo bench -p creep-law --bench steady3d --
 //! --rounds-only`: the thread's CPU time, variants interleaved, medians; main's law before
 //! this round is a copy in the bench, timed in the same rounds; docs/CREEP3D.md has the
-//! table): with spin 46-48 ns between rows (the two rows' translations before: 85-91 ns in
-//! the same runs), 49-51 ns at a row (before 45-47: the same code, compiled in another
-//! crate), without spin 15-16 ns (before 34); `F_ss` 8.8-9.8 ns. Tried and not adopted
+//! table): with spin 47-56 ns between rows (medians of three runs 48.8-53.6; the two rows'
+//! translations before: 91-101 ns in the same runs), 46-52 ns at a row (as before, the same
+//! law; the row's spin division now shares the translation alone's), without spin about 16
+//! ns (before 34); `F_ss` 8.8-10.7 ns: **issue #17's 50 ns with spin at the edge**, under it in
+//! the quieter runs. Earlier: the projection a cold branch, `s_t/|d|` as `(s_t/|d|^2) |d|`, a
+//! row's `nu` shapes multiplied out. Tried and not adopted
 //! (docs/CREEP3D.md): one row fitted per contact to the two rows' blend (Levenberg-Marquardt
 //! on the 20 spin constants of one row): the cost of a row, but it did not follow the blend
 //! and the errors against the boundary elements off the nodes rose.

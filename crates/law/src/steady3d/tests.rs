@@ -124,9 +124,15 @@ fn tiny_creepages_are_the_linear_theory_without_a_seam() {
         Steady3d::new(0.7, 0.3).unwrap(),
     ] {
         let (a, b) = (law.loads(1e-100, 0.0, 0.5), law.loads(0.0, 0.0, 0.5));
-        assert!((a.mz - b.mz).abs() < 1e-12 && (a.fy - b.fy).abs() < 1e-12, "{a:?} {b:?}");
+        assert!(
+            (a.mz - b.mz).abs() < 1e-12 && (a.fy - b.fy).abs() < 1e-12,
+            "{a:?} {b:?}"
+        );
         let (a, b) = (law.loads(0.0, 1e-100, 0.5), law.loads(0.0, 0.0, 0.5));
-        assert!((a.mz - b.mz).abs() < 1e-12 && (a.fy - b.fy).abs() < 1e-12, "{a:?} {b:?}");
+        assert!(
+            (a.mz - b.mz).abs() < 1e-12 && (a.fy - b.fy).abs() < 1e-12,
+            "{a:?} {b:?}"
+        );
     }
     // Just above the threshold the non-linear path agrees to rounding.
     let e = 2.0 * TINY_CREEPAGE;
