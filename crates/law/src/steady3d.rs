@@ -296,6 +296,10 @@ pub const NODES: [[Node; 3]; 5] = [
 /// of its shared division would underflow).
 const T02_MIN: f64 = 1e-140;
 
+/// Weight below which a row of the table is dropped from the blend between rows (see
+/// [`Steady3d::two_row_blend`]).
+pub const ROW_SNAP: f64 = 1e-6;
+
 /// Normalised creepages are clamped to `[-CREEPAGE_CLAMP, CREEPAGE_CLAMP]` (deep in full slip).
 pub const CREEPAGE_CLAMP: f64 = 1e6;
 
@@ -535,6 +539,15 @@ impl Steady3d {
         kalker3d::coefficients(ab, nu)?;
         let mut law = Self::with_node(ab, nu, node_at(ab, nu))?;
         let (i, wa) = bracket(&NODE_LN_AB, ab.ln());
+        // Within a weight of ROW_SNAP of a row, that row (an a/b from f32 geometry misses a
+        // row by ~1e-7; the loads differ from the blend's by less than ROW_SNAP of mu P).
+        let wa = if wa < ROW_SNAP {
+            0.0
+        } else if wa > 1.0 - ROW_SNAP {
+            1.0
+        } else {
+            wa
+        };
         let (j, wn) = bracket(&NODE_NU, nu);
         for (k, (row, w)) in [(i, 1.0 - wa), (i + 1, wa)].into_iter().enumerate() {
             let (lo, hi) = (&NODES[row][j], &NODES[row][j + 1]);

@@ -645,3 +645,40 @@ fn between_rows_saturates_is_odd_and_dissipates() {
 
 /// Bound of [`between_rows_the_table_holds_the_blended_terms`] (measured, rounded up).
 const WORST_TERM: f64 = 0.0188;
+
+#[test]
+fn an_axis_ratio_next_to_a_row_is_that_row() {
+    // Wheels' a/b comes from f32 geometry and misses a row by ~1e-7: within a weight of
+    // ROW_SNAP of a row the law is that row (exact rational spin terms, no table); a little
+    // further it is the table between rows, continuous with the row to the table's accuracy.
+    let row = Steady3d::new(0.5, 0.25).unwrap();
+    for ab in [0.5 * (1.0 + 1e-7), 0.5 * (1.0 - 1e-7)] {
+        let near = Steady3d::new(ab, 0.25).unwrap();
+        assert!(!near.corr.on && near.rows[1].w == 0.0, "{ab}");
+        for k in 0..100 {
+            let cr = creepage_sweep(k);
+            let (a, b) = (near.loads(cr.0, cr.1, cr.2), row.loads(cr.0, cr.1, cr.2));
+            assert!(
+                (a.fx - b.fx).abs().max((a.fy - b.fy).abs()) < 1e-6,
+                "{cr:?}"
+            );
+        }
+    }
+    let off = Steady3d::new(0.5 * (1.0 + 1e-4), 0.25).unwrap();
+    assert!(off.corr.on);
+    let mut worst = 0.0f64;
+    for k in 0..400 {
+        let cr = creepage_sweep(k);
+        let (a, b) = (off.loads(cr.0, cr.1, cr.2), row.loads(cr.0, cr.1, cr.2));
+        worst = worst.max(
+            (a.fx - b.fx)
+                .abs()
+                .max((a.fy - b.fy).abs())
+                .max((a.mz - b.mz).abs()),
+        );
+    }
+    // Measured 0.0015 (of mu P or mu P c): the table's linear interpolation of the row's own
+    // utilisation and shape.
+    println!("a/b 1e-4 off the row: {worst}");
+    assert!(worst < 0.0016, "{worst}");
+}
