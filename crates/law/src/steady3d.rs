@@ -82,7 +82,8 @@
 //!   105 knots (`|phi_n| = 2^-7 ... 2^6`, eight per octave, `f32`) and interpolated linearly,
 //!   indexed by the float's bits; the terms that depend on the utilisations are computed from
 //!   them with each row's constants (module `correction`). Outside the knots the terms come
-//!   from the rows (exact) and `g` continues as `phi_n^2` below, `1/phi_n` above.
+//!   from the rows (exact) and `g` continues as `phi_n^2` below, `1/phi_n` above. Within a
+//!   blend weight of [`ROW_SNAP`] of a row, that row.
 //!
 //! What that law is, against the two rows' blended loads ([`Steady3d::two_row_blend`], the
 //! previous round's law between rows, two translations per evaluation): zero spin is the same
