@@ -632,6 +632,19 @@ fn between_rows_saturates_is_odd_and_dissipates() {
             let p = law.loads(x, y, 0.0);
             assert!(p.fx * x + p.fy * y >= 0.0);
         }
+        // At the table's ends (phi_n = 2^-7, 64) the rows' own terms take over: continuous
+        // to the table's f32 rounding.
+        for phi in [1.0 / 128.0, 64.0] {
+            for cr in [(0.0, 0.0), (0.1, -0.05), (0.3, 0.2)] {
+                let a = law.loads(cr.0, cr.1, phi * (1.0 - 1e-12));
+                let b = law.loads(cr.0, cr.1, phi * (1.0 + 1e-12));
+                let d = (a.fx - b.fx)
+                    .abs()
+                    .max((a.fy - b.fy).abs())
+                    .max((a.mz - b.mz).abs());
+                assert!(d < 1e-6, "{ab} {nu} {phi} {cr:?}: {a:?} {b:?}");
+            }
+        }
         // Far beyond the table (phi_n above the last knot) and tiny spins: finite, odd.
         for phi in [1e4, 1e6, 1e-3, 1e-12, 1e-29] {
             let (a, b) = (law.loads(0.1, 0.0, phi), law.loads(-0.1, 0.0, -phi));
