@@ -308,105 +308,6 @@ pub const CREEPAGE_CLAMP: f64 = 1e6;
 /// exact to rounding there (the non-linear terms are relatively `O(creepage)`).
 pub const TINY_CREEPAGE: f64 = 1e-30;
 
-/// The spin constants of one row `a/b = NODE_AB[i]` of the table at the contact's `nu` (module
-/// documentation, "Between nodes"), with the row's weight, prepared once per contact.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct SpinRow {
-    /// Weight of the row's spin terms in the blend (`0`: not evaluated).
-    w: f64,
-    /// Constants of the row interpolated in `nu` (only the spin constants `ma .. am` are used).
-    n: Node,
-    /// The spin force's shape as one rational function of `u = phi_n^2`, `N(u)/D(u)` with
-    /// `N = sum num[k] u^k`, `D = sum den[k] u^k`: at a column of the table the node's own
-    /// `(1 + p1 u + p2 u^2)/(1 + q1 u + q2 u^2 + q3 u^3)`; between columns the blend of the
-    /// two nodes' shapes by their outputs, `w0 n0/d0 + w1 n1/d1 = (w0 n0 d1 + w1 n1 d0)/(d0 d1)`,
-    /// multiplied out here once (every coefficient is `>= 0`: no cancellation).
-    num: [f64; 6],
-    den: [f64; 7],
-}
-
-/// Product of two polynomials (coefficients in increasing powers) into `out` (zeroed first).
-fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
-    out.iter_mut().for_each(|o| *o = 0.0);
-    for (i, x) in a.iter().enumerate() {
-        for (j, y) in b.iter().enumerate() {
-            if x * y != 0.0 {
-                out[i + j] += x * y;
-            }
-        }
-    }
-}
-
-impl SpinRow {
-    /// The row from its weight, its constants interpolated in `nu`, and the spin shapes of the
-    /// row's two `nu` nodes with their weights `(w0, lo), (w1, hi)` (`w1 = 0`: `lo` alone).
-    fn new(w: f64, n: Node, (w0, lo): (f64, &Node), (w1, hi): (f64, &Node)) -> Self {
-        let n0 = [1.0, lo.p1, lo.p2];
-        let d0 = [1.0, lo.q1, lo.q2, lo.q3];
-        let mut num = [0.0; 6];
-        let mut den = [0.0; 7];
-        if w1 == 0.0 {
-            num[..3].copy_from_slice(&n0);
-            den[..4].copy_from_slice(&d0);
-        } else {
-            let n1 = [1.0, hi.p1, hi.p2];
-            let d1 = [1.0, hi.q1, hi.q2, hi.q3];
-            let (mut a, mut b) = ([0.0; 6], [0.0; 6]);
-            poly_mul(&n0, &d1, &mut a);
-            poly_mul(&n1, &d0, &mut b);
-            for k in 0..6 {
-                num[k] = w0 * a[k] + w1 * b[k];
-            }
-            poly_mul(&d0, &d1, &mut den);
-        }
-        SpinRow { w, n, num, den }
-    }
-
-    /// `(N(u), D(u))` of the spin force's shape (Estrin's scheme: short dependency chains).
-    #[inline(always)]
-    fn shape_parts(&self, u: f64, u2: f64, u4: f64) -> (f64, f64) {
-        let (a, b) = (&self.num, &self.den);
-        let num = (a[0] + a[1] * u) + u2 * (a[2] + a[3] * u) + u4 * (a[4] + a[5] * u);
-        let den = (b[0] + b[1] * u) + u2 * (b[2] + b[3] * u) + u4 * (b[4] + b[5] * u + b[6] * u2);
-        (num, den)
-    }
-}
-
-/// The spin's terms of one row (or their blend over two rows) that the translation and the
-/// moment use (module documentation, steps 1-5): `w`, the capacities `w (1 - ax s^2)`,
-/// `w (1 - ay s^4)` (floored at 0), `lam f_s`, `(1 - lam) f_s`, the moment-of-lateral-creepage
-/// factor `1 - am s^2` and the spin moment `M_max s max(0, 1 - b2 e^2 - b8 e^8)` over `M_max`.
-#[derive(Debug, Clone, Copy, Default)]
-struct SpinTerms {
-    w: f64,
-    cap_x: f64,
-    cap_y: f64,
-    f_sat: f64,
-    f_rest: f64,
-    ml_factor: f64,
-    spin_moment: f64,
-}
-
-impl SpinTerms {
-    /// The terms of `row` given its spin utilisation `s`, the lateral force of pure spin `f_s`,
-    /// and `(e^2, e^8)` of the translation alone.
-    #[inline(always)]
-    fn of_row(row: &SpinRow, s: f64, f_s: f64, e2: f64, e8: f64) -> Self {
-        let n = &row.n;
-        let s2 = s * s;
-        let w = 1.0 + n.gam * s2;
-        SpinTerms {
-            w,
-            cap_x: w * (1.0 - n.ax * s2).max(0.0),
-            cap_y: w * (1.0 - n.ay * s2 * s2).max(0.0),
-            f_sat: n.lam * f_s,
-            f_rest: (1.0 - n.lam) * f_s,
-            ml_factor: 1.0 - n.am * s2,
-            spin_moment: s * (1.0 - n.b2 * e2 - n.b8 * e8).max(0.0),
-        }
-    }
-}
-
 /// The law at one axis ratio and Poisson ratio: Kalker's coefficients, the interpolated
 /// constants and the per-contact factors, computed once (build one per contact shape and
 /// material pair; [`Steady3d::loads`] evaluates per step).
@@ -528,45 +429,6 @@ impl Steady3d {
             // Between rows: one translation on the two rows' blended spin terms, and the
             // correction that makes its pure spin the blend's (module documentation).
             law.corr = correction::SpinCorrection::build(&law);
-        }
-        Ok(law)
-    }
-
-    /// The law of the previous round between rows (module documentation, "Between nodes"):
-    /// the loads of the two rows around `a/b` blended with convex weights, two translations
-    /// per evaluation. At a row of the table it is [`Steady3d::new`]'s law. [`Steady3d::new`]
-    /// fits its virtual row to this law; kept for that, for comparisons and for the bench.
-    pub fn two_row_blend(ab: f64, nu: f64) -> Result<Self, LawError> {
-        kalker3d::coefficients(ab, nu)?;
-        let mut law = Self::with_node(ab, nu, node_at(ab, nu))?;
-        let (i, wa) = bracket(&NODE_LN_AB, ab.ln());
-        // Within a weight of ROW_SNAP of a row, that row (an a/b from f32 geometry misses a
-        // row by ~1e-7; the loads differ from the blend's by less than ROW_SNAP of mu P).
-        let wa = if wa < ROW_SNAP {
-            0.0
-        } else if wa > 1.0 - ROW_SNAP {
-            1.0
-        } else {
-            wa
-        };
-        let (j, wn) = bracket(&NODE_NU, nu);
-        for (k, (row, w)) in [(i, 1.0 - wa), (i + 1, wa)].into_iter().enumerate() {
-            let (lo, hi) = (&NODES[row][j], &NODES[row][j + 1]);
-            let mut n = [0.0; 18];
-            for (o, (x, y)) in n.iter_mut().zip(lo.to_array().iter().zip(hi.to_array())) {
-                *o = (1.0 - wn) * x + wn * y;
-            }
-            // At the column nu = 0.5 the shape of `hi` alone.
-            let shapes = if wn == 1.0 {
-                ((1.0, hi), (0.0, lo))
-            } else {
-                ((1.0 - wn, lo), (wn, hi))
-            };
-            law.rows[k] = SpinRow::new(w, Node::from_array(n), shapes.0, shapes.1);
-        }
-        if law.rows[0].w == 0.0 {
-            // At a row (ab at or beyond the last row): evaluate that row only.
-            law.rows.swap(0, 1);
         }
         Ok(law)
     }
@@ -699,30 +561,6 @@ impl Steady3d {
         }
     }
 
-    /// Between rows, `|phi_n|` outside the table's knots (rare): the blended terms from the
-    /// two rows, with the correction's continuation.
-    #[cold]
-    #[inline(never)]
-    fn blended_terms_beyond(&self, phi_n: f64, e: f64) -> SpinTerms {
-        self.blended_terms_exact(phi_n, e, self.corr.g_beyond(phi_n))
-    }
-
-    /// [`Steady3d::two_row_blend`]'s evaluation between rows: the two rows' loads blended
-    /// (the previous round's law: the reference, out of line).
-    #[cold]
-    #[inline(never)]
-    fn two_rows_blended(&self, phi_n: f64, e: f64, tx0: f64, ty0: f64, ml: f64) -> Loads {
-        let [t0, t1] = self.spin_terms::<2>(phi_n, e);
-        let a = self.with_spin(phi_n, tx0, ty0, ml, &t0);
-        let b = self.with_spin(phi_n, tx0, ty0, ml, &t1);
-        let (w0, w1) = (self.rows[0].w, self.rows[1].w);
-        Loads {
-            fx: w0 * a.fx + w1 * b.fx,
-            fy: w0 * a.fy + w1 * b.fy,
-            mz: w0 * a.mz + w1 * b.mz,
-        }
-    }
-
     /// [`Steady3d::loads`] at a row of the table with spin: steps 1-5, the division of the
     /// translation alone's utilisation and the row's spin division shared (`1/(A B)`).
     #[inline(always)]
@@ -805,52 +643,6 @@ impl Steady3d {
                 e8,
             )
         })
-    }
-
-    /// The two rows' spin terms blended with the rows' weights (every term enters the loads
-    /// linearly but the translation's `w` and `lam f_s`).
-    #[inline(always)]
-    fn blended_terms(&self, t0: &SpinTerms, t1: &SpinTerms) -> SpinTerms {
-        let (w0, w1) = (self.rows[0].w, self.rows[1].w);
-        let b = |a: f64, b: f64| w0 * a + w1 * b;
-        SpinTerms {
-            w: b(t0.w, t1.w),
-            cap_x: b(t0.cap_x, t1.cap_x),
-            cap_y: b(t0.cap_y, t1.cap_y),
-            f_sat: b(t0.f_sat, t1.f_sat),
-            f_rest: b(t0.f_rest, t1.f_rest),
-            ml_factor: b(t0.ml_factor, t1.ml_factor),
-            spin_moment: b(t0.spin_moment, t1.spin_moment),
-        }
-    }
-
-    /// Between rows: the two rows' spin terms at `phi_n` blended, with the correction `g`
-    /// added to the unsaturated share (`e` the translation alone's utilisation).
-    fn blended_terms_exact(&self, phi_n: f64, e: f64, g: f64) -> SpinTerms {
-        let [t0, t1] = self.spin_terms::<2>(phi_n, e);
-        let mut t = self.blended_terms(&t0, &t1);
-        t.f_rest += g;
-        t
-    }
-
-    /// Pure spin `phi_n != 0` between rows, without the correction: the lateral force of the
-    /// one-translation evaluation, the blend's, and `(1 - s_t)^(1/4)` of the one translation
-    /// (what multiplies the correction).
-    fn pure_spin_parts(&self, phi_n: f64) -> (f64, f64, f64) {
-        let [t0, t1] = self.spin_terms::<2>(phi_n, 0.0);
-        let t = self.blended_terms(&t0, &t1);
-        let one = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t).fy;
-        let a = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t0).fy;
-        let b = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t1).fy;
-        let blend = self.rows[0].w * a + self.rows[1].w * b;
-        let ty = t.f_sat;
-        let st = if ty != 0.0 {
-            let q = self.n.ky * ty * ty;
-            saturation_of_ratio(ty.abs() / (t.w * self.n.ky), q / (ty * ty))
-        } else {
-            0.0
-        };
-        (one, blend, (1.0 - st).sqrt().sqrt())
     }
 
     /// Steps 3-5 of the module documentation at nonzero spin, given the spin terms, the linear
@@ -968,7 +760,11 @@ impl Steady3d {
     }
 }
 
+mod between;
 mod correction;
+mod row;
+
+use row::{SpinRow, SpinTerms};
 
 #[cfg(test)]
 mod tests;
