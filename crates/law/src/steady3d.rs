@@ -143,11 +143,12 @@
 //! are out-of-line branches. Measured (`cargo bench -p creep-law --bench steady3d --
 //! --rounds-only`: the thread's CPU time, variants interleaved, medians; main's law before
 //! this round is a copy in the bench, timed in the same rounds; docs/CREEP3D.md has the
-//! table): with spin 47-56 ns between rows (medians of three runs 48.8-53.6; the two rows'
-//! translations before: 91-101 ns in the same runs), 46-52 ns at a row (as before, the same
-//! law; the row's spin division now shares the translation alone's), without spin about 16
-//! ns (before 34); `F_ss` 8.8-10.7 ns: **issue #17's 50 ns with spin at the edge**, under it in
-//! the quieter runs. Earlier: the projection a cold branch, `s_t/|d|` as `(s_t/|d|^2) |d|`, a
+//! table): with spin 46-56 ns between rows (medians of three runs 46.9-47.8; the two rows'
+//! translations before: 89-91 ns in the same runs), 46-51 ns at a row (as before, the same
+//! law; the row's spin division now shares the translation alone's), without spin about 17
+//! ns (before 34); `F_ss` 8.8 ns: **issue #17's 50 ns with spin at the edge**, under it in the
+//! medians, above it in the slower runs. Earlier: the projection a cold branch, `s_t/|d|` as
+//! `(s_t/|d|^2) |d|`, a
 //! row's `nu` shapes multiplied out. Tried and not adopted
 //! (docs/CREEP3D.md): one row fitted per contact to the two rows' blend (Levenberg-Marquardt
 //! on the 20 spin constants of one row): the cost of a row, but it did not follow the blend
