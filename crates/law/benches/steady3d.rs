@@ -6,8 +6,12 @@
 //! (the thread's CPU time from `/proc/thread-self/schedstat`, as the `cbrt` bench does), the
 //! variants interleaved in every round, medians over the rounds and their ratios to `F_ss`.
 //!
+//! The table also times main's law before this round (a verbatim copy of that evaluation,
+//! `steady3d/before.rs`: two rows' translations between rows, their loads blended),
+//! interleaved with the current one in every round, so before/after is one run.
+//!
 //! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md);
-//! `-- --rounds-only` prints the table alone.
+//! `-- --rounds-only` prints the table alone, `-- --rounds N` takes N rounds (default 11).
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -15,6 +19,9 @@ use std::time::Instant;
 use creep_law::steady3d::Steady3d;
 use creep_law::{SteadyLaw, kalker};
 use criterion::{Criterion, criterion_group};
+
+#[path = "steady3d/before.rs"]
+mod before;
 
 const BATCH: usize = 64;
 
@@ -143,32 +150,46 @@ fn cpu_table(rounds: usize) {
             [0.4 * t.sin(), 0.3 * (1.3 * t).cos(), 0.8 * (0.7 * t).sin()]
         })
         .collect();
-    let laws = [
-        ("a/b 0.5, nu 0.25 (a node)", Steady3d::new(0.5, nu).unwrap()),
-        (
-            "a/b 0.5, nu 0.125 (a row)",
-            Steady3d::new(0.5, 0.125).unwrap(),
-        ),
-        (
-            "a/b 0.35, nu 0.125 (between rows)",
-            Steady3d::new(0.35, 0.125).unwrap(),
-        ),
-        (
-            "a/b 3, nu 0.375 (between rows)",
-            Steady3d::new(3.0, 0.375).unwrap(),
-        ),
+    let cases = [
+        ("a/b 0.5, nu 0.25 (a node)", 0.5, nu),
+        ("a/b 0.5, nu 0.125 (a row)", 0.5, 0.125),
+        ("a/b 0.35, nu 0.125 (between rows)", 0.35, 0.125),
+        ("a/b 3, nu 0.375 (between rows)", 3.0, 0.375),
+        ("a/b 1.4, nu 0.125 (between rows)", 1.4, 0.125),
     ];
-    let reps = 200;
+    let laws: Vec<(&str, Steady3d, before::Steady3d)> = cases
+        .iter()
+        .map(|&(name, ab, nu)| {
+            (
+                name,
+                Steady3d::new(ab, nu).unwrap(),
+                before::Steady3d::new(ab, nu).unwrap(),
+            )
+        })
+        .collect();
+    // The thread CPU clock ticks at 4 ms on this VM (schedstat): 1000 passes over the 4096
+    // inputs take 0.15-0.4 s per measurement, a resolution of 1-3 %.
+    let reps = 1000;
     let fss = |v: &[f64; 3]| kuhn.creepage_n(v[0].abs().min(0.99));
     let mut t_fss = vec![];
     let mut t_tr = vec![vec![]; laws.len()];
     let mut t_sp = vec![vec![]; laws.len()];
+    let mut t_old = vec![vec![]; laws.len()];
+    let mut t_old_tr = vec![vec![]; laws.len()];
     let mut t_inv = vec![];
     for _ in 0..rounds {
         t_fss.push(ns_per_call(&xs, reps, &fss));
-        for (k, (_, law)) in laws.iter().enumerate() {
+        for (k, (_, law, old)) in laws.iter().enumerate() {
             t_tr[k].push(ns_per_call(&xs, reps, &|v| {
                 let l = law.loads(v[0], v[1], 0.0);
+                l.fx + l.fy + l.mz
+            }));
+            t_old_tr[k].push(ns_per_call(&xs, reps, &|v| {
+                let l = old.loads(v[0], v[1], 0.0);
+                l.fx + l.fy + l.mz
+            }));
+            t_old[k].push(ns_per_call(&xs, reps, &|v| {
+                let l = old.loads(v[0], v[1], v[2]);
                 l.fx + l.fy + l.mz
             }));
             t_sp[k].push(ns_per_call(&xs, reps, &|v| {
@@ -189,12 +210,15 @@ fn cpu_table(rounds: usize) {
         "steady3d: CPU ns per evaluation, medians of {rounds} interleaved rounds (ratio to F_ss)"
     );
     println!("  F_ss (Kuhn, kalker::cbrt)            {f:7.2}");
-    for (k, (name, _)) in laws.iter().enumerate() {
+    for (k, (name, _, _)) in laws.iter().enumerate() {
         let (a, b) = (median(t_tr[k].clone()), median(t_sp[k].clone()));
+        let (oa, ob) = (median(t_old_tr[k].clone()), median(t_old[k].clone()));
         println!(
-            "  {name:34} no spin {a:7.2} ({:.2}x)   with spin {b:7.2} ({:.2}x)",
+            "  {name:34} no spin {a:6.2} ({:.2}x)  with spin {b:6.2} ({:.2}x) | before: no spin {oa:6.2} ({:.2}x)  with spin {ob:6.2} ({:.2}x)",
             a / f,
-            b / f
+            b / f,
+            oa / f,
+            ob / f
         );
     }
     let i = median(t_inv);
@@ -202,13 +226,35 @@ fn cpu_table(rounds: usize) {
         "  inverse at zero spin (a node)        {i:7.2} ({:.2}x)",
         i / f
     );
+    // Construction (once per contact shape and pair): between rows the correction's table
+    // (81 knots, three pure-spin evaluations of both rows each).
+    let t0 = Instant::now();
+    let n = 5;
+    for k in 0..n {
+        black_box(Steady3d::new(black_box(0.35 + 0.01 * k as f64), 0.125).unwrap());
+    }
+    let fit = t0.elapsed().as_secs_f64() / n as f64;
+    let t0 = Instant::now();
+    for k in 0..100 {
+        black_box(Steady3d::new(black_box(0.5), 0.125 + 1e-3 * k as f64).unwrap());
+    }
+    let row = t0.elapsed().as_secs_f64() / 100.0;
+    println!(
+        "  Steady3d::new: between rows {:.2} ms (wall), at a row {:.2} us",
+        fit * 1e3,
+        row * 1e6
+    );
 }
 
 criterion_group!(benches, bench_steady3d);
 
 fn main() {
     let rounds_only = std::env::args().any(|a| a == "--rounds-only");
-    cpu_table(11);
+    let rounds = std::env::args()
+        .position(|a| a == "--rounds")
+        .and_then(|i| std::env::args().nth(i + 1)?.parse().ok())
+        .unwrap_or(11);
+    cpu_table(rounds);
     if !rounds_only {
         benches();
         Criterion::default().configure_from_args().final_summary();

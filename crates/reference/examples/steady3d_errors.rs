@@ -4,15 +4,22 @@
 //! validation table `data/steady3d_bem_validation.csv`, off the fitted nodes): markdown on
 //! stdout, and the per-case CSV to the file given as the first other argument, if any.
 //!
-//! `cargo run --release -p creep-reference --example steady3d_errors [-- [--table FILE] [errors.csv]]`
-use creep_reference::steady3d::{error_markdown, law_errors, read_csv, table};
+//! With `--blend`, the previous round's law between rows is graded instead
+//! (`Steady3d::two_row_blend`: two rows' loads blended; the same law at the rows).
+//!
+//! `cargo run --release -p creep-reference --example steady3d_errors [-- [--blend] [--table FILE] [errors.csv]]`
+use creep_law::steady3d::Steady3d;
+use creep_reference::steady3d::{error_markdown, law_errors_of, read_csv, table};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let mut points = None;
     let mut out = None;
+    let mut blend = false;
     while let Some(a) = args.next() {
-        if a == "--table" {
+        if a == "--blend" {
+            blend = true;
+        } else if a == "--table" {
             let path = args.next().ok_or("--table needs a file")?;
             points = Some(read_csv(&std::fs::read_to_string(path)?)?);
         } else {
@@ -23,7 +30,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(p) => p,
         None => table()?,
     };
-    let errors = law_errors(&points)?;
+    let errors = if blend {
+        law_errors_of(&points, Steady3d::two_row_blend)?
+    } else {
+        law_errors_of(&points, Steady3d::new)?
+    };
     print!("{}", error_markdown(&errors));
     if let Some(path) = out {
         let mut csv = String::from(

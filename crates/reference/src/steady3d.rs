@@ -260,18 +260,34 @@ pub struct LawError3d {
     pub moment_at: [f64; 3],
 }
 
-/// Grades the fast law against every point of `points`, grouped by `(a/b, nu, kind)` in table
-/// order.
+/// Grades the fast law (`Steady3d::new`) against every point of `points`, grouped by
+/// `(a/b, nu, kind)` in table order.
 pub fn law_errors(points: &[Point]) -> Result<Vec<LawError3d>, RefError> {
+    law_errors_of(points, creep_law::steady3d::Steady3d::new)
+}
+
+/// [`law_errors`] for the law `make(a/b, nu)` (for instance
+/// `creep_law::steady3d::Steady3d::two_row_blend`, the previous round's law between rows),
+/// built once per `(a/b, nu)`.
+pub fn law_errors_of(
+    points: &[Point],
+    make: impl Fn(f64, f64) -> Result<creep_law::steady3d::Steady3d, creep_law::LawError>,
+) -> Result<Vec<LawError3d>, RefError> {
     let mut out: Vec<LawError3d> = Vec::new();
+    let mut built: Option<(f64, f64, creep_law::steady3d::Steady3d)> = None;
     for p in points {
-        let law = creep_law::steady3d::Steady3d::new(p.ab, p.nu).map_err(|_| {
-            RefError::InvalidParameter {
-                name: "a/b or nu",
-                value: p.ab,
-                expected: "in Kalker's table range",
+        let law = match built {
+            Some((ab, nu, law)) if ab == p.ab && nu == p.nu => law,
+            _ => {
+                let law = make(p.ab, p.nu).map_err(|_| RefError::InvalidParameter {
+                    name: "a/b or nu",
+                    value: p.ab,
+                    expected: "in Kalker's table range",
+                })?;
+                built = Some((p.ab, p.nu, law));
+                law
             }
-        })?;
+        };
         let l = law.loads(p.creepage[0], p.creepage[1], p.creepage[2]);
         let ef = (l.fx - p.load[0]).hypot(l.fy - p.load[1]);
         let em = (l.mz - p.load[2]).abs();

@@ -181,12 +181,18 @@ fn fast_law_off_the_fitted_nodes_measured_errors() {
     // the fitted table, at a/b and nu the fit never saw: between the rows and between the
     // columns). Pure translation stays within 0.8 %; between
     // the rows a/b = 0.2, 0.5, 1 the lateral force of pure spin within 4.7 % (13 % before the
-    // row blend) and combined creepage within 5.4 % (force; before: 1.6 % at a/b = 0.35 but
-    // 10.4 % at 0.7) / 3.7 % (moment): the issue's
-    // 2 % (pure) is NOT met there, its 5 % (combined) nearly. Between a/b = 1 and 5 (a/b = 1.4,
-    // 3) the spin loads are off by up to 20 % (force; 24 % before the refit of the a > b rows
-    // with the low-spin points) and the combined force by up to 22 % (25 %; 46-80 % before
-    // the rows a/b = 2, 5).
+    // row blend) and combined creepage within 4.7 % (force) / 3.7 % (moment): the issue's
+    // 2 % (pure) is NOT met there, its 5 % (combined) is. Between a/b = 1 and 5 (a/b = 1.4,
+    // 3) the spin loads are off by up to 19 % (force; 24 % before the refit of the a > b
+    // rows with the low-spin points) and the combined force by up to 18 % (25 %; 46-80 %
+    // before the rows a/b = 2, 5).
+    // Between rows the law evaluates one translation on the two rows' blended spin terms
+    // (tabulated per contact in phi_n) with a pure-spin correction (issue #17's cost): the
+    // translation is the two-row blend's (the previous law's), spin and moments within the
+    // table's interpolation of it (here equal or better by up to 0.05 points), and the
+    // combined force moved from 5.39, 4.91, 3.30, 3.81, 14.46, 22.39 % to 4.64, 4.15, 2.73,
+    // 3.66, 14.84, 17.68 % (a/b = 0.35, 0.7, 0.27, 0.85, 1.4, 3): better everywhere but
+    // a/b = 1.4 (+0.38 points, where the law is 14 % off anyway).
     // Pinned (measured, rounded up), so that a regression fails.
     let v = read_csv(include_str!("../data/steady3d_bem_validation.csv")).unwrap();
     assert_eq!(v.len(), 6 * 39);
@@ -235,32 +241,32 @@ const VALIDATION_LIMITS: &[(f64, f64, [f64; 8])] = &[
     (
         0.35,
         0.125,
-        [0.005, 0.001, 0.005, 0.005, 0.047, 0.009, 0.055, 0.020],
+        [0.005, 0.001, 0.005, 0.005, 0.047, 0.009, 0.047, 0.020],
     ),
     (
         0.7,
         0.375,
-        [0.004, 0.001, 0.003, 0.005, 0.045, 0.012, 0.050, 0.038],
+        [0.004, 0.001, 0.003, 0.005, 0.045, 0.012, 0.042, 0.038],
     ),
     (
         0.27,
         0.375,
-        [0.007, 0.001, 0.003, 0.007, 0.034, 0.014, 0.034, 0.017],
+        [0.007, 0.001, 0.003, 0.007, 0.034, 0.014, 0.028, 0.017],
     ),
     (
         0.85,
         0.125,
-        [0.006, 0.001, 0.008, 0.005, 0.026, 0.017, 0.039, 0.035],
+        [0.006, 0.001, 0.008, 0.005, 0.026, 0.017, 0.037, 0.035],
     ),
     (
         1.4,
         0.125,
-        [0.005, 0.001, 0.005, 0.006, 0.091, 0.020, 0.145, 0.048],
+        [0.005, 0.001, 0.005, 0.006, 0.091, 0.020, 0.149, 0.048],
     ),
     (
         3.0,
         0.375,
-        [0.005, 0.001, 0.006, 0.010, 0.196, 0.094, 0.224, 0.126],
+        [0.005, 0.001, 0.006, 0.010, 0.196, 0.094, 0.177, 0.125],
     ),
 ];
 
