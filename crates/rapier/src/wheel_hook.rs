@@ -180,7 +180,7 @@ pub(crate) fn wheel_manifold(
         WheelContact::Crowned { a1, b1 } => {
             let s = p_force.cbrt();
             let (a, b) = (a1 * s, b1 * s);
-            let Some(law3) = laws.get(a / b, pair.nu.clamp(0.0, 0.5)).copied() else {
+            let Some(law3) = laws.get(a / b, pair.nu.clamp(0.0, 0.5)) else {
                 counts.coulomb_unsupported += n_contacts;
                 rec.q_used = Vec3::ZERO;
                 rec.target = Vec3::ZERO;
