@@ -3,7 +3,7 @@
 use super::{ContactGeometry, ContactHistory, PairBody, PairConstants, TangentialLaw};
 use crate::hertz;
 use crate::kinematics::{BodyMotion, ContactRates, contact_rates_and_approach};
-use crate::material::Surface;
+use crate::material::{PairMaterial, Surface};
 use crate::rolling_torque::{RollingInput, epsd_rolling_inertia};
 use crate::vector::{Vec2, Vec3};
 
@@ -73,8 +73,7 @@ pub fn pair_force<T: TangentialLaw>(
     dt: f64,
 ) -> PairForces {
     let delta = g.overlap;
-    let m_star = PairBody::reduced_mass(p, q).unwrap_or(f64::NAN);
-    let pm = c.pair_material(p.surface, q.surface);
+    let (m_star, pm) = reduced_mass_and_material(c, p, q);
     if !(delta > 0.0 && m_star > 0.0 && finite(pm.r_star)) {
         let released = release(c, p.surface, q.surface, h);
         return PairForces {
@@ -192,6 +191,34 @@ pub fn pair_force<T: TangentialLaw>(
 #[allow(clippy::eq_op)] // `x - x` is the point: 0 or NaN
 pub(crate) fn finite(x: f64) -> bool {
     x - x == 0.0
+}
+
+/// The reduced mass `m*` \[kg\] (NaN when neither body can move) and the pair material (with
+/// `R*`) of a contact: [`PairBody::reduced_mass`] and [`PairConstants::pair_material`], except
+/// that for two movable spheres `m* = m_p m_q/(m_p + m_q)` and `R* = r_p r_q/(r_p + r_q)` share
+/// one reciprocal, `1/((m_p + m_q)(r_p + r_q))` (one division instead of two; a few ulps apart).
+#[inline(always)]
+fn reduced_mass_and_material(c: &PairConstants, p: &PairBody, q: &PairBody) -> (f64, PairMaterial) {
+    if let (Surface::Sphere(rp), Surface::Sphere(rq)) = (p.surface, q.surface)
+        && p.mass > 0.0
+        && q.mass > 0.0
+    {
+        let (sr, sm) = (rp + rq, p.mass + q.mass);
+        let inv = 1.0 / (sr * sm);
+        if inv > 0.0 && finite(inv) && finite(sm) {
+            let pm = PairMaterial {
+                r_star: rp * rq * sm * inv,
+                surface_p: p.surface,
+                surface_q: q.surface,
+                ..c.material
+            };
+            return (p.mass * q.mass * sr * inv, pm);
+        }
+    }
+    (
+        PairBody::reduced_mass(p, q).unwrap_or(f64::NAN),
+        c.pair_material(p.surface, q.surface),
+    )
 }
 
 /// Kuhn & Bagi's (2004) contact rates of `p` and `q` at `cp` with normal `n`, and the approach
