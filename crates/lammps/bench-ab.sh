@@ -6,6 +6,8 @@
 # LAMMPS' "CPU use" are recorded; the summary gives medians of both the wall loop time and the
 # loop's CPU time (on a shared machine the latter is the steadier measure).
 #   crates/lammps/bench-ab.sh OLD.so NEW.so EXPORT_DIR [ROUNDS=5] [STEPS=300]
+# TIERS (default "exact spring") chooses the plugin's tiers, e.g. TIERS=spring for the quick
+# comparison (the exact tier's runs take 5x longer).
 # With OLD_REF and NEW_REF set (two builds of target/release/creep-lammps-ref, e.g. before and
 # after a change of creep-law's kernel), each round also times creep-dem's cheap tier
 # (`creep-lammps-ref dem ... spring`: the DEM engine, one thread, on the same packing made
@@ -27,7 +29,9 @@ for r in $(seq "$ROUNDS"); do
       echo -e "$r\tdem/spring/$b\t$u\t100" | tee -a "$TSV"
     done
   fi
-  for v in "granular exact $NEW" "creep exact $OLD" "creep exact $NEW" "creep spring $OLD" "creep spring $NEW"; do
+  variants=("granular exact $NEW")
+  for tier in ${TIERS:-exact spring}; do variants+=("creep $tier $OLD" "creep $tier $NEW"); done
+  for v in "${variants[@]}"; do
     set -- $v
     out=$("$V/bin/lmp" -var plugin "$3" -var params "$PK/params.lmp" -var data "$PK/packing.data" -var steps "$STEPS" \
       -var style "$1" -var tier "$2" -var walls 1 -in "$IN" -log none)

@@ -385,8 +385,15 @@ void PairGranularCreep::compute(int eflag, int vflag)
       error->one(FLERR, "pair granular/creep: atom {} has radius {} m, larger than the {} m the neighbour "
                  "cut-off was set up for (pair_style granular/creep maxradius R)", tag[i], radius[i], maxrad);
 
-  batch.clear();
-  batch_e.clear();
+  // The batch buffers hold one entry per neighbour-list entry at most: sized once per build
+  // (no push_back, with its capacity check, per contact).
+  if (batch.size() < slot.size()) {
+    batch.resize(slot.size());
+    batch_e.resize(slot.size());
+  }
+  CreepLammpsPair *const bp = batch.data();
+  int *const be = batch_e.data();
+  size_t n = 0;
   double touching_here = 0.0;
 
   // 1. The touching pairs, in neighbour-list order, body p the lower tag; each history stays
@@ -407,19 +414,18 @@ void PairGranularCreep::compute(int eflag, int vflag)
       }
       if (s < 0) s = nslots++;
       const bool swap = tag[i] > tag[j];
-      CreepLammpsPair c;
+      CreepLammpsPair &c = bp[n];
       c.p = swap ? j : i;
       c.q = swap ? i : j;
       c.slot = s;
-      batch.push_back(c);
-      batch_e.push_back(e0 + jj);
+      be[n] = e0 + jj;
+      n++;
       if (c.p < nlocal) touching_here += 1.0;
     }
   }
 
   // 2. One call into the law: it reads the atoms, steps the histories in place in its store and
   // adds the forces and torques of the owned atoms.
-  const size_t n = batch.size();
   if (evflag) batch_force.resize(3 * n);
   batch_touching.resize(n);
   size_t dropped = 0;

@@ -361,7 +361,7 @@ where
                 Default::default()
             }
         };
-        if !(f.force_p.is_finite() && f.torque_p.is_finite() && f.torque_q.is_finite()) {
+        if !all_finite(&[f.force_p, f.torque_p, f.torque_q]) {
             return Err(non_finite(f.force_p.x));
         }
         if p < nlocal {
@@ -386,21 +386,35 @@ where
 /// Whether every atom of the arrays passes the per-contact checks of [`compute_pairs`]: finite
 /// position, velocity and angular velocity, radius and mass finite and > 0. Branch-free
 /// accumulation over the arrays (no early exit: the common answer is yes).
+#[allow(clippy::eq_op)] // `x - x` is the point: 0 or NaN
 fn atoms_valid(atoms: &Atoms<'_>) -> bool {
+    // `x - x` is 0 for a finite x and NaN otherwise; a sum of them is 0 iff all are finite.
     let finite3 = |v: &[[f64; 3]]| {
-        v.iter().fold(true, |ok, a| {
-            ok & a[0].is_finite() & a[1].is_finite() & a[2].is_finite()
-        })
+        v.iter().fold(0.0, |acc, a| {
+            acc + ((a[0] - a[0]) + (a[1] - a[1]) + (a[2] - a[2]))
+        }) == 0.0
     };
     let positive = |v: &[f64]| {
-        v.iter()
-            .fold(true, |ok, &a| ok & (a.is_finite() & (a > 0.0)))
+        v.iter().fold(true, |ok, &a| ok & (a > 0.0))
+            && v.iter().fold(0.0, |acc, &a| acc + (a - a)) == 0.0
     };
     finite3(atoms.x)
         && finite3(atoms.v)
         && finite3(atoms.omega)
         && positive(atoms.radius)
         && positive(atoms.mass)
+}
+
+/// Whether every component of `v` is finite, as [`Vec3::is_finite`] of each, in the
+/// floating-point domain: `x - x` is 0 for a finite `x` and NaN otherwise, so the sum is 0
+/// exactly when all are finite (LLVM lowers `is_finite` to integer tests of the bit pattern,
+/// a dozen operations per vector; this is two per component).
+#[inline(always)]
+#[allow(clippy::eq_op)] // `x - x` is the point: 0 or NaN
+fn all_finite(v: &[Vec3]) -> bool {
+    v.iter().fold(0.0, |acc, c| {
+        acc + ((c.x - c.x) + (c.y - c.y) + (c.z - c.z))
+    }) == 0.0
 }
 
 #[inline(always)]

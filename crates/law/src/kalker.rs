@@ -64,8 +64,10 @@ pub(crate) fn creepage_n(s: f64, c11: f64) -> f64 {
 /// against libm). It replaces the system libm's `cbrt` in Kalker's `F_ss` ([`steady_creepage_n`]), the
 /// creep term's hot path in every host: that one costs more than twice
 /// as much (measured side by side, `cargo bench -p creep-law --bench cbrt`: 8.1 against 19.0
-/// ns per call).
-#[inline]
+/// ns per call). Always inlined: the cheap tier calls it once per creeping contact, and as a
+/// call it made the caller spill and reload every live vector register around it (the SysV
+/// ABI saves none), seen in the LAMMPS plugin's profile.
+#[inline(always)]
 pub fn cbrt(x: f64) -> f64 {
     // Evans' constants: B1 = (1023 - 1023/3 - 0.03306235651) 2^20, B2 the same for subnormals
     // (scaled by 2^54 first); P0..P4 the polynomial of `(t^3/x)` that corrects the estimate.

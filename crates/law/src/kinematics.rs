@@ -86,7 +86,8 @@ pub fn contact_rates_and_approach(
             let rho_p = (point - p.position).dot(n);
             let rho_q = (q.position - point).dot(n);
             let d = rho_p + rho_q;
-            if d > 0.0 && d.is_finite() {
+            // `finite`: `d.is_finite()` tested in the FP domain (see its docs).
+            if d > 0.0 && crate::pair::finite(d) {
                 // c' = v_p + rho_p n',  n' = (v_q - v_p)_t / d.
                 p.velocity + (q.velocity - p.velocity) * (rho_p / d)
             } else {

@@ -48,6 +48,7 @@ mod tiers;
 pub use constants::{ContactGeometry, PairBody, PairConstants};
 pub use damping::{MIN_RESTITUTION, damping_coefficient};
 pub use history::ContactHistory;
+pub(crate) use kernel::finite;
 pub use kernel::{PairDissipation, PairForces, pair_force, release, rotate_about, rotate_to};
 pub use tiers::{Cheap, CheapHistory, Exact, TangentialLaw, TangentialStep};
 

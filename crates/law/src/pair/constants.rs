@@ -127,7 +127,7 @@ impl PairBody {
     /// Whether the contact can move the body (finite mass > 0).
     #[inline]
     fn movable(&self) -> bool {
-        self.mass > 0.0 && self.mass.is_finite()
+        self.mass > 0.0 && super::kernel::finite(self.mass)
     }
 
     /// The reduced mass `m* = 1/(1/m_p + 1/m_q)` \[kg\] of a pair, an immovable body counting
@@ -163,7 +163,7 @@ impl ContactGeometry {
     pub fn sphere_sphere(xp: Vec3, rp: f64, xq: Vec3, rq: f64) -> Option<Self> {
         let d = xq - xp;
         let dist = d.length();
-        if !(dist.is_finite() && dist > f64::MIN_POSITIVE) {
+        if !(dist > f64::MIN_POSITIVE && super::kernel::finite(dist)) {
             return None;
         }
         let normal = d * (1.0 / dist);

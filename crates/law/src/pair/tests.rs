@@ -424,3 +424,89 @@ fn inlined_kuhn_creepage_equals_the_steady_law() {
         }
     }
 }
+
+#[test]
+fn creep_per_force_equals_the_steady_law() {
+    // The cheap tier's creep displacement per unit force, `min(F_ss |du_roll|, |Q|/k) / |Q|`,
+    // against the same evaluated from SteadyLaw::creepage_for_force: Kalker's law through the
+    // identity `1 - c = s/(1 + c + c^2)` (rounding apart: the steady law's `1 - c` loses
+    // `log10(3/s)` digits to cancellation, and `1 - s` near s = 1 is ill-conditioned for
+    // both, so the bound is `4e-16 (1 + 3/s + 1/(1 - s))` relative), and
+    // against the binomial series of `1 - (1 - s)^(1/3)` at small `s`, where `1 - c` is
+    // inaccurate; the fitted law and the edge cases (mu P = inf, 0, NaN, a = 0) take the general
+    // path, bit for bit.
+    use crate::steady_law::SteadyLaw;
+    let c11 = kalker::c11(0.25);
+    let kuhn = SteadyLaw::with_c11(CreepModel::Kuhn, 0.25, c11);
+    let fitted = SteadyLaw::with_c11(CreepModel::Fitted, 0.25, c11);
+    let (g, a, mu_p) = (2.9e7, 3.1e-5, 0.7);
+    let reference = |law: &SteadyLaw, q: f64, roll: f64, m: f64, a: f64, k: f64| {
+        (law.creepage_for_force(q, m, g, a) * roll).min(q / k) / q
+    };
+    let mut checked = 0;
+    for i in 1..=1200 {
+        let s = f64::from(i) / 1000.0; // past the Coulomb limit too (s > 1)
+        let q = s * mu_p;
+        let a = a * (1.0 + f64::from(i % 7));
+        for (roll, k) in [(1e-12, 1e5), (1e-9, 1e5), (1e-7, 1e9), (3e-5, 1e9)] {
+            let got = tiers::creep_per_force(&kuhn, q * q, roll, mu_p, g, a, k);
+            let want = reference(&kuhn, q, roll, mu_p, a, k);
+            // Near s = 1, `1 - s` turns an ulp of `s` (here `|Q| (1/(mu P))` against the
+            // steady law's `|Q|/(mu P)`) into a relative error `eps s/(1 - s)` of `1 - s`, a third
+            // of it in `c`: the condition number of the closed form there, for both.
+            let cond = if s < 1.0 { 1.0 / (1.0 - s) } else { 0.0 };
+            let tol = 4e-16 * (1.0 + 3.0 / s.min(1.0) + cond) * want;
+            assert!(
+                got > 0.0 && (got - want).abs() <= tol,
+                "s {s} roll {roll} k {k}: {got:e} against {want:e}"
+            );
+            checked += 1;
+            // The general path, bit for bit.
+            let got = tiers::creep_per_force(&fitted, q * q, roll, mu_p, g, a, k);
+            let want = reference(&fitted, q, roll, mu_p, a, k);
+            assert_eq!(got.to_bits(), want.to_bits(), "fitted s {s}");
+        }
+    }
+    assert_eq!(checked, 4800);
+    // Both the creep and the cap |Q|/k occur above (the cap for the large increments).
+    let creeping = tiers::creep_per_force(&kuhn, 0.25, 1e-12, 1.0, g, a, 1e5);
+    let capped = tiers::creep_per_force(&kuhn, 0.25, 3e-5, 1.0, g, a, 1e9);
+    assert!(
+        creeping > 0.0 && creeping < 1e-5 && capped == 1e-9,
+        "{creeping} {capped}"
+    );
+    // Small force ratios: Kalker's series `1 - (1 - s)^(1/3) = s/3 + s^2/9 + 5 s^3/81 +
+    // 10 s^4/243 + 22 s^5/729 + 154 s^6/6561 + ...` (binomial series), so `F_ss/|Q| = 3 (1/3 +
+    // s/9 + 5 s^2/81 + ...)/(G a^2 C11)` (truncated: < 1e-19 relative at s = 1e-3), down to
+    // s = 1e-20, where the `1 - c` form gives 0; the cap 1/k far away (k = 1e-30 N/m).
+    for s in [1e-20, 1e-16, 1e-12, 1e-8, 1e-4, 1e-3] {
+        let q = s * mu_p;
+        let series = 3.0
+            * (1.0 / 3.0
+                + s / 9.0
+                + 5.0 * s * s / 81.0
+                + 10.0 * s.powi(3) / 243.0
+                + 22.0 * s.powi(4) / 729.0
+                + 154.0 * s.powi(5) / 6561.0)
+            / (g * a * a * c11);
+        let got = tiers::creep_per_force(&kuhn, q * q, 1.0, mu_p, g, a, 1e-30);
+        assert!(
+            (got / series - 1.0).abs() < 1e-15,
+            "s {s}: {got:e} against {series:e}"
+        );
+    }
+    // The general path's edge cases, bit for bit with the reference.
+    for (q, m, a) in [
+        (0.3, f64::INFINITY, a),
+        (0.3, 0.0, a),
+        (0.3, mu_p, 0.0),
+        (0.3, f64::NAN, a),
+    ] {
+        let got = tiers::creep_per_force(&kuhn, q * q, 1e-9, m, g, a, 1e5);
+        let want = reference(&kuhn, q, 1e-9, m, a, 1e5);
+        assert!(
+            got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+            "q {q} mu P {m} a {a}: {got} against {want}"
+        );
+    }
+}

@@ -2,6 +2,7 @@
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
 use super::PairConstants;
+use super::kernel::finite;
 use crate::LawError;
 use crate::creep::{CreepInput, CreepLaw, CreepState};
 use crate::kalker;
@@ -172,7 +173,7 @@ impl TangentialLaw for Cheap {
         du_disp: Vec2,
         du_roll: Vec2,
     ) -> TangentialStep {
-        if !(p > 0.0 && p.is_finite() && a > 0.0 && a.is_finite()) {
+        if !(p > 0.0 && a > 0.0 && finite(p) && finite(a)) {
             let slip = Self::elastic_energy(h, pm);
             *h = CheapHistory::default();
             return TangentialStep {
@@ -190,22 +191,18 @@ impl TangentialLaw for Cheap {
         } else {
             0.0
         };
-        let roll = du_roll.length();
+        let roll2 = du_roll.length_squared();
         let mut creep_vec = Vec2::ZERO;
         let mut creep_e = 0.0;
-        if roll > 0.0 && roll.is_finite() && q2 > 0.0 {
-            let q_abs = q2.sqrt();
-            // From the stored force alone: off the chain of divisions that runs through the
-            // new `mu P` and `F_ss`.
-            let inv_q = 1.0 / q_abs;
-            let f = kuhn_creepage(&c.steady, q_abs, mu_p, pm.g, a);
-            let creep = (f * roll).min(q_abs / k);
-            if creep.is_finite() && creep > 0.0 {
-                creep_vec = q_old * (creep * inv_q);
-                creep_e = q_abs * creep;
+        if roll2 > 0.0 && q2 > 0.0 && finite(roll2) {
+            // The creep displacement over |Q|, so that Q/|Q| needs no division of its own.
+            let f = creep_per_force(&c.steady, q2, roll2.sqrt(), mu_p, pm.g, a, k);
+            if f > 0.0 && finite(f) {
+                creep_vec = q_old * f;
+                creep_e = q2 * f;
             }
         }
-        let du_eff = if du_disp.is_finite() {
+        let du_eff = if finite(du_disp.x) && finite(du_disp.y) {
             du_disp - creep_vec
         } else {
             -creep_vec
@@ -215,7 +212,7 @@ impl TangentialLaw for Cheap {
         // for a sliding contact, in a function kept out of line so that the compiler does not
         // evaluate them for every contact and select (it did: 8 % of the plugin's run).
         let t2 = trial.length_squared();
-        let (q, slip) = if mu_p.is_finite() && t2 > mu_p * mu_p {
+        let (q, slip) = if t2 > mu_p * mu_p && finite(mu_p) {
             onto_coulomb_limit(trial, t2, mu_p, k)
         } else {
             (trial, 0.0)
@@ -272,6 +269,55 @@ impl TangentialLaw for Cheap {
 fn onto_coulomb_limit(trial: Vec2, t2: f64, mu_p: f64, k: f64) -> (Vec2, f64) {
     let q = trial * (mu_p / t2.sqrt());
     (q, q.dot(trial - q) / k)
+}
+
+/// The cheap tier's creep displacement of one step divided by the stored force, `min(F_ss
+/// |du_roll|, |Q|/k) / |Q|` \[1/N\] (`q2 = |Q|^2 > 0` \[N^2\], `roll = |du_roll| > 0` \[m\], Coulomb
+/// limit `mu_p` \[N\], combined shear modulus `g` \[Pa\], contact radius `a` \[m\], spring stiffness
+/// `k` \[N/m\]): the creep term subtracts `Q * creep_per_force(..)` from the displacement.
+///
+/// For Kuhn's law (Kalker 2000's closed form `F_ss = 3 mu P (1 - c)/(G a^2 C11)`,
+/// `c = (1 - s)^(1/3)`, `s = |Q|/(mu P)`) with `0 < s <= 1` the identity `(1 - c)(1 + c + c^2) =
+/// 1 - c^3 = s` gives `F_ss/|Q| = 3/(G a^2 C11 (1 + c + c^2))`: no cancellation in `1 - c`
+/// (at small `s` this is closer to Kalker's linear limit `1/(G a^2 C11)` than `1 - c`,
+/// which rounds to 0 below `s ~ 1e-16`) and, with the cap `|Q|/k` compared by a product, one
+/// division for the result instead of four (`|Q|/(mu P)` is a product with `1/(mu P)`, which
+/// does not wait for `|Q|`). Past the Coulomb limit (`|Q| > mu P`, `s` clamped to 1, `c = 0`)
+/// `F_ss/|Q| = 3 mu P/(G a^2 C11 |Q|)`. Every other case (another steady law, `mu P` or `G
+/// a^2` not finite and > 0) is [`kuhn_creepage`]'s, divided by `|Q|`. Test
+/// `creep_per_force_equals_the_steady_law`.
+#[inline(always)]
+pub(super) fn creep_per_force(
+    law: &SteadyLaw,
+    q2: f64,
+    roll: f64,
+    mu_p: f64,
+    g: f64,
+    a: f64,
+    k: f64,
+) -> f64 {
+    let ga2 = g * a * a;
+    if let SteadyLaw::Kuhn { c11 } = *law
+        && mu_p > 0.0
+        && mu_p < f64::INFINITY
+        && ga2 > 0.0
+        && ga2 < f64::INFINITY
+    {
+        let inv_mu_p = 1.0 / mu_p;
+        let q_abs = q2.sqrt();
+        let s = q_abs * inv_mu_p;
+        let gc = ga2 * c11;
+        let (num, den) = if s < 1.0 {
+            let c = kalker::cbrt(1.0 - s);
+            (3.0 * roll, gc * (1.0 + c + c * c))
+        } else {
+            (3.0 * roll * mu_p, gc * q_abs)
+        };
+        // min(num/den, 1/k) with one division: num/den < 1/k <=> num k < den (all > 0).
+        return if num * k < den { num / den } else { 1.0 / k };
+    }
+    let q_abs = q2.sqrt();
+    (kuhn_creepage(law, q_abs, mu_p, g, a) * roll).min(q_abs / k) / q_abs
 }
 
 /// [`SteadyLaw::creepage_for_force`] inlined into the cheap tier: for Kuhn's law (Kalker's
