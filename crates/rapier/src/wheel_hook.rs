@@ -467,14 +467,29 @@ impl ExactPatch {
             return;
         }
         let keep = loaded_contact(rigid);
-        rigid.solver_contacts.swap(0, keep);
-        rigid.solver_contacts.truncate(1);
-        let sc = &mut rigid.solver_contacts[0];
-        sc.anchor1 = vf(a1);
-        sc.anchor2 = vf(a2);
-        sc.dist = dist as f32;
-        sc.tangent_velocity = vf(tv);
+        keep_one_contact(rigid, keep, a1, a2, dist, tv);
     }
+}
+
+/// Reduces the manifold's solver contacts to the one at index `keep` (the most loaded, so the
+/// solver's warm start carries over) and places it at the patch: anchors `a1` on collider 1 and
+/// `a2` on collider 2 \[m\], separation `dist` along the normal \[m\] (negative: overlap),
+/// target tangent velocity `tv` \[m/s\].
+fn keep_one_contact(
+    rigid: &mut ModifiableManifold,
+    keep: usize,
+    a1: Vec3,
+    a2: Vec3,
+    dist: f64,
+    tv: Vec3,
+) {
+    rigid.solver_contacts.swap(0, keep);
+    rigid.solver_contacts.truncate(1);
+    let sc = &mut rigid.solver_contacts[0];
+    sc.anchor1 = vf(a1);
+    sc.anchor2 = vf(a2);
+    sc.dist = dist as f32;
+    sc.tangent_velocity = vf(tv);
 }
 
 /// The index of the solver contact whose manifold point carried the largest normal impulse
@@ -549,11 +564,5 @@ fn patch_contact(
     } else {
         (on_wheel - n * dist, on_wheel)
     };
-    rigid.solver_contacts.swap(0, keep);
-    rigid.solver_contacts.truncate(1);
-    let sc = &mut rigid.solver_contacts[0];
-    sc.anchor1 = vf(a1);
-    sc.anchor2 = vf(a2);
-    sc.dist = dist as f32;
-    sc.tangent_velocity = vf(tv);
+    keep_one_contact(rigid, keep, a1, a2, dist, tv);
 }
