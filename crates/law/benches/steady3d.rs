@@ -6,9 +6,9 @@
 //! (the thread's CPU time from `/proc/thread-self/schedstat`, as the `cbrt` bench does), the
 //! variants interleaved in every round, medians over the rounds and their ratios to `F_ss`.
 //!
-//! The table also times main's law before this round (a verbatim copy of that evaluation,
-//! `steady3d/before.rs`: two rows' translations between rows, their loads blended),
-//! interleaved with the current one in every round, so before/after is one run.
+//! The table also times the previous law, `Steady3d::two_row_blend` (two rows' translations
+//! between rows, their loads blended; at a row the same law), interleaved with the current one
+//! in every round, so before/after is one run.
 //!
 //! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md);
 //! `-- --rounds-only` prints the table alone, `-- --rounds N` takes N rounds (default 11).
@@ -19,9 +19,6 @@ use std::time::Instant;
 use creep_law::steady3d::Steady3d;
 use creep_law::{SteadyLaw, kalker};
 use criterion::{Criterion, criterion_group};
-
-#[path = "steady3d/before.rs"]
-mod before;
 
 const BATCH: usize = 64;
 
@@ -157,13 +154,13 @@ fn cpu_table(rounds: usize) {
         ("a/b 3, nu 0.375 (between rows)", 3.0, 0.375),
         ("a/b 1.4, nu 0.125 (between rows)", 1.4, 0.125),
     ];
-    let laws: Vec<(&str, Steady3d, before::Steady3d)> = cases
+    let laws: Vec<(&str, Steady3d, Steady3d)> = cases
         .iter()
         .map(|&(name, ab, nu)| {
             (
                 name,
                 Steady3d::new(ab, nu).unwrap(),
-                before::Steady3d::new(ab, nu).unwrap(),
+                Steady3d::two_row_blend(ab, nu).unwrap(),
             )
         })
         .collect();
