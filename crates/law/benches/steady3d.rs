@@ -12,6 +12,13 @@
 //!
 //! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md);
 //! `-- --rounds-only` prints the table alone, `-- --rounds N` takes N rounds (default 11).
+//!
+//! `-- --count CASE [--blend] [--passes P]` evaluates one variant only (`CASE` 0-4: the
+//! table's cases in order; `--blend`: `Steady3d::two_row_blend`; `CASE` `fss`: `F_ss`; `P`
+//! passes over the 4096 inputs, default 20) in the function `count_batch`, for a load-free
+//! instruction count per evaluation:
+//! `valgrind --tool=callgrind --toggle-collect='*count_batch*' BENCH_BINARY --count 2`
+//! (instructions of `count_batch` / (4096 P)).
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -134,27 +141,33 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// The table's cases: name, `a/b`, `nu`.
+const CASES: [(&str, f64, f64); 5] = [
+    ("a/b 0.5, nu 0.25 (a node)", 0.5, 0.25),
+    ("a/b 0.5, nu 0.125 (a row)", 0.5, 0.125),
+    ("a/b 0.35, nu 0.125 (between rows)", 0.35, 0.125),
+    ("a/b 3, nu 0.375 (between rows)", 3.0, 0.375),
+    ("a/b 1.4, nu 0.125 (between rows)", 1.4, 0.125),
+];
+
+/// 4096 inputs of the bench's distribution (creepages up to full slip, spins both ways).
+fn table_inputs() -> Vec<[f64; 3]> {
+    (0..4096)
+        .map(|i| {
+            let t = i as f64 * 0.37;
+            [0.4 * t.sin(), 0.3 * (1.3 * t).cos(), 0.8 * (0.7 * t).sin()]
+        })
+        .collect()
+}
+
 /// The interleaved CPU-time table (module documentation).
 fn cpu_table(rounds: usize) {
     let nu = 0.25;
     let kuhn = SteadyLaw::Kuhn {
         c11: kalker::c11(nu),
     };
-    // 4096 inputs of the bench's distribution (creepages up to full slip, spins both ways).
-    let xs: Vec<[f64; 3]> = (0..4096)
-        .map(|i| {
-            let t = i as f64 * 0.37;
-            [0.4 * t.sin(), 0.3 * (1.3 * t).cos(), 0.8 * (0.7 * t).sin()]
-        })
-        .collect();
-    let cases = [
-        ("a/b 0.5, nu 0.25 (a node)", 0.5, nu),
-        ("a/b 0.5, nu 0.125 (a row)", 0.5, 0.125),
-        ("a/b 0.35, nu 0.125 (between rows)", 0.35, 0.125),
-        ("a/b 3, nu 0.375 (between rows)", 3.0, 0.375),
-        ("a/b 1.4, nu 0.125 (between rows)", 1.4, 0.125),
-    ];
-    let laws: Vec<(&str, Steady3d, Steady3d)> = cases
+    let xs = table_inputs();
+    let laws: Vec<(&str, Steady3d, Steady3d)> = CASES
         .iter()
         .map(|&(name, ab, nu)| {
             (
@@ -243,9 +256,56 @@ fn cpu_table(rounds: usize) {
     );
 }
 
+/// One variant's evaluations over `xs`, `passes` times, out of line (the `--count` mode).
+#[inline(never)]
+fn count_batch(xs: &[[f64; 3]], passes: usize, f: &dyn Fn(&[f64; 3]) -> f64) -> f64 {
+    let mut acc = 0.0;
+    for _ in 0..passes {
+        for x in xs {
+            acc += f(black_box(x));
+        }
+    }
+    acc
+}
+
+/// The `--count` mode (module documentation).
+fn count_mode(case: &str, blend: bool, passes: usize) {
+    let xs = table_inputs();
+    let acc = if case == "fss" {
+        let kuhn = SteadyLaw::Kuhn {
+            c11: kalker::c11(0.25),
+        };
+        count_batch(&xs, passes, &|v| kuhn.creepage_n(v[0].abs().min(0.99)))
+    } else {
+        let (name, ab, nu) = CASES[case.parse::<usize>().expect("--count CASE: 0-4 or fss")];
+        let law = if blend {
+            Steady3d::two_row_blend(ab, nu).unwrap()
+        } else {
+            Steady3d::new(ab, nu).unwrap()
+        };
+        println!("{name}, {}", if blend { "two_row_blend" } else { "new" });
+        count_batch(&xs, passes, &|v| {
+            let l = law.loads(v[0], v[1], v[2]);
+            l.fx + l.fy + l.mz
+        })
+    };
+    println!("{} evaluations (checksum {acc})", passes * xs.len());
+}
+
 criterion_group!(benches, bench_steady3d);
 
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(i) = args.iter().position(|a| a == "--count") {
+        let passes = args
+            .iter()
+            .position(|a| a == "--passes")
+            .and_then(|i| args.get(i + 1)?.parse().ok())
+            .unwrap_or(20);
+        let case = args.get(i + 1).map(String::as_str).unwrap_or("0");
+        count_mode(case, args.iter().any(|a| a == "--blend"), passes);
+        return;
+    }
     let rounds_only = std::env::args().any(|a| a == "--rounds-only");
     let rounds = std::env::args()
         .position(|a| a == "--rounds")
