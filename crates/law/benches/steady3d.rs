@@ -18,7 +18,9 @@
 //! passes over the 4096 inputs, default 20) in the function `count_batch`, for a load-free
 //! instruction count per evaluation:
 //! `valgrind --tool=callgrind --toggle-collect='*count_batch*' BENCH_BINARY --count 2`
-//! (instructions of `count_batch` / (4096 P)).
+//! (instructions of `count_batch` / (4096 P)). `-- --time CASE [--blend]` prints that
+//! variant's CPU ns per evaluation alone (median of 3 measurements of 1000 passes), for
+//! alternating two builds of this bench in one script (e.g. main's and a branch's).
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -292,6 +294,39 @@ fn count_mode(case: &str, blend: bool, passes: usize) {
     println!("{} evaluations (checksum {acc})", passes * xs.len());
 }
 
+/// The `--time` mode (module documentation): CPU ns per evaluation of one variant, the median
+/// of 3 measurements of 1000 passes (for alternating two binaries in a script).
+fn time_mode(case: &str, blend: bool) {
+    let xs = table_inputs();
+    let (ab, nu) = if case == "fss" {
+        (1.0, 0.25)
+    } else {
+        let c = CASES[case.parse::<usize>().expect("--time CASE: 0-4 or fss")];
+        (c.1, c.2)
+    };
+    let law = if blend {
+        Steady3d::two_row_blend(ab, nu).unwrap()
+    } else {
+        Steady3d::new(ab, nu).unwrap()
+    };
+    let kuhn = SteadyLaw::Kuhn {
+        c11: kalker::c11(0.25),
+    };
+    let t: Vec<f64> = (0..3)
+        .map(|_| {
+            if case == "fss" {
+                ns_per_call(&xs, 1000, &|v| kuhn.creepage_n(v[0].abs().min(0.99)))
+            } else {
+                ns_per_call(&xs, 1000, &|v| {
+                    let l = law.loads(v[0], v[1], v[2]);
+                    l.fx + l.fy + l.mz
+                })
+            }
+        })
+        .collect();
+    println!("{:.2}", median(t));
+}
+
 criterion_group!(benches, bench_steady3d);
 
 fn main() {
@@ -304,6 +339,11 @@ fn main() {
             .unwrap_or(20);
         let case = args.get(i + 1).map(String::as_str).unwrap_or("0");
         count_mode(case, args.iter().any(|a| a == "--blend"), passes);
+        return;
+    }
+    if let Some(i) = args.iter().position(|a| a == "--time") {
+        let case = args.get(i + 1).map(String::as_str).unwrap_or("0");
+        time_mode(case, args.iter().any(|a| a == "--blend"));
         return;
     }
     let rounds_only = std::env::args().any(|a| a == "--rounds-only");
