@@ -407,6 +407,11 @@ fn surrounding(ab: f64, nu: f64) -> [((usize, usize), f64); 4] {
 
 /// The shape constants at the axis ratio `ab = a/b` and `nu` (module documentation: piecewise
 /// linear in `ln(a/b)` and in `nu`, constant beyond the end rows).
+///
+/// A convex combination of admissible nodes is admissible, but in floating point only to
+/// rounding (`mb = 1` at four nodes blended gave `0.9999999999999999`, and `Steady3d::new`
+/// failed at e.g. `a/b = 1.04, nu = 0.3`); the bounds of [`Node::is_admissible`] are applied
+/// to the sum (a change of at most a rounding error).
 pub fn node_at(ab: f64, nu: f64) -> Node {
     let mut out = [0.0; 18];
     for ((i, j), w) in surrounding(ab, nu) {
@@ -415,7 +420,18 @@ pub fn node_at(ab: f64, nu: f64) -> Node {
             out[k] += w * v[k];
         }
     }
-    Node::from_array(out)
+    let mut n = Node::from_array(out);
+    n.kx = n.kx.clamp(2.0, 3.0);
+    n.ky = n.ky.clamp(2.0, 3.0);
+    n.mb = n.mb.max(1.0);
+    n.lam = n.lam.clamp(0.0, 1.0);
+    n.beta = n.beta.clamp(0.0, 1.0);
+    for v in [
+        &mut n.ma, &mut n.p1, &mut n.q1, &mut n.q2, &mut n.p2, &mut n.q3, &mut n.gam,
+    ] {
+        *v = v.max(0.0);
+    }
+    n
 }
 
 impl Steady3d {
