@@ -509,7 +509,10 @@ impl Steady3d {
         // One test for the rare inputs (not finite, beyond the clamp, all tiny): the sum of
         // the magnitudes is NaN or above the clamp for the first two.
         let (ax, ay, az) = (xi_n.abs(), eta_n.abs(), phi_n.abs());
-        if !(ax + ay + az <= CREEPAGE_CLAMP && ax.max(ay).max(az) >= TINY_CREEPAGE) {
+        // The largest magnitude by selects (one `maxsd` each; a NaN fails the first test).
+        let m = if ax > ay { ax } else { ay };
+        let m = if m > az { m } else { az };
+        if !(ax + ay + az <= CREEPAGE_CLAMP && m >= TINY_CREEPAGE) {
             return self.loads_rare(xi_n, eta_n, phi_n);
         }
         self.loads_in_range(xi_n, eta_n, phi_n)
@@ -565,14 +568,10 @@ impl Steady3d {
         // terms (module documentation).
         if self.corr.on {
             let e2 = e * e;
-            let t = match self
-                .corr
-                .terms(&self.rows, phi_n, e2, (e2 * e2) * (e2 * e2))
-            {
-                Some(t) => t,
-                None => self.blended_terms_beyond(phi_n, e),
-            };
-            self.with_spin(phi_n, tx0, ty0, ml, &t)
+            match self.corr.terms(phi_n, e2, (e2 * e2) * (e2 * e2)) {
+                Some(t) => self.with_spin(phi_n, tx0, ty0, ml, &t),
+                None => self.beyond_the_knots(phi_n, e, tx0, ty0, ml),
+            }
         } else {
             self.two_rows_blended(phi_n, e, tx0, ty0, ml)
         }
@@ -603,8 +602,9 @@ impl Steady3d {
         let (inv_a, inv_b) = (b * i, a * i);
         let (e, ml) = if has_t {
             let e = saturation_of_ratio(t02.sqrt() * t02 * t02 * r4 * inv_a, q * q * r4 * inv_a);
-            let ml = -self.c.c23 * eta_n * (1.0 - e)
-                - self.nu_t * e * e * e * eta_n * eta_n * eta_n * q * t02 * inv_a;
+            // nu t e^3 eta^3/r^4 with 1/r^4 = q t02/A.
+            let p = e * eta_n;
+            let ml = -self.c.c23 * eta_n * (1.0 - e) - self.nu_t * (p * p * p) * (q * t02 * inv_a);
             (e, ml)
         } else {
             (0.0, -self.c.c23 * eta_n)
@@ -668,12 +668,29 @@ impl Steady3d {
     /// parallel.
     #[inline(always)]
     fn with_spin(&self, phi_n: f64, tx0: f64, ty0: f64, ml: f64, t: &SpinTerms) -> Loads {
+        let (mut fx, mut fy) = self.force_unprojected(tx0, ty0, t);
+        // 4: the friction limit.
+        let f2 = fx * fx + fy * fy;
+        if f2 > 1.0 {
+            // Rare: a real branch (a select would put a square root and a division on every
+            // evaluation's critical path).
+            (fx, fy) = project_to_unit(fx, fy, f2);
+        }
+        // 5: moment.
+        let mz = ml * t.ml_factor + self.m_max * t.spin_moment.copysign(phi_n);
+        Loads { fx, fy, mz }
+    }
+
+    /// Steps 3-4 of the module documentation before the projection onto `|F| <= 1`: the force
+    /// for the spin terms `t` and the linear translation `t_0 = (tx0, ty0)`.
+    #[inline(always)]
+    fn force_unprojected(&self, tx0: f64, ty0: f64, t: &SpinTerms) -> (f64, f64) {
         // 3: translation t = t'/w, t' = (C11 xi, C22 eta + lam f_s).
         let (kx, ky) = (self.n.kx, self.n.ky);
         let tx = tx0;
         let ty = ty0 + t.f_sat;
         let tm2 = tx * tx + ty * ty;
-        let (mut fx, mut fy, st) = if tm2 > 0.0 {
+        let (fx, fy, st) = if tm2 > 0.0 {
             let q = kx * tx * tx + ky * ty * ty;
             let wq = t.w * q;
             let inv = 1.0 / (wq * tm2);
@@ -688,19 +705,11 @@ impl Steady3d {
         } else {
             (0.0, 0.0, 0.0)
         };
-        fx *= t.cap_x;
-        fy *= t.cap_y;
-        // 4: the rest of the spin's lateral force, the friction limit.
-        fy += t.f_rest * (1.0 - st).sqrt().sqrt();
-        let f2 = fx * fx + fy * fy;
-        if f2 > 1.0 {
-            // Rare: a real branch (a select would put a square root and a division on every
-            // evaluation's critical path).
-            (fx, fy) = project_to_unit(fx, fy, f2);
-        }
-        // 5: moment.
-        let mz = ml * t.ml_factor + self.m_max * t.spin_moment.copysign(phi_n);
-        Loads { fx, fy, mz }
+        // 4: the rest of the spin's lateral force.
+        (
+            fx * t.cap_x,
+            fy * t.cap_y + t.f_rest * (1.0 - st).sqrt().sqrt(),
+        )
     }
 
     /// The utilisation `e` of the translation alone and the moment `M_l` of lateral creepage
@@ -714,8 +723,9 @@ impl Steady3d {
         // |t0|/k = |t0|^3/q, k = q/|t0|^2 and 1/r^4 with one division.
         let inv = 1.0 / (q * r4 * t02);
         let e = saturation_of_ratio(t02.sqrt() * t02 * t02 * r4 * inv, q * q * r4 * inv);
-        let ml = -self.c.c23 * eta_n * (1.0 - e)
-            - self.nu_t * e * e * e * eta_n * eta_n * eta_n * q * t02 * inv;
+        // nu t e^3 eta^3/r^4 with 1/r^4 = q t02 inv.
+        let p = e * eta_n;
+        let ml = -self.c.c23 * eta_n * (1.0 - e) - self.nu_t * (p * p * p) * (q * t02 * inv);
         (e, ml)
     }
 

@@ -49,12 +49,20 @@ impl Steady3d {
         Ok(law)
     }
 
-    /// Between rows, `|phi_n|` outside the table's knots (rare): the blended terms from the
-    /// two rows, with the correction's continuation.
+    /// Between rows, `|phi_n|` outside the table's knots (rare): steps 3-5 on the blended
+    /// terms from the two rows, with the correction's continuation.
     #[cold]
     #[inline(never)]
-    pub(super) fn blended_terms_beyond(&self, phi_n: f64, e: f64) -> SpinTerms {
-        self.blended_terms_exact(phi_n, e, self.corr.g_beyond(phi_n))
+    pub(super) fn beyond_the_knots(
+        &self,
+        phi_n: f64,
+        e: f64,
+        tx0: f64,
+        ty0: f64,
+        ml: f64,
+    ) -> Loads {
+        let t = self.blended_terms_exact(phi_n, e, self.corr.g_beyond(phi_n));
+        self.with_spin(phi_n, tx0, ty0, ml, &t)
     }
 
     /// [`Steady3d::two_row_blend`]'s evaluation between rows: the two rows' loads blended
@@ -124,5 +132,15 @@ impl Steady3d {
             0.0
         };
         (one, blend, (1.0 - st).sqrt().sqrt())
+    }
+
+    /// Pure spin `phi_n != 0` between rows: each row's lateral force before the projection
+    /// onto `|F| <= 1` (the blend's kinks are where one of them reaches 1).
+    pub(super) fn pure_spin_rows_unprojected(&self, phi_n: f64) -> [f64; 2] {
+        let [t0, t1] = self.spin_terms::<2>(phi_n, 0.0);
+        [
+            self.force_unprojected(0.0, 0.0, &t0).1,
+            self.force_unprojected(0.0, 0.0, &t1).1,
+        ]
     }
 }

@@ -11,21 +11,39 @@
 //! with the pure spin's translation utilisation `s_t` (so that pure spin is the blend, and with
 //! translation the correction fades like that share does).
 //!
-//! Four functions of `|phi_n|` are tabulated: the two rows' spin utilisations `s_0, s_1`
-//! (step 1) and the blended shares of the spin force, `sum w_r lam_r f_s,r` and `sum w_r (1 -
-//! lam_r) f_s,r + g` (step 2 and the correction), at the knots `|phi_n| = 2^e (1 + j/8)`,
-//! `e = -7 ... 5`, `j = 0 ... 7` (105 knots, eight per octave, `0.0078 ... 64`), as `f32`
-//! (1.7 KB), interpolated linearly in `|phi_n|` in the knot interval, which the bits of
-//! `|phi_n|` index (the exponent and the three leading bits of the mantissa: no logarithm, no
-//! search). The terms that depend on the utilisations (`w`, the capacities with their floors,
-//! `1 - am s^2`, the spin moment) are computed from the interpolated `s_r` with each row's
-//! constants, as at a row (so the floors' kinks are where they belong). Outside the knots'
-//! range the terms are evaluated from the rows (exact; the correction continues as `g_0
-//! (phi_n/phi_0)^2` below the first knot, where the difference of the two evaluations is of
-//! second order in the spin, and as `g_104 phi_104/phi_n` above the last, where the spin
-//! force fades).
+//! Every spin term the translation and the moment use depends on `|phi_n|` alone except the
+//! spin moment's factor of `e` (the translation alone's utilisation), and that factor is a
+//! polynomial in `e`: so the table holds, per knot, the terms themselves (no per-call
+//! arithmetic on the rows' constants), as thirteen columns:
+//!
+//! * `w = sum w_r (1 + gam_r s_r^2)`, the two blended shares of the spin force `sum w_r lam_r
+//!   f_s,r` and `sum w_r (1 - lam_r) f_s,r + g` (the latter less its kinks, below), and the
+//!   factor of the lateral creepage's moment `1 - sum w_r am_r s_r^2`;
+//! * each row's capacities **before their floors**, `w_r (1 + gam_r s_r^2)(1 - ax_r s_r^2)`
+//!   and `w_r (1 + gam_r s_r^2)(1 - ay_r s_r^4)`, floored at zero after the interpolation (so
+//!   each floor's kink stays where it belongs instead of being interpolated across);
+//! * the spin moment's coefficients `A = sum w_r s_r`, `B = sum w_r b2_r s_r`, `C = sum w_r
+//!   b8_r s_r`: the spin moment is `A - B e^2 - C e^8`, no row's floor `max(0, 1 - b2 e^2 - b8
+//!   e^8)` being active anywhere (test `spin_moment_capacity_is_positive_at_every_node`);
+//! * the kinks of the correction: the blend's pure spin force `sum w_r min(1, U_r)` (each
+//!   row's force `U_r` projected onto `mu P`) has a kink where a row's force reaches `mu P`,
+//!   which linear interpolation would round off (1.6 % of `mu P` at `a/b = 3`); with `Q_r = w_r
+//!   (1 - U_r)/(1 - s_t)^(1/4)` the correction is `g = g_smooth + min(0, Q_0) + min(0, Q_1)`,
+//!   so `g_smooth` (in the unsaturated share's column) and `Q_0, Q_1` are tabulated and the
+//!   minima taken after the interpolation (the one translation's own pure spin force stays
+//!   below `0.86 mu P` over the table's range, so it has no such kink).
+//!
+//! The knots are `|phi_n| = 2^e (1 + j/8)`, `e = -7 ... 5`, `j = 0 ... 7` (105 knots, eight per
+//! octave, `0.0078 ... 64`); each stores its values and the differences to the next knot
+//! (`f64`, 21.8 KB in all), so the interpolation is `v + t d` per column. The knot interval and
+//! `t` come from the bits of `|phi_n|` (the exponent and the three leading bits of the mantissa
+//! index it, the mantissa below them is `t`: no logarithm, no search, no division). At the
+//! knots the table is the exact blended terms to rounding. Outside the knots' range the terms
+//! are evaluated from the rows (exact; the correction continues as `g_0 (phi_n/phi_0)^2` below
+//! the first knot, where the difference of the two evaluations is of second order in the
+//! spin, and as `g_104 phi_104/phi_n` above the last, where the spin force fades).
 
-use super::{SpinRow, SpinTerms, Steady3d};
+use super::{SpinTerms, Steady3d};
 
 /// Knots per octave, `2^PER_OCTAVE_BITS` (the leading mantissa bits index them).
 const PER_OCTAVE_BITS: u32 = 3;
@@ -43,6 +61,27 @@ const PHI_LAST: f64 = 64.0;
 const SHIFT: u32 = 52 - PER_OCTAVE_BITS;
 /// `(bits >> SHIFT)` of the first knot.
 const BASE: i64 = (1023 + E0) << PER_OCTAVE_BITS;
+/// Columns of the table (module documentation).
+pub(crate) const COLS: usize = 13;
+/// The columns: `w`, the two shares of the spin force, the lateral moment's factor.
+const W: usize = 0;
+const F_SAT: usize = 1;
+const F_REST: usize = 2;
+const ML: usize = 3;
+/// The rows' unfloored capacities along x and y.
+const CAP_X: usize = 4;
+const CAP_Y: usize = 6;
+/// The spin moment's `A, B, C`.
+const SM: usize = 8;
+/// The correction's kink terms `Q_0, Q_1`.
+const KINK: usize = 11;
+
+/// One knot: each column's value there and its difference to the next knot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Knot {
+    v: [f64; COLS],
+    d: [f64; COLS],
+}
 
 /// The tabulated spin terms between rows (module documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,8 +90,8 @@ pub(crate) struct SpinCorrection {
     pub on: bool,
     /// The correction `g` at the first and the last knot (for the spins outside the knots).
     g_ends: (f64, f64),
-    /// At each knot: `s_0, s_1, sum w_r lam_r f_s,r, sum w_r (1 - lam_r) f_s,r + g`.
-    v: [[f32; 4]; KNOTS],
+    /// The knots (module documentation).
+    k: [Knot; KNOTS],
 }
 
 /// Knot `k` on the float bits' grid, `2^e (1 + j/8)`.
@@ -62,12 +101,43 @@ pub(crate) fn knot(k: usize) -> f64 {
     2f64.powi(e as i32) * (1.0 + j / n as f64)
 }
 
+/// The knot interval of `a = |phi_n|` and the position `t` in it, in `[0, 1)`, from the bits
+/// of `a`; `None` outside the knots.
+#[inline(always)]
+fn interval(a: f64) -> Option<(usize, f64)> {
+    let bits = a.to_bits();
+    let kq = (bits >> SHIFT) as i64 - BASE;
+    if !(0..KNOTS as i64 - 1).contains(&kq) {
+        return None;
+    }
+    // The mantissa below the indexing bits as the mantissa of a float in [1, 2), minus one
+    // (exact).
+    const MANTISSA: u64 = (1 << 52) - 1;
+    let t = f64::from_bits(((bits << PER_OCTAVE_BITS) & MANTISSA) | 1f64.to_bits()) - 1.0;
+    Some((kq as usize, t))
+}
+
+/// `max(0, x)` (one instruction on x86: `maxsd`).
+#[inline(always)]
+fn floor0(x: f64) -> f64 {
+    x.max(0.0)
+}
+
+/// `min(0, x)` (one instruction on x86: `minsd`).
+#[inline(always)]
+fn ceil0(x: f64) -> f64 {
+    x.min(0.0)
+}
+
 impl SpinCorrection {
     /// No table (at a row, and the two-row blend).
     pub const OFF: SpinCorrection = SpinCorrection {
         on: false,
         g_ends: (0.0, 0.0),
-        v: [[0.0; 4]; KNOTS],
+        k: [Knot {
+            v: [0.0; COLS],
+            d: [0.0; COLS],
+        }; KNOTS],
     };
 
     /// The correction `g(phi_n) > 0` for `phi_n > 0`, from the two rows (exact).
@@ -76,22 +146,52 @@ impl SpinCorrection {
         (two - one) / h
     }
 
+    /// The table's columns at `phi_n > 0` from the two rows (exact; module documentation).
+    pub fn columns_exact(blend: &Steady3d, phi_n: f64) -> [f64; COLS] {
+        let [t0, t1] = blend.spin_terms::<2>(phi_n, 0.0);
+        let (one, two, h) = blend.pure_spin_parts(phi_n);
+        let g = (two - one) / h;
+        let t = blend.blended_terms_exact(phi_n, 0.0, g);
+        let u = blend.pure_spin_rows_unprojected(phi_n);
+        let mut out = [0.0; COLS];
+        out[W] = t.w;
+        out[F_SAT] = t.f_sat;
+        out[F_REST] = t.f_rest;
+        out[ML] = t.ml_factor;
+        for (r, tr) in [t0, t1].iter().enumerate() {
+            let (w, n) = (blend.rows[r].w, &blend.rows[r].n);
+            // At e = 0 a row's spin moment term is its utilisation s.
+            let s = tr.spin_moment;
+            let s2 = s * s;
+            let g = w * (1.0 + n.gam * s2);
+            out[CAP_X + r] = g * (1.0 - n.ax * s2);
+            out[CAP_Y + r] = g * (1.0 - n.ay * s2 * s2);
+            out[SM] += w * s;
+            out[SM + 1] += w * n.b2 * s;
+            out[SM + 2] += w * n.b8 * s;
+            let q = w * (1.0 - u[r]) / h;
+            out[KINK + r] = q;
+            out[F_REST] -= ceil0(q);
+        }
+        out
+    }
+
     /// The table for the two-row law `blend` (module documentation).
     pub fn build(blend: &Steady3d) -> SpinCorrection {
         let mut out = SpinCorrection {
             on: true,
             g_ends: (Self::g_exact(blend, PHI0), Self::g_exact(blend, PHI_LAST)),
-            v: [[0.0; 4]; KNOTS],
+            ..Self::OFF
         };
-        for (k, v) in out.v.iter_mut().enumerate() {
-            let phi = knot(k);
-            let [t0, t1] = blend.spin_terms::<2>(phi, 0.0);
-            let t = blend.blended_terms_exact(phi, 0.0, Self::g_exact(blend, phi));
-            // At e = 0 a row's spin moment term is its utilisation s.
-            let row = [t0.spin_moment, t1.spin_moment, t.f_sat, t.f_rest];
-            for (o, x) in v.iter_mut().zip(row) {
-                *o = x as f32;
+        let mut next = Self::columns_exact(blend, knot(0));
+        for k in 0..KNOTS {
+            let v = next;
+            if k + 1 < KNOTS {
+                next = Self::columns_exact(blend, knot(k + 1));
             }
+            out.k[k].v = v;
+            // The last knot is never an interval's start: no difference.
+            out.k[k].d = std::array::from_fn(|i| if k + 1 < KNOTS { next[i] - v[i] } else { 0.0 });
         }
         out
     }
@@ -109,39 +209,22 @@ impl SpinCorrection {
         g * 1f64.copysign(phi_n)
     }
 
-    /// The spin terms at `phi_n` from the table and the rows' constants (`e^2, e^8` of the
-    /// translation alone), or `None` outside the knots' range.
+    /// The spin terms at `phi_n` from the table (`e^2, e^8` of the translation alone), or
+    /// `None` outside the knots' range.
     #[inline(always)]
-    pub fn terms(&self, rows: &[SpinRow; 2], phi_n: f64, e2: f64, e8: f64) -> Option<SpinTerms> {
-        let a = phi_n.abs();
-        let bits = a.to_bits();
-        let kq = (bits >> SHIFT) as i64 - BASE;
-        if !(0..KNOTS as i64 - 1).contains(&kq) {
-            return None;
-        }
-        let k = kq as usize;
-        // Position in the interval: the mantissa below its leading bits.
-        let t = (bits & ((1u64 << SHIFT) - 1)) as f64 * (1.0 / (1u64 << SHIFT) as f64);
-        let (p, q) = (&self.v[k], &self.v[k + 1]);
-        let at = |i: usize| {
-            let (x, y) = (p[i] as f64, q[i] as f64);
-            x + t * (y - x)
-        };
+    pub fn terms(&self, phi_n: f64, e2: f64, e8: f64) -> Option<SpinTerms> {
+        let (k, t) = interval(phi_n.abs())?;
+        let kn = &self.k[k];
+        let c = |i: usize| kn.v[i] + t * kn.d[i];
         let sign = 1f64.copysign(phi_n);
-        let (s0, s1) = (at(0), at(1));
-        let (r0, r1) = (&rows[0], &rows[1]);
-        let (n0, n1) = (&r0.n, &r1.n);
-        let (q0, q1) = (s0 * s0, s1 * s1);
-        let (g0, g1) = (r0.w * (1.0 + n0.gam * q0), r1.w * (1.0 + n1.gam * q1));
         Some(SpinTerms {
-            w: g0 + g1,
-            cap_x: g0 * (1.0 - n0.ax * q0).max(0.0) + g1 * (1.0 - n1.ax * q1).max(0.0),
-            cap_y: g0 * (1.0 - n0.ay * q0 * q0).max(0.0) + g1 * (1.0 - n1.ay * q1 * q1).max(0.0),
-            f_sat: at(2) * sign,
-            f_rest: at(3) * sign,
-            ml_factor: 1.0 - (r0.w * n0.am * q0 + r1.w * n1.am * q1),
-            spin_moment: r0.w * s0 * (1.0 - n0.b2 * e2 - n0.b8 * e8).max(0.0)
-                + r1.w * s1 * (1.0 - n1.b2 * e2 - n1.b8 * e8).max(0.0),
+            w: c(W),
+            cap_x: floor0(c(CAP_X)) + floor0(c(CAP_X + 1)),
+            cap_y: floor0(c(CAP_Y)) + floor0(c(CAP_Y + 1)),
+            f_sat: c(F_SAT) * sign,
+            f_rest: (c(F_REST) + ceil0(c(KINK)) + ceil0(c(KINK + 1))) * sign,
+            ml_factor: c(ML),
+            spin_moment: c(SM) - c(SM + 1) * e2 - c(SM + 2) * e8,
         })
     }
 }
