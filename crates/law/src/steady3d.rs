@@ -568,7 +568,10 @@ impl Steady3d {
         // terms (module documentation).
         if self.corr.on {
             let e2 = e * e;
-            match self.corr.terms(phi_n, e2, (e2 * e2) * (e2 * e2)) {
+            match self
+                .corr
+                .terms(&self.rows, phi_n, e2, (e2 * e2) * (e2 * e2))
+            {
                 Some(t) => self.with_spin(phi_n, tx0, ty0, ml, &t),
                 None => self.beyond_the_knots(phi_n, e, tx0, ty0, ml),
             }

@@ -11,39 +11,39 @@
 //! with the pure spin's translation utilisation `s_t` (so that pure spin is the blend, and with
 //! translation the correction fades like that share does).
 //!
-//! Every spin term the translation and the moment use depends on `|phi_n|` alone except the
-//! spin moment's factor of `e` (the translation alone's utilisation), and that factor is a
-//! polynomial in `e`: so the table holds, per knot, the terms themselves (no per-call
-//! arithmetic on the rows' constants), as thirteen columns:
+//! What depends on `|phi_n|` alone is tabulated, ten columns per knot:
 //!
-//! * `w = sum w_r (1 + gam_r s_r^2)`, the two blended shares of the spin force `sum w_r lam_r
-//!   f_s,r` and `sum w_r (1 - lam_r) f_s,r + g` (the latter less its kinks, below), and the
-//!   factor of the lateral creepage's moment `1 - sum w_r am_r s_r^2`;
-//! * each row's capacities **before their floors**, `w_r (1 + gam_r s_r^2)(1 - ax_r s_r^2)`
-//!   and `w_r (1 + gam_r s_r^2)(1 - ay_r s_r^4)`, floored at zero after the interpolation (so
-//!   each floor's kink stays where it belongs instead of being interpolated across);
+//! * the two rows' spin utilisations `s_0, s_1` (step 1); the terms that are not linear in
+//!   them (`w = sum w_r (1 + gam_r s_r^2)` and the capacities, `w_r (1 + gam_r s_r^2)` times
+//!   `max(0, 1 - ax_r s_r^2)` resp. `max(0, 1 - ay_r s_r^4)`) are computed from the
+//!   interpolated `s_r` with each row's constants, so the floors' kinks are where they belong;
+//! * the two blended shares of the spin force, `sum w_r lam_r f_s,r` and `sum w_r (1 - lam_r)
+//!   f_s,r + g` (step 2 and the correction; the latter less its kinks, below);
+//! * the factor of the lateral creepage's moment `1 - sum w_r am_r s_r^2`;
 //! * the spin moment's coefficients `A = sum w_r s_r`, `B = sum w_r b2_r s_r`, `C = sum w_r
-//!   b8_r s_r`: the spin moment is `A - B e^2 - C e^8`, no row's floor `max(0, 1 - b2 e^2 - b8
-//!   e^8)` being active anywhere (test `spin_moment_capacity_is_positive_at_every_node`);
+//!   b8_r s_r` (linear in the `s_r`: their interpolation is that of the `s_r`): the spin
+//!   moment is `A - B e^2 - C e^8`, no row's floor `max(0, 1 - b2 e^2 - b8 e^8)` being active
+//!   anywhere (test `spin_moment_capacity_is_positive_at_every_node`);
 //! * the kinks of the correction: the blend's pure spin force `sum w_r min(1, U_r)` (each
 //!   row's force `U_r` projected onto `mu P`) has a kink where a row's force reaches `mu P`,
-//!   which linear interpolation would round off (1.6 % of `mu P` at `a/b = 3`); with `Q_r = w_r
-//!   (1 - U_r)/(1 - s_t)^(1/4)` the correction is `g = g_smooth + min(0, Q_0) + min(0, Q_1)`,
-//!   so `g_smooth` (in the unsaturated share's column) and `Q_0, Q_1` are tabulated and the
-//!   minima taken after the interpolation (the one translation's own pure spin force stays
-//!   below `0.86 mu P` over the table's range, so it has no such kink).
+//!   which linear interpolation rounds off (1.6 % of `mu P` at `a/b = 3` near `phi_n =
+//!   0.72`); with `Q_r = w_r (1 - U_r)/(1 - s_t)^(1/4)` the correction is `g = g_s + min(0,
+//!   Q_0) + min(0, Q_1)`, so `g_s` (in the unsaturated share's column) and `Q_0, Q_1` are
+//!   tabulated and the minima taken after the interpolation (the one translation's own pure
+//!   spin force stays below `0.86 mu P` over the table's range: no such kink).
 //!
 //! The knots are `|phi_n| = 2^e (1 + j/8)`, `e = -7 ... 5`, `j = 0 ... 7` (105 knots, eight per
 //! octave, `0.0078 ... 64`); each stores its values and the differences to the next knot
-//! (`f64`, 21.8 KB in all), so the interpolation is `v + t d` per column. The knot interval and
-//! `t` come from the bits of `|phi_n|` (the exponent and the three leading bits of the mantissa
-//! index it, the mantissa below them is `t`: no logarithm, no search, no division). At the
-//! knots the table is the exact blended terms to rounding. Outside the knots' range the terms
-//! are evaluated from the rows (exact; the correction continues as `g_0 (phi_n/phi_0)^2` below
-//! the first knot, where the difference of the two evaluations is of second order in the
-//! spin, and as `g_104 phi_104/phi_n` above the last, where the spin force fades).
+//! (`f64`, 16.8 KB in all), so a column is `v + t d`: one load, one multiplication, one
+//! addition. The knot interval and `t` come from the bits of `|phi_n|` (the exponent and the
+//! three leading bits of the mantissa index it, the mantissa below them is `t`: no logarithm,
+//! no search, no division, no conversion). At the knots the table is the exact blended terms
+//! to rounding. Outside the knots' range the terms are evaluated from the rows (exact; the
+//! correction continues as `g_0 (phi_n/phi_0)^2` below the first knot, where the difference
+//! of the two evaluations is of second order in the spin, and as `g_104 phi_104/phi_n` above
+//! the last, where the spin force fades).
 
-use super::{SpinTerms, Steady3d};
+use super::{SpinRow, SpinTerms, Steady3d};
 
 /// Knots per octave, `2^PER_OCTAVE_BITS` (the leading mantissa bits index them).
 const PER_OCTAVE_BITS: u32 = 3;
@@ -62,19 +62,18 @@ const SHIFT: u32 = 52 - PER_OCTAVE_BITS;
 /// `(bits >> SHIFT)` of the first knot.
 const BASE: i64 = (1023 + E0) << PER_OCTAVE_BITS;
 /// Columns of the table (module documentation).
-pub(crate) const COLS: usize = 13;
-/// The columns: `w`, the two shares of the spin force, the lateral moment's factor.
-const W: usize = 0;
-const F_SAT: usize = 1;
-const F_REST: usize = 2;
-const ML: usize = 3;
-/// The rows' unfloored capacities along x and y.
-const CAP_X: usize = 4;
-const CAP_Y: usize = 6;
+pub(crate) const COLS: usize = 10;
+/// The rows' utilisations `s_0, s_1`.
+const S: usize = 0;
+/// The two shares of the spin force.
+const F_SAT: usize = 2;
+const F_REST: usize = 3;
+/// The factor of the lateral creepage's moment.
+const ML: usize = 4;
 /// The spin moment's `A, B, C`.
-const SM: usize = 8;
+const SM: usize = 5;
 /// The correction's kink terms `Q_0, Q_1`.
-const KINK: usize = 11;
+const KINK: usize = 8;
 
 /// One knot: each column's value there and its difference to the next knot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -154,7 +153,6 @@ impl SpinCorrection {
         let t = blend.blended_terms_exact(phi_n, 0.0, g);
         let u = blend.pure_spin_rows_unprojected(phi_n);
         let mut out = [0.0; COLS];
-        out[W] = t.w;
         out[F_SAT] = t.f_sat;
         out[F_REST] = t.f_rest;
         out[ML] = t.ml_factor;
@@ -162,10 +160,7 @@ impl SpinCorrection {
             let (w, n) = (blend.rows[r].w, &blend.rows[r].n);
             // At e = 0 a row's spin moment term is its utilisation s.
             let s = tr.spin_moment;
-            let s2 = s * s;
-            let g = w * (1.0 + n.gam * s2);
-            out[CAP_X + r] = g * (1.0 - n.ax * s2);
-            out[CAP_Y + r] = g * (1.0 - n.ay * s2 * s2);
+            out[S + r] = s;
             out[SM] += w * s;
             out[SM + 1] += w * n.b2 * s;
             out[SM + 2] += w * n.b8 * s;
@@ -212,15 +207,20 @@ impl SpinCorrection {
     /// The spin terms at `phi_n` from the table (`e^2, e^8` of the translation alone), or
     /// `None` outside the knots' range.
     #[inline(always)]
-    pub fn terms(&self, phi_n: f64, e2: f64, e8: f64) -> Option<SpinTerms> {
+    pub fn terms(&self, rows: &[SpinRow; 2], phi_n: f64, e2: f64, e8: f64) -> Option<SpinTerms> {
         let (k, t) = interval(phi_n.abs())?;
         let kn = &self.k[k];
         let c = |i: usize| kn.v[i] + t * kn.d[i];
         let sign = 1f64.copysign(phi_n);
+        let (s0, s1) = (c(S), c(S + 1));
+        let (r0, r1) = (&rows[0], &rows[1]);
+        let (n0, n1) = (&r0.n, &r1.n);
+        let (q0, q1) = (s0 * s0, s1 * s1);
+        let (g0, g1) = (r0.w * (1.0 + n0.gam * q0), r1.w * (1.0 + n1.gam * q1));
         Some(SpinTerms {
-            w: c(W),
-            cap_x: floor0(c(CAP_X)) + floor0(c(CAP_X + 1)),
-            cap_y: floor0(c(CAP_Y)) + floor0(c(CAP_Y + 1)),
+            w: g0 + g1,
+            cap_x: g0 * floor0(1.0 - n0.ax * q0) + g1 * floor0(1.0 - n1.ax * q1),
+            cap_y: g0 * floor0(1.0 - n0.ay * q0 * q0) + g1 * floor0(1.0 - n1.ay * q1 * q1),
             f_sat: c(F_SAT) * sign,
             f_rest: (c(F_REST) + ceil0(c(KINK)) + ceil0(c(KINK + 1))) * sign,
             ml_factor: c(ML),

@@ -470,7 +470,7 @@ fn between_rows_one_translation_is_the_documented_law() {
             let a = law.loads(cr.0, cr.1, cr.2);
             let (e, ml) = documented_lateral(&law, cr.0, cr.1);
             let (e2, e8) = (e * e, e.powi(8));
-            let terms = match law.corr.terms(cr.2, e2, e8) {
+            let terms = match law.corr.terms(&law.rows, cr.2, e2, e8) {
                 Some(t) => [
                     t.w,
                     t.cap_x,
@@ -503,11 +503,12 @@ fn between_rows_one_translation_is_the_documented_law() {
 fn between_rows_the_table_holds_the_blended_terms() {
     // At the knots the table gives the documented blended terms (the table is f64: to
     // rounding, checked to 1e-6) with the correction g = D/(1 - s_t)^(1/4) in the unsaturated
-    // share; between the knots the linear interpolation stays within (measured) 0.59 % of
-    // each term (relative to max(1, |term|)); the capacities' floors and the correction's
-    // kinks (where a row's pure spin force reaches mu P) are applied after the interpolation.
-    // Before the kinks were (the utilisations tabulated, the correction interpolated across
-    // its kink): 1.88 %, in the unsaturated share at a/b = 3 near phi_n = 0.72.
+    // share; between the knots the linear interpolation stays within (measured) 0.63 % of
+    // each term (relative to max(1, |term|)): the utilisations and the shares of the spin
+    // force are smooth, the capacities' floors are applied after the interpolation, and so
+    // are the correction's kinks (where a row's pure spin force reaches mu P). Before the
+    // kinks were tabulated apart: 1.88 %, in the unsaturated share at a/b = 3 near phi_n =
+    // 0.72.
     let mut worst = 0.0f64;
     for (ab, nu) in BETWEEN {
         let law = Steady3d::new(ab, nu).unwrap();
@@ -515,7 +516,7 @@ fn between_rows_the_table_holds_the_blended_terms() {
             let phi = correction::knot(k);
             for e in [0.0f64, 0.3, 0.8] {
                 let (e2, e8) = (e * e, e.powi(8));
-                let t = law.corr.terms(phi, e2, e8).unwrap();
+                let t = law.corr.terms(&law.rows, phi, e2, e8).unwrap();
                 let got = [
                     t.w,
                     t.cap_x,
@@ -533,13 +534,13 @@ fn between_rows_the_table_holds_the_blended_terms() {
                         "{ab} {nu} {k}: {got:?} {want:?}"
                     );
                 }
-                let n = law.corr.terms(-phi, e2, e8).unwrap();
+                let n = law.corr.terms(&law.rows, -phi, e2, e8).unwrap();
                 assert!(n.f_sat == -t.f_sat && n.f_rest == -t.f_rest && n.w == t.w);
             }
         }
         for k in 0..4000 {
             let phi = 0.008 * 8000f64.powf(k as f64 / 4000.0);
-            let t = law.corr.terms(phi, 0.0, 0.0).unwrap();
+            let t = law.corr.terms(&law.rows, phi, 0.0, 0.0).unwrap();
             let got = [
                 t.w,
                 t.cap_x,
@@ -564,7 +565,7 @@ fn between_rows_the_table_holds_the_blended_terms() {
 fn between_rows_zero_spin_pure_spin_and_moment_follow_the_two_row_blend() {
     // The law between rows against the two-row blend (the previous round's law): zero
     // spin is the same law bit for bit; the lateral force of pure spin is the blend's up to
-    // the table's interpolation (measured at most 0.50 % of mu P; 1.59 % before the
+    // the table's interpolation (measured at most 0.49 % of mu P; 1.59 % before the
     // correction's kinks, where a row's pure spin force reaches mu P, were tabulated apart;
     // at the knots to rounding), the moment within 0.074 % of mu P c (pure spin and
     // combined).
@@ -597,7 +598,7 @@ fn between_rows_zero_spin_pure_spin_and_moment_follow_the_two_row_blend() {
         }
     }
     println!("pure spin force {worst_f}, moment {worst_m}");
-    assert!(worst_f < 0.0051 && worst_m < 0.00075, "{worst_f} {worst_m}");
+    assert!(worst_f < 0.005 && worst_m < 0.00075, "{worst_f} {worst_m}");
 }
 
 #[test]
@@ -655,9 +656,9 @@ fn between_rows_saturates_is_odd_and_dissipates() {
     }
 }
 
-/// Bound of [`between_rows_the_table_holds_the_blended_terms`] (measured 0.00594, rounded
+/// Bound of [`between_rows_the_table_holds_the_blended_terms`] (measured 0.00626, rounded
 /// up; 0.0188 before the correction's kinks were tabulated apart).
-const WORST_TERM: f64 = 0.006;
+const WORST_TERM: f64 = 0.0063;
 
 #[test]
 fn an_axis_ratio_next_to_a_row_is_that_row() {
@@ -690,10 +691,10 @@ fn an_axis_ratio_next_to_a_row_is_that_row() {
                 .max((a.mz - b.mz).abs()),
         );
     }
-    // Measured 0.00104 (of mu P or mu P c; 0.0015 with the utilisations tabulated): the
-    // table's linear interpolation of the row's own terms.
+    // Measured 0.0015 (of mu P or mu P c): the table's linear interpolation of the row's own
+    // utilisation and shape.
     println!("a/b 1e-4 off the row: {worst}");
-    assert!(worst < 0.0011, "{worst}");
+    assert!(worst < 0.0016, "{worst}");
 }
 
 #[test]
