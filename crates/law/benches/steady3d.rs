@@ -238,12 +238,12 @@ fn cpu_table(rounds: usize) {
         "  inverse at zero spin (a node)        {i:7.2} ({:.2}x)",
         i / f
     );
-    // Construction (once per contact shape and pair): between rows the correction's table
-    // (81 knots, three pure-spin evaluations of both rows each).
+    // Construction (once per contact shape and pair): between rows the table (105 knots,
+    // both rows' spin terms and three pure-spin evaluations each).
     let t0 = Instant::now();
-    let n = 5;
+    let n = 50;
     for k in 0..n {
-        black_box(Steady3d::new(black_box(0.35 + 0.01 * k as f64), 0.125).unwrap());
+        black_box(Steady3d::new(black_box(0.35 + 0.001 * k as f64), 0.125).unwrap());
     }
     let fit = t0.elapsed().as_secs_f64() / n as f64;
     let t0 = Instant::now();
@@ -252,9 +252,10 @@ fn cpu_table(rounds: usize) {
     }
     let row = t0.elapsed().as_secs_f64() / 100.0;
     println!(
-        "  Steady3d::new: between rows {:.2} ms (wall), at a row {:.2} us",
-        fit * 1e3,
-        row * 1e6
+        "  Steady3d::new: between rows {:.1} us (wall), at a row {:.2} us; size {} bytes",
+        fit * 1e6,
+        row * 1e6,
+        std::mem::size_of::<Steady3d>()
     );
 }
 

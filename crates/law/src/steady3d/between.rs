@@ -119,10 +119,23 @@ impl Steady3d {
     /// (what multiplies the correction).
     pub(super) fn pure_spin_parts(&self, phi_n: f64) -> (f64, f64, f64) {
         let [t0, t1] = self.spin_terms::<2>(phi_n, 0.0);
-        let t = self.blended_terms(&t0, &t1);
+        let (one, blend, h, _) = self.pure_spin_of(phi_n, &t0, &t1);
+        (one, blend, h)
+    }
+
+    /// [`Steady3d::pure_spin_parts`] from the two rows' spin terms `t0, t1` at `phi_n` (and
+    /// `e = 0`), with each row's lateral force before the projection onto `|F| <= 1` (the
+    /// blend's kinks are where one of them reaches 1).
+    pub(super) fn pure_spin_of(
+        &self,
+        phi_n: f64,
+        t0: &SpinTerms,
+        t1: &SpinTerms,
+    ) -> (f64, f64, f64, [f64; 2]) {
+        let t = self.blended_terms(t0, t1);
         let one = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t).fy;
-        let a = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t0).fy;
-        let b = self.with_spin(phi_n, 0.0, 0.0, 0.0, &t1).fy;
+        let a = self.with_spin(phi_n, 0.0, 0.0, 0.0, t0).fy;
+        let b = self.with_spin(phi_n, 0.0, 0.0, 0.0, t1).fy;
         let blend = self.rows[0].w * a + self.rows[1].w * b;
         let ty = t.f_sat;
         let st = if ty != 0.0 {
@@ -131,16 +144,10 @@ impl Steady3d {
         } else {
             0.0
         };
-        (one, blend, (1.0 - st).sqrt().sqrt())
-    }
-
-    /// Pure spin `phi_n != 0` between rows: each row's lateral force before the projection
-    /// onto `|F| <= 1` (the blend's kinks are where one of them reaches 1).
-    pub(super) fn pure_spin_rows_unprojected(&self, phi_n: f64) -> [f64; 2] {
-        let [t0, t1] = self.spin_terms::<2>(phi_n, 0.0);
-        [
-            self.force_unprojected(0.0, 0.0, &t0).1,
-            self.force_unprojected(0.0, 0.0, &t1).1,
-        ]
+        let u = [
+            self.force_unprojected(0.0, 0.0, t0).1,
+            self.force_unprojected(0.0, 0.0, t1).1,
+        ];
+        (one, blend, (1.0 - st).sqrt().sqrt(), u)
     }
 }

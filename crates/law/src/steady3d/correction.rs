@@ -148,10 +148,9 @@ impl SpinCorrection {
     /// The table's columns at `phi_n > 0` from the two rows (exact; module documentation).
     pub fn columns_exact(blend: &Steady3d, phi_n: f64) -> [f64; COLS] {
         let [t0, t1] = blend.spin_terms::<2>(phi_n, 0.0);
-        let (one, two, h) = blend.pure_spin_parts(phi_n);
-        let g = (two - one) / h;
-        let t = blend.blended_terms_exact(phi_n, 0.0, g);
-        let u = blend.pure_spin_rows_unprojected(phi_n);
+        let (one, two, h, u) = blend.pure_spin_of(phi_n, &t0, &t1);
+        let mut t = blend.blended_terms(&t0, &t1);
+        t.f_rest += (two - one) / h;
         let mut out = [0.0; COLS];
         out[F_SAT] = t.f_sat;
         out[F_REST] = t.f_rest;
