@@ -77,20 +77,24 @@
 //!   evaluated on them, plus a correction `g(phi_n)` added to the unsaturated share
 //!   `(1 - lam) f_s`: `g = D/(1 - s_t)^(1/4)` where `D` is the difference between the lateral
 //!   force of pure spin of the two rows' blended loads and of the one translation, and `s_t`
-//!   the one translation's utilisation in pure spin. The rows' utilisations `s_0, s_1` and the
-//!   two blended shares of the spin force (with `g`) are **tabulated** once per contact at
-//!   105 knots (`|phi_n| = 2^-7 ... 2^6`, eight per octave, `f32`) and interpolated linearly,
-//!   indexed by the float's bits; the terms that depend on the utilisations are computed from
-//!   them with each row's constants (module `correction`). Outside the knots the terms come
+//!   the one translation's utilisation in pure spin. What depends on `|phi_n|` alone is
+//!   **tabulated** once per contact at 105 knots (`|phi_n| = 2^-7 ... 2^6`, eight per octave,
+//!   `f64` values and differences, interpolated linearly, indexed by the float's bits): the
+//!   rows' utilisations `s_0, s_1` (`w` and the capacities with their floors are computed
+//!   from them with each row's constants), the two blended shares of the spin force (with
+//!   `g`, whose kinks, where a row's pure spin force reaches `mu P`, are two columns of
+//!   their own, clamped after the interpolation), the lateral moment's factor and the spin
+//!   moment as `A - B e^2 - C e^8` (module `correction`). Outside the knots the terms come
 //!   from the rows (exact) and `g` continues as `phi_n^2` below, `1/phi_n` above. Within a
 //!   blend weight of [`ROW_SNAP`] of a row, that row.
 //!
 //! What that law is, against the two rows' blended loads ([`Steady3d::two_row_blend`], the
 //! previous round's law between rows, two translations per evaluation): zero spin is the same
 //! law bit for bit; the lateral force of pure spin is the blend's up to the table's
-//! interpolation (measured at most 0.39 % of `mu P` on `phi_n = 0.01-30`, 1.59 % at a kink of
-//! the blend near `phi_n = 0.72` at `a/b = 3` where one row's pure spin force reaches `mu P`;
-//! exact at the knots to `f32`), the moment within 0.074 % of `mu P c` for every creepage (it
+//! interpolation (measured at most 0.49 % of `mu P` on `phi_n = 1e-4 ... 1e4`; 1.59 % at the
+//! kink near `phi_n = 0.72` at `a/b = 3`, where one row's pure spin force reaches `mu P`,
+//! before the kinks were tabulated apart; exact at the knots to rounding), the moment within
+//! 0.074 % of `mu P c` for every creepage (it
 //! is linear in the blended terms); with translation and spin combined the force differs from
 //! the blend's (creep-reference's example `steady3d_virtual`: up to 10-23 % of `mu P` at the
 //! corners of full slip, `|eta_n| = 0.6` with spin), and against the boundary elements off
@@ -100,10 +104,10 @@
 //! `O(phi_n^2)`) carry over; tests `between_rows_*`.
 //!
 //! [`Steady3d::new`] does this interpolation once per contact (build it once per contact shape
-//! and material pair; between rows it builds the table: 105 knots, three pure-spin
-//! evaluations of both rows each, about 30 us); [`Steady3d::loads`] evaluates one row's
-//! spin terms and one translation at a row of the table, the table and one translation
-//! between rows.
+//! and material pair; between rows it builds the table: 105 knots, both rows' spin terms and
+//! three pure-spin evaluations each, about 16 us; at a row about 3 us, the struct being 17.5
+//! KB with the table); [`Steady3d::loads`] evaluates one row's spin terms and one
+//! translation at a row of the table, the table and one translation between rows.
 //!
 //! # Accuracy
 //!
@@ -138,21 +142,28 @@
 //! row's two `nu` shapes are multiplied out into one rational function of `phi_n^2` in
 //! [`Steady3d::new`]), and one translation: one division for its utilisation, a square root
 //! and a division in parallel for its direction, two square roots for `(1 - s_t)^(1/4)`;
-//! between rows four table lookups instead of the spin division; the projection onto `|F| <=
-//! 1`, the rare inputs (not finite, beyond the clamp, all tiny) and spins outside the table
-//! are out-of-line branches. Measured (`cargo bench -p creep-law --bench steady3d --
-//! --rounds-only`: the thread's CPU time, variants interleaved, medians; main's law before
-//! this round is a copy in the bench, timed in the same rounds; docs/CREEP3D.md has the
-//! table): with spin 46-56 ns between rows (medians of three runs 46.9-47.8; the two rows'
-//! translations before: 89-91 ns in the same runs), 46-51 ns at a row (as before, the same
-//! law; the row's spin division now shares the translation alone's), without spin about 17
-//! ns (before 34); `F_ss` 8.8 ns: **issue #17's 50 ns with spin at the edge**, under it in the
-//! medians, above it in the slower runs. Earlier: the projection a cold branch, `s_t/|d|` as
-//! `(s_t/|d|^2) |d|`, a
-//! row's `nu` shapes multiplied out. Tried and not adopted
-//! (docs/CREEP3D.md): one row fitted per contact to the two rows' blend (Levenberg-Marquardt
-//! on the 20 spin constants of one row): the cost of a row, but it did not follow the blend
-//! and the errors against the boundary elements off the nodes rose.
+//! between rows one table lookup instead of the spin division (ten columns, `v + t d` each:
+//! a load, a multiplication and an addition); the projection onto `|F| <= 1`, the rare
+//! inputs (not finite, beyond the clamp, all tiny) and spins outside the table are
+//! out-of-line branches. Measured (`cargo bench -p creep-law --bench steady3d --
+//! --rounds-only`: the thread's CPU time, variants interleaved, medians; the previous law
+//! [`Steady3d::two_row_blend`] timed in the same rounds; docs/CREEP3D.md has the tables):
+//! with spin 38-42 ns between rows (medians of three runs; main's evaluation, alternated with
+//! this one in one script, 54-56 ns; the two rows' translations 85-89 ns), 43-48 ns at a node
+//! or a row (as before, the same law), without spin about 15 ns; `F_ss` 8.8 ns: **issue
+//! #17's 50 ns with spin met for every a/b**. Load-free, `valgrind --tool=callgrind` counts
+//! per evaluation of `loads` (the bench's `--count` mode) 281-283 instructions between rows
+//! (main: 346-347) and 288 at a node or a row (main: 296). What made the difference between
+//! rows: the table holds the terms that need no per-call arithmetic on the rows' constants
+//! (the spin moment's `A, B, C` instead of two rows' `s (1 - b2 e^2 - b8 e^8)`, the lateral
+//! moment's factor), in `f64` with the differences stored (`v + t d`: no `f32` conversions,
+//! no subtraction), and `t` from the mantissa bits by one `or` and one subtraction; the
+//! spins outside the knots in a cold function (no merge of two paths' terms, whose spills
+//! cost a dozen instructions). Earlier: the projection a cold branch, `s_t/|d|` as `(s_t/|d|^2)
+//! |d|`, a row's `nu` shapes multiplied out. Tried and not adopted (docs/CREEP3D.md): one row
+//! fitted per contact to the two rows' blend (Levenberg-Marquardt on the 20 spin constants of
+//! one row): the cost of a row, but it did not follow the blend and the errors against the
+//! boundary elements off the nodes rose.
 
 use crate::elliptic::complete_elliptic;
 use crate::error::LawError;
