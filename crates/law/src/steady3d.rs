@@ -304,10 +304,12 @@ pub const NODES: [[Node; 3]; 5] = [
     ],
 ];
 
-/// Below this `|t_0|^2` (normalised translation creepage below ~1e-70) the translation alone
-/// is taken as linear (`e = 0`, `M_l = -C23 eta_n`, exact to ~1e-70 relative; the products
-/// of its shared division would underflow).
-const T02_MIN: f64 = 1e-140;
+/// Below this `|t_0|^2` (normalised translation creepage below ~1e-35) the translation alone
+/// is taken as linear (`e = 0`, `M_l = -C23 eta_n`, exact to ~1e-35 relative): the divisor
+/// of its shared division, `q r^4 |t_0|^2`, is of eighth order in the creepage and stays a
+/// normal float above it (~1e-283 at the threshold). It was `1e-140`, and a translation of
+/// 1e-40 ... 1e-70 next to a finite spin gave NaN loads (the divisor underflowed to zero).
+const T02_MIN: f64 = 1e-70;
 
 /// Weight below which a row of the table is dropped from the blend between rows (see
 /// [`Steady3d::two_row_blend`]).

@@ -134,6 +134,23 @@ fn tiny_creepages_are_the_linear_theory_without_a_seam() {
             "{a:?} {b:?}"
         );
     }
+    // Every scale of a vanishing translation next to a finite spin, at a row and between
+    // rows: finite, and the spin's loads (1e-40 ... 1e-70 gave NaN while the threshold of the
+    // linear translation was |t0|^2 = 1e-140: the divisor q r^4 |t0|^2 underflowed).
+    for law in [
+        Steady3d::new(0.5, 0.25).unwrap(),
+        Steady3d::new(0.7, 0.3).unwrap(),
+    ] {
+        let b = law.loads(0.0, 0.0, 0.5);
+        for k in 20..=160 {
+            let x = 10f64.powi(-k);
+            for (xi, eta) in [(x, 0.0), (0.0, x), (x, -x)] {
+                let a = law.loads(xi, eta, 0.5);
+                let d = (a.mz - b.mz).abs().max((a.fy - b.fy).abs()).max(a.fx.abs());
+                assert!(d < 1e-9, "{xi} {eta}: {a:?} vs {b:?}");
+            }
+        }
+    }
     // Just above the threshold the non-linear path agrees to rounding.
     let e = 2.0 * TINY_CREEPAGE;
     let l = law.loads(e, 2.0 * e, -3.0 * e);
