@@ -730,3 +730,40 @@ fn every_axis_ratio_and_poisson_ratio_of_the_table_builds() {
     }
     assert!(Steady3d::new(1.0410563801900297, 0.3).is_ok());
 }
+
+#[test]
+fn every_scale_of_creepage_gives_finite_saturated_loads() {
+    // Creepages of every magnitude from below TINY_CREEPAGE to beyond the clamp, each
+    // component independently (a deterministic scan of sign and exponent combinations), at
+    // a row, between rows and beyond the end rows: finite loads, |F| <= 1.
+    let laws = [
+        Steady3d::new(0.5, 0.25).unwrap(),
+        Steady3d::new(0.35, 0.125).unwrap(),
+        Steady3d::new(3.0, 0.375).unwrap(),
+        Steady3d::new(0.1, 0.5).unwrap(),
+        Steady3d::new(10.0, 0.0).unwrap(),
+    ];
+    let exps: Vec<i32> = (-40..=8).step_by(3).collect();
+    for law in &laws {
+        for &ex in &exps {
+            for &ey in &exps {
+                for &ez in &exps {
+                    for s in 0..8 {
+                        let sg = |b: i32| if s & b == 0 { 1.0 } else { -1.0 };
+                        let (x, y, z) = (
+                            sg(1) * 1.7 * 10f64.powi(ex),
+                            sg(2) * 0.9 * 10f64.powi(ey),
+                            sg(4) * 1.3 * 10f64.powi(ez),
+                        );
+                        let l = law.loads(x, y, z);
+                        assert!(
+                            l.fx.is_finite() && l.fy.is_finite() && l.mz.is_finite(),
+                            "{x} {y} {z}: {l:?}"
+                        );
+                        assert!(l.fx.hypot(l.fy) <= 1.0 + 1e-12, "{x} {y} {z}: {l:?}");
+                    }
+                }
+            }
+        }
+    }
+}
