@@ -320,19 +320,23 @@ impl<const N: usize> MindlinMemory<N> {
         let mut x_lo = 0.0;
         let k2 = kappa * kappa;
         for (p, cut_out) in self.pieces[..self.n].iter().zip(cuts.iter_mut()) {
-            let hi = p.x_hi.max(x_lo);
+            // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
+            // them so and `from_array` refuses other states.
+            let hi = p.x_hi;
             let mut cut = stick_cut(p, kappa, k2, a, a2, x_lo, hi);
-            // A cut within rounding of an end of the piece is at that end: a sliver of
-            // springs split off by rounding would take a slot of the memory (and change which
-            // pieces `merge` joins later) for a field it cannot resolve.
-            if hi - cut <= SLIVER * a {
-                cut = hi;
-            } else if cut - x_lo <= SLIVER * a {
-                cut = x_lo;
+            if cut < hi {
+                // A cut within rounding of an end of the piece is at that end: a sliver of
+                // springs split off by rounding would take a slot of the memory (and change
+                // which pieces `merge` joins later) for a field it cannot resolve.
+                if hi - cut <= SLIVER * a {
+                    cut = hi;
+                } else if cut - x_lo <= SLIVER * a {
+                    cut = x_lo;
+                }
+                splits += usize::from(cut > x_lo && cut < hi);
             }
-            splits += usize::from(cut > x_lo && cut < p.x_hi);
             *cut_out = cut;
-            x_lo = p.x_hi.max(x_lo);
+            x_lo = hi;
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let slip = |p: &Piece, cut: f64, dissipated: &mut f64| {
@@ -652,7 +656,15 @@ fn merge<const N: usize>(
     // after the last update and both moved by the same `du`, so only pairs with a touched
     // piece are compared.
     let mut prev_touched = false;
-    for i in 0..m {
+    // Pieces below the first touched one (less one, its inner neighbour) are kept as they are:
+    // they are non-empty and increasing (an update's invariant, checked by `from_array`) and
+    // no two of them are compared.
+    let start = (touched.trailing_zeros() as usize).min(m).saturating_sub(1);
+    if start > 0 {
+        n = start;
+        x_lo = out[start - 1].x_hi;
+    }
+    for i in start..m {
         let p = out[i];
         if p.x_hi <= x_lo {
             continue;
