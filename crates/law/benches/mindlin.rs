@@ -318,7 +318,12 @@ fn main() {
             let mut s = MindlinState::from_array(&r.2).expect("valid state");
             let step = black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
             q += step.q;
-            out.extend([step.q.x, step.q.y, step.slip_dissipation, step.truncation_energy]);
+            out.extend([
+                step.q.x,
+                step.q.y,
+                step.slip_dissipation,
+                step.truncation_energy,
+            ]);
             out.extend(s.to_array());
         }
         // `CREEP_MINDLIN_OUT=FILE`: every update's result and state, for comparing two builds.

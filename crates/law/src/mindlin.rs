@@ -319,7 +319,12 @@ impl<const N: usize> MindlinMemory<N> {
         let mut splits = 0;
         let mut x_lo = 0.0;
         let k2 = kappa * kappa;
-        for (p, cut_out) in self.pieces[..self.n].iter().zip(cuts.iter_mut()) {
+        let mut split_bits: u32 = 0;
+        for (i, (p, cut_out)) in self.pieces[..self.n]
+            .iter()
+            .zip(cuts.iter_mut())
+            .enumerate()
+        {
             // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
             // them so and `from_array` refuses other states.
             let hi = p.x_hi;
@@ -333,7 +338,10 @@ impl<const N: usize> MindlinMemory<N> {
                 } else if cut - x_lo <= SLIVER * a {
                     cut = x_lo;
                 }
-                splits += usize::from(cut > x_lo && cut < hi);
+                if cut > x_lo && cut < hi {
+                    splits += 1;
+                    split_bits |= 1 << i;
+                }
             }
             *cut_out = cut;
             x_lo = hi;
@@ -370,6 +378,38 @@ impl<const N: usize> MindlinMemory<N> {
                 x_lo = x_hi.max(x_lo);
             }
             merge::<N>(&mut self.pieces, self.n, a, kappa, touched)
+        } else if self.n + splits <= MAX_PIECES + 1 {
+            // The split pieces fit in the storage: expand in place. First move every piece to
+            // its final slot (from the outermost, so nothing unread is overwritten; a split
+            // piece's stuck part keeps its slot and its slipping part takes the next), then
+            // write the pieces inner to outer (the slips in the same order as below).
+            let n0 = self.n;
+            let mut off = splits;
+            for i in (0..n0).rev() {
+                if off == 0 {
+                    break;
+                }
+                off -= (split_bits >> i & 1) as usize;
+                self.pieces[i + off] = self.pieces[i];
+            }
+            let mut x_lo = 0.0;
+            let mut pos = 0;
+            let mut touched_out: u32 = 0;
+            for (i, &cut) in cuts[..n0].iter().enumerate() {
+                let p = self.pieces[pos];
+                if cut > x_lo {
+                    self.pieces[pos].x_hi = cut;
+                    touched_out |= (touched >> i & 1) << pos;
+                    pos += 1;
+                }
+                if cut < p.x_hi {
+                    self.pieces[pos] = slip(&p, cut, &mut dissipated);
+                    touched_out |= 1 << pos;
+                    pos += 1;
+                }
+                x_lo = p.x_hi;
+            }
+            merge::<N>(&mut self.pieces, pos, a, kappa, touched_out)
         } else {
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
             let mut m = 0;
