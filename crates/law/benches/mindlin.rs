@@ -20,6 +20,13 @@
 //! a larger one aborts.
 //!
 //! Run: `cargo bench -p creep-law --bench mindlin [-- ROUNDS]`
+//!
+//! Instructions: `CREEP_MINDLIN_TRACE=FILE valgrind --tool=callgrind <bench binary> count`
+//! replays the trace once with the optimised memory only (no timing, no reference);
+//! `update_with_radius`'s inclusive count over the number of records is the instructions per
+//! update. With `CREEP_MINDLIN_OUT=FILE` that mode also writes every update's result and
+//! state (`q.x, q.y, slip_dissipation, truncation_energy` and `to_array`, little-endian f64),
+//! to compare two builds bit for bit.
 
 use std::hint::black_box;
 use std::time::Instant;
