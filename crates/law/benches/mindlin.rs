@@ -20,6 +20,13 @@
 //! a larger one aborts.
 //!
 //! Run: `cargo bench -p creep-law --bench mindlin [-- ROUNDS]`
+//!
+//! Instructions: `CREEP_MINDLIN_TRACE=FILE valgrind --tool=callgrind <bench binary> count`
+//! replays the trace once with the optimised memory only (no timing, no reference);
+//! `update_with_radius`'s inclusive count over the number of records is the instructions per
+//! update. With `CREEP_MINDLIN_OUT=FILE` that mode also writes every update's result and
+//! state (`q.x, q.y, slip_dissipation, truncation_energy` and `to_array`, little-endian f64),
+//! to compare two builds bit for bit.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -307,6 +314,33 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn main() {
+    // `-- count`: only the new memory's updates on the DEM trace, once, no timing and no
+    // reference (for `valgrind --tool=callgrind`: instructions per update = the total of
+    // `update_with_radius` over the number of records).
+    if std::env::args().any(|a| a == "count") {
+        let recs = trace().expect("count needs CREEP_MINDLIN_TRACE");
+        let mut q = Vec2::ZERO;
+        let mut out = Vec::new();
+        for r in &recs {
+            let mut s = MindlinState::from_array(&r.2).expect("valid state");
+            let step = black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
+            q += step.q;
+            out.extend([
+                step.q.x,
+                step.q.y,
+                step.slip_dissipation,
+                step.truncation_energy,
+            ]);
+            out.extend(s.to_array());
+        }
+        // `CREEP_MINDLIN_OUT=FILE`: every update's result and state, for comparing two builds.
+        if let Ok(file) = std::env::var("CREEP_MINDLIN_OUT") {
+            let bytes: Vec<u8> = out.iter().flat_map(|x| x.to_le_bytes()).collect();
+            std::fs::write(file, bytes).expect("CREEP_MINDLIN_OUT: unwritable");
+        }
+        println!("{} updates, sum of forces {q:?}", recs.len());
+        return;
+    }
     let rounds: usize = std::env::args()
         .skip(1)
         .find_map(|a| a.parse().ok())

@@ -319,20 +319,32 @@ impl<const N: usize> MindlinMemory<N> {
         let mut splits = 0;
         let mut x_lo = 0.0;
         let k2 = kappa * kappa;
-        for (p, cut_out) in self.pieces[..self.n].iter().zip(cuts.iter_mut()) {
-            let hi = p.x_hi.max(x_lo);
+        let mut split_bits: u32 = 0;
+        for (i, (p, cut_out)) in self.pieces[..self.n]
+            .iter()
+            .zip(cuts.iter_mut())
+            .enumerate()
+        {
+            // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
+            // them so and `from_array` refuses other states.
+            let hi = p.x_hi;
             let mut cut = stick_cut(p, kappa, k2, a, a2, x_lo, hi);
-            // A cut within rounding of an end of the piece is at that end: a sliver of
-            // springs split off by rounding would take a slot of the memory (and change which
-            // pieces `merge` joins later) for a field it cannot resolve.
-            if hi - cut <= SLIVER * a {
-                cut = hi;
-            } else if cut - x_lo <= SLIVER * a {
-                cut = x_lo;
+            if cut < hi {
+                // A cut within rounding of an end of the piece is at that end: a sliver of
+                // springs split off by rounding would take a slot of the memory (and change
+                // which pieces `merge` joins later) for a field it cannot resolve.
+                if hi - cut <= SLIVER * a {
+                    cut = hi;
+                } else if cut - x_lo <= SLIVER * a {
+                    cut = x_lo;
+                }
+                if cut > x_lo && cut < hi {
+                    splits += 1;
+                    split_bits |= 1 << i;
+                }
             }
-            splits += usize::from(cut > x_lo && cut < p.x_hi);
             *cut_out = cut;
-            x_lo = p.x_hi.max(x_lo);
+            x_lo = hi;
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let slip = |p: &Piece, cut: f64, dissipated: &mut f64| {
@@ -366,6 +378,38 @@ impl<const N: usize> MindlinMemory<N> {
                 x_lo = x_hi.max(x_lo);
             }
             merge::<N>(&mut self.pieces, self.n, a, kappa, touched)
+        } else if self.n + splits <= MAX_PIECES + 1 {
+            // The split pieces fit in the storage: expand in place. First move every piece to
+            // its final slot (from the outermost, so nothing unread is overwritten; a split
+            // piece's stuck part keeps its slot and its slipping part takes the next), then
+            // write the pieces inner to outer (the slips in the same order as below).
+            let n0 = self.n;
+            let mut off = splits;
+            for i in (0..n0).rev() {
+                if off == 0 {
+                    break;
+                }
+                off -= (split_bits >> i & 1) as usize;
+                self.pieces[i + off] = self.pieces[i];
+            }
+            let mut x_lo = 0.0;
+            let mut pos = 0;
+            let mut touched_out: u32 = 0;
+            for (i, &cut) in cuts[..n0].iter().enumerate() {
+                let p = self.pieces[pos];
+                if cut > x_lo {
+                    self.pieces[pos].x_hi = cut;
+                    touched_out |= (touched >> i & 1) << pos;
+                    pos += 1;
+                }
+                if cut < p.x_hi {
+                    self.pieces[pos] = slip(&p, cut, &mut dissipated);
+                    touched_out |= 1 << pos;
+                    pos += 1;
+                }
+                x_lo = p.x_hi;
+            }
+            merge::<N>(&mut self.pieces, pos, a, kappa, touched_out)
         } else {
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
             let mut m = 0;
@@ -652,7 +696,15 @@ fn merge<const N: usize>(
     // after the last update and both moved by the same `du`, so only pairs with a touched
     // piece are compared.
     let mut prev_touched = false;
-    for i in 0..m {
+    // Pieces below the first touched one (less one, its inner neighbour) are kept as they are:
+    // they are non-empty and increasing (an update's invariant, checked by `from_array`) and
+    // no two of them are compared.
+    let start = (touched.trailing_zeros() as usize).min(m).saturating_sub(1);
+    if start > 0 {
+        n = start;
+        x_lo = out[start - 1].x_hi;
+    }
+    for i in start..m {
         let p = out[i];
         if p.x_hi <= x_lo {
             continue;

@@ -24,8 +24,9 @@ impl<const N: usize> MindlinMemory<N> {
         out
     }
 
-    /// The inverse of [`MindlinState::to_array`]. A non-finite entry, a negative radius or a
-    /// piece count that is not an integer in `[0, N]` is an error.
+    /// The inverse of [`MindlinState::to_array`]. A non-finite entry, a negative radius, a
+    /// piece count that is not an integer in `[0, N]` or pieces whose outer radii do not
+    /// increase from above 0 is an error.
     pub fn from_array(v: &[f64; MINDLIN_FLAT_LEN]) -> Result<Self, crate::LawError> {
         if let Some(&bad) = v.iter().find(|x| !x.is_finite()) {
             return Err(crate::LawError::OutOfRange {
@@ -50,6 +51,19 @@ impl<const N: usize> MindlinMemory<N> {
                 beta: Vec2::new(v[o + 1], v[o + 2]),
                 c: Vec2::new(v[o + 3], v[o + 4]),
             };
+        }
+        // The pieces an update leaves: non-empty annuli, inner to outer (`update_with_radius`
+        // relies on it).
+        let mut x_lo = 0.0;
+        for p in &pieces[..n as usize] {
+            if !(p.x_hi > x_lo) {
+                return Err(crate::LawError::OutOfRange {
+                    name: "Mindlin history piece radius",
+                    value: p.x_hi,
+                    range: "above the previous piece's (0 for the first): pieces inner to outer",
+                });
+            }
+            x_lo = p.x_hi;
         }
         Ok(Self {
             a: v[0],

@@ -834,3 +834,29 @@ fn smaller_capacities_keep_their_bound_and_coulomb() {
     assert!(MindlinMemory::<4>::from_array(&st.to_array()).is_err());
     assert!(MindlinMemory::<8>::from_array(&st.to_array()).is_ok());
 }
+
+/// `from_array` accepts only pieces inner to outer (the update relies on non-empty,
+/// increasing annuli): a swapped pair, an empty piece or a first piece at radius 0 is an
+/// error; the state an update leaves reads back exactly.
+#[test]
+fn from_array_refuses_pieces_out_of_order() {
+    let pair = pair();
+    let mut st = MindlinState::new();
+    let ds = delta_s(&pair, P);
+    st.update(&pair, P, Vec2::new(0.5 * ds, 0.0));
+    st.update(&pair, P, Vec2::new(-0.3 * ds, 0.0));
+    st.update(&pair, 1.1 * P, Vec2::new(0.0, 0.1 * ds));
+    assert!(st.memory_depth() >= 3, "depth {}", st.memory_depth());
+    let good = st.to_array();
+    assert_eq!(MindlinState::from_array(&good).unwrap(), st);
+    // Piece k's outer radius sits at index 4 + 5 k.
+    let mut swapped = good;
+    swapped.swap(4, 9);
+    assert!(MindlinState::from_array(&swapped).is_err());
+    let mut empty = good;
+    empty[9] = empty[4];
+    assert!(MindlinState::from_array(&empty).is_err());
+    let mut at_zero = good;
+    at_zero[4] = 0.0;
+    assert!(MindlinState::from_array(&at_zero).is_err());
+}
