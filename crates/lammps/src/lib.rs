@@ -30,5 +30,6 @@ pub mod store;
 
 pub use model::{Body, Contact, ContactOutput, Model, ModelError, Settings, Tier, WallContact};
 pub use store::{
-    Accumulators, Atoms, HistoryStore, ModelTable, PairIndex, PairOutputs, compute_pairs,
+    Accumulators, Atoms, HalfList, HistoryStore, ListCounts, ListEntries, ModelTable, PairForce,
+    PairIndex, PairOutputs, VecList, compute_list, compute_pairs,
 };
