@@ -86,7 +86,20 @@ pub fn pair_force<T: TangentialLaw>(
     }
     let n = g.normal;
     let cp = g.point;
-    let (rates, delta_dot) = rates_and_approach(p, q, cp, n);
+    // Two spheres: the arms from the centres to the contact point lie along the normal (the
+    // point of a sphere's surface nearest the other body is on its normal through the centre),
+    // `c - x_p = rho_p n`, `c - x_q = -rho_q n`; the rates and the torques then take the
+    // shorter forms below (the same values to rounding; test `sphere_forms_equal_the_general_ones`).
+    let spheres = matches!(
+        (p.surface, q.surface),
+        (Surface::Sphere(_), Surface::Sphere(_))
+    );
+    let (rho_p, rho_q) = ((cp - p.position).dot(n), (q.position - cp).dot(n));
+    let (rates, delta_dot) = if spheres {
+        sphere_rates_and_approach(p, q, rho_p, rho_q, n)
+    } else {
+        rates_and_approach(p, q, cp, n)
+    };
 
     // The tangent basis carried with the contact.
     if h.is_virgin() {
@@ -156,11 +169,22 @@ pub fn pair_force<T: TangentialLaw>(
     h.overlap = delta;
 
     let f_p = q_world - n * p_tot;
+    let (torque_p, torque_q) = if spheres {
+        // `(c - x_p) x f_p = rho_p n x f_p` and `(c - x_q) x (-f_p) = rho_q n x f_p`, with
+        // `n x f_p = n x Q = Q_1 t2 - Q_2 t1` (`n x n = 0`, `n x t1 = t2`, `n x t2 = -t1`).
+        let nf = t2 * step.q.x - t1 * step.q.y;
+        (nf * rho_p - torque_roll, nf * rho_q + torque_roll)
+    } else {
+        (
+            (cp - p.position).cross(f_p) + (-torque_roll),
+            (cp - q.position).cross(-f_p) + torque_roll,
+        )
+    };
     PairForces {
         touching: true,
         force_p: f_p,
-        torque_p: (cp - p.position).cross(f_p) + (-torque_roll),
-        torque_q: (cp - q.position).cross(-f_p) + torque_roll,
+        torque_p,
+        torque_q,
         point: cp,
         normal_force: p_tot,
         elastic_normal_force: p_el,
@@ -237,6 +261,45 @@ pub(super) fn rates_and_approach(
         surface: b.surface,
     };
     contact_rates_and_approach(&motion(p), &motion(q), cp, n)
+}
+
+/// [`rates_and_approach`] for two spheres whose arms to the contact point lie along the normal
+/// `n`: `c - x_p = rho_p n`, `c - x_q = -rho_q n` (`rho_p`, `rho_q` \[m\] the centres'
+/// distances to the contact point along `n`). With `A = w_p x n`, `B = w_q x n` (tangential)
+/// and `dv = v_q - v_p`, Kuhn & Bagi's (2004) rates (DESIGN §2, as
+/// [`crate::kinematics::contact_rates`]) are `v_disp = dv_t - rho_p A - rho_q B`, `v_roll =
+/// dv_t (rho_q - rho_p)/(2 d) + (rho_p A - rho_q B)/2` (`d = rho_p + rho_q`: the contact
+/// point's velocity `c' = v_p + dv rho_p/d`; `v_roll = 0` where `d` is not finite and > 0, as
+/// there), the approach rate `-dv . n`: two cross products where the general form takes four,
+/// and no projections of the rates onto the tangent plane but one (`dv_t`). The same values to
+/// rounding (test `sphere_forms_equal_the_general_ones`).
+#[inline(always)]
+pub(super) fn sphere_rates_and_approach(
+    p: &PairBody,
+    q: &PairBody,
+    rho_p: f64,
+    rho_q: f64,
+    n: Vec3,
+) -> (ContactRates, f64) {
+    let a = p.angular_velocity.cross(n);
+    let b = q.angular_velocity.cross(n);
+    let dv = q.velocity - p.velocity;
+    let dvn = dv.dot(n);
+    let dv_t = dv - n * dvn;
+    let d = rho_p + rho_q;
+    let v_roll = if d > 0.0 && finite(d) {
+        dv_t * ((rho_q - rho_p) / (2.0 * d)) + (a * rho_p - b * rho_q) * 0.5
+    } else {
+        Vec3::ZERO
+    };
+    let w_rel = q.angular_velocity - p.angular_velocity;
+    let rates = ContactRates {
+        v_disp: dv_t - a * rho_p - b * rho_q,
+        v_roll,
+        w_roll: w_rel.reject(n),
+        w_twist: w_rel.dot(n),
+    };
+    (rates, -dvn)
 }
 
 /// Opens a contact: resets its history and returns the tangential elastic energy it still

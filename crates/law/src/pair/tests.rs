@@ -1,4 +1,4 @@
-use super::kernel::rates_and_approach;
+use super::kernel::{rates_and_approach, sphere_rates_and_approach};
 use super::*;
 use crate::hertz;
 use crate::kalker;
@@ -509,4 +509,79 @@ fn creep_per_force_equals_the_steady_law() {
             "q {q} mu P {m} a {a}: {got} against {want}"
         );
     }
+}
+
+#[test]
+fn sphere_forms_equal_the_general_ones() {
+    // Two spheres: the kernel's short forms of Kuhn & Bagi's rates and of the torques (arms
+    // along the normal) against the general ones (kinematics::contact_rates; `(c - x) x f`)
+    // on random pairs, to rounding: relative to the size of the terms, 1e-14.
+    use crate::kinematics::{BodyMotion, contact_rates};
+    let mut seed = 0x1234_5678_9abc_def1u64;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let c = constants(0.5, 0.6, Some(CreepModel::Kuhn));
+    let mut checked = 0;
+    for _ in 0..2000 {
+        let (rp, rq) = (0.004 * (1.0 + rnd()), 0.004 * (1.0 + rnd()));
+        let dir = Vec3::new(rnd(), rnd(), rnd()).try_normalize().unwrap();
+        let xp = Vec3::new(rnd(), rnd(), rnd()) * 0.01;
+        let xq = xp + dir * ((rp + rq) * (1.0 - 0.01 * (rnd() + 0.5)));
+        let mut v = |s: f64| Vec3::new(rnd(), rnd(), rnd()) * s;
+        let p = sphere(xp, v(0.5), v(50.0), rp);
+        let q = sphere(xq, v(0.5), v(50.0), rq);
+        let g = ContactGeometry::sphere_sphere(p.position, rp, q.position, rq).unwrap();
+        let (n, cp) = (g.normal, g.point);
+        let (rho_p, rho_q) = ((cp - p.position).dot(n), (q.position - cp).dot(n));
+        let (r, dd) = sphere_rates_and_approach(&p, &q, rho_p, rho_q, n);
+        let motion = |b: &PairBody| BodyMotion {
+            position: b.position,
+            velocity: b.velocity,
+            angular_velocity: b.angular_velocity,
+            surface: b.surface,
+        };
+        let (mp, mq) = (motion(&p), motion(&q));
+        let k = contact_rates(&mp, &mq, cp, n);
+        let dd0 = -(mq.velocity_at(cp) - mp.velocity_at(cp)).dot(n);
+        // The size of the terms: the speeds and the spins times the radii.
+        let scale = (p.velocity.length() + q.velocity.length())
+            + (p.angular_velocity.length() * rp + q.angular_velocity.length() * rq);
+        let tol = 1e-14 * scale;
+        for (got, want) in [
+            (r.v_disp, k.v_disp),
+            (r.v_roll, k.v_roll),
+            (r.w_roll * rp, k.w_roll * rp),
+        ] {
+            assert!((got - want).length() <= tol, "{got:?} against {want:?}");
+        }
+        assert!((r.w_twist - k.w_twist).abs() * rp <= tol);
+        assert!((dd - dd0).abs() <= tol, "{dd} against {dd0}");
+        // The kernel's torques against the arms' cross products, over a few steps.
+        let mut h = ContactHistory::<Cheap>::default();
+        for _ in 0..3 {
+            let f = pair_force(&c, &p, &q, &g, &mut h, 1e-6);
+            assert!(f.touching);
+            let tp = (f.point - p.position).cross(f.force_p);
+            let tq = (f.point - q.position).cross(-f.force_p);
+            let tol = 1e-14 * (rp + rq) * f.force_p.length();
+            assert!(
+                (f.torque_p - tp).length() <= tol,
+                "{:?} against {tp:?}",
+                f.torque_p
+            );
+            assert!(
+                (f.torque_q - tq).length() <= tol,
+                "{:?} against {tq:?}",
+                f.torque_q
+            );
+            checked += 1;
+        }
+        // Some tangential force (else the torques would be zero on both sides).
+        assert!(h.tangential.q.length() > 0.0);
+    }
+    assert_eq!(checked, 6000);
 }
