@@ -1,4 +1,4 @@
-use super::kernel::{rates_and_approach, sphere_rates_and_approach};
+use super::kernel::{carry_tangent, rates_and_approach, sphere_rates_and_approach};
 use super::*;
 use crate::hertz;
 use crate::kalker;
@@ -584,4 +584,52 @@ fn sphere_forms_equal_the_general_ones() {
         assert!(h.tangential.q.length() > 0.0);
     }
     assert_eq!(checked, 6000);
+}
+
+#[test]
+fn carried_tangent_is_the_rotation_to_second_order() {
+    // The basis carried by projection against the smallest rotation (Rodrigues, `rotate_to`)
+    // and the spin turn: within (theta^2/4) |sin(2 phi)| + rounding for small turns theta of
+    // the normal, exact (to rounding) for a tangent in the plane of the turn or along its
+    // axis, and the rotation itself for large turns (a half turn reverses the tangent).
+    let from = Vec3::new(0.3, -0.5, 0.8).try_normalize().unwrap();
+    let (e1, e2) = from.tangent_basis();
+    let mut worst_ratio: f64 = 0.0;
+    for &theta in &[1e-7, 1e-5, 1e-3, 0.05] {
+        for k in 0..24 {
+            let psi = f64::from(k) * std::f64::consts::PI / 12.0; // direction of the turn
+            let axis = e1 * psi.cos() + e2 * psi.sin();
+            let to = rotate_about(from, axis, theta);
+            for j in 0..12 {
+                let phi = f64::from(j) * std::f64::consts::PI / 12.0; // tangent from the axis
+                let t1 = axis * phi.cos() + from.cross(axis) * phi.sin();
+                for spin in [0.0, 2e-6] {
+                    let got = carry_tangent(t1, from, to, spin).unwrap();
+                    let want = rotate_about(rotate_to(t1, from, to), to, spin);
+                    assert!((got.length() - 1.0).abs() < 1e-15);
+                    assert!(got.dot(to).abs() < 1e-15);
+                    let dev = (got - want).length();
+                    let bound = theta * theta / 4.0 * (2.0 * phi).sin().abs();
+                    assert!(
+                        dev <= 1.01 * bound + 1e-15,
+                        "theta {theta} phi {phi}: {dev:e} > {bound:e}"
+                    );
+                    if bound > 1e-12 {
+                        worst_ratio = worst_ratio.max(dev / bound);
+                    }
+                }
+            }
+        }
+    }
+    // The bound is the actual size of the difference (not a loose one).
+    assert!(worst_ratio > 0.9, "{worst_ratio}");
+    // Large turns: the rotation. 60 degrees with the tangent along the turn's direction, and
+    // a half turn of the normal.
+    let axis = e1;
+    let to = rotate_about(from, axis, 1.05);
+    let t1 = from.cross(axis);
+    let got = carry_tangent(t1, from, to, 0.0).unwrap();
+    assert!((got - rotate_to(t1, from, to)).length() < 1e-15);
+    let got = carry_tangent(e1, from, -from, 0.0).unwrap();
+    assert!((got + e1).length() < 1e-15, "{got:?}");
 }
