@@ -137,6 +137,52 @@ typedef struct CreepLammpsPair {
   int32_t slot;
 } CreepLammpsPair;
 
+// LAMMPS' half neighbour list of a pair style (`NeighList`) and the pair style's per-entry
+// state, for [`creep_lammps_compute_list`]. Entry `e` is atom `ilist[ii]`'s `jj`-th neighbour,
+// `e = numneigh[ilist[0]] + ... + numneigh[ilist[ii - 1]] + jj`.
+typedef struct CreepLammpsList {
+  // Atoms whose neighbours are listed (`list->inum`).
+  size_t inum;
+  // Their indices (`list->ilist`, `inum` values).
+  const int32_t *ilist;
+  // Per atom index, the number of neighbours (`list->numneigh`, `maxatom` values).
+  const int32_t *numneigh;
+  // Per atom index, its neighbours (`list->firstneigh`, `maxatom` pointers).
+  const int32_t *const *firstneigh;
+  // Length of `numneigh` and `firstneigh` (`list->maxatom`).
+  size_t maxatom;
+  // Mask of a neighbour's atom index (LAMMPS' `NEIGHMASK`; the top bits flag special bonds).
+  int32_t neighmask;
+  // Entries of the list (the sum of `numneigh` over `ilist`), the length of `slot` and `swap`.
+  size_t nentries;
+  // Per entry, its history slot in the store (-1: none); read and written.
+  int32_t *slot;
+  // Per entry, nonzero where the neighbour is body p (the lower atom tag).
+  const uint8_t *swap;
+} CreepLammpsList;
+
+// One contact's force for the host's virial: atoms `p` and `q` and the force on p (N).
+typedef struct CreepLammpsPairForce {
+  // Atom index of body p.
+  int32_t p;
+  // Atom index of body q.
+  int32_t q;
+  // Force on p (N) (`-force_p` on q); zero for a dropped contact.
+  double force_p[3];
+} CreepLammpsPairForce;
+
+// What [`compute_list`] counted.
+typedef struct CreepLammpsCounts {
+  // Touching pairs of the step (centres closer than the sum of the radii).
+  size_t contacts;
+  // Of those, the ones whose body p is an owned atom (summed over ranks: each contact once).
+  size_t owned_contacts;
+  // Contacts the kernel dropped (coincident centres): their entries' slots are -1 again.
+  size_t dropped;
+  // The store's slots after the step (the host's count for [`HistoryStore::save`]).
+  size_t nslots;
+} CreepLammpsCounts;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -293,6 +339,40 @@ int32_t creep_lammps_compute_pairs(const struct CreepLammpsModel *const *models,
                                    size_t *dropped,
                                    char *err,
                                    size_t err_len);
+
+// The pair style's whole step in one call: walks LAMMPS' half neighbour list `list`, finds the
+// touching pairs, steps each one's history in its slot of `store` (a new contact takes a new,
+// virgin slot; an entry found apart or dropped gets slot -1) and adds the forces and torques
+// into the owned atoms' `f` and `torque` in the list's order ([`crate::compute_list`]; the
+// same bits as [`creep_lammps_compute_pairs`] on the same pairs). Body p of an entry is the
+// neighbour where `list.swap` says so, else the list's atom. The model of atom types `ti`,
+// `tj` is `models[ti * (ntypes + 1) + tj]` (null: no `pair_coeff`, an error if used).
+// `forces` (null: not wanted) receives, for the host's virial, contact `k`'s atoms and force
+// on p at `forces[k]` (`list.nentries` entries needed); `counts` (null: not wanted) the
+// step's counts and the store's new number of slots. Returns 0, or 1 with the reason in `err`
+// (as [`creep_lammps_compute_pairs`], and entries that do not match the list: nothing after
+// the failing entry is evaluated).
+//
+// # Safety
+// `models` points to `(ntypes + 1)^2` model pointers (null or live); `store` is a live store;
+// `atoms` describes valid arrays as [`CreepLammpsAtoms`] says (`f` and `torque` writable and
+// overlapping no other buffer); `list` points to a [`CreepLammpsList`] whose `ilist` holds
+// `inum` ints, `numneigh` and `firstneigh` `maxatom` values each, where for every atom `i`
+// of `ilist` below `maxatom` `firstneigh[i]` points to `numneigh[i]` ints (null allowed when
+// that is 0), `slot` to `nentries` writable ints and `swap` to `nentries` bytes, none of them
+// written by anyone else during the call; `forces` is null or holds `list.nentries` entries;
+// `counts` is null or one writable [`ListCounts`]; `err` is null or valid for writes of
+// `err_len` bytes.
+int32_t creep_lammps_compute_list(const struct CreepLammpsModel *const *models,
+                                  size_t ntypes,
+                                  struct CreepLammpsStore *store,
+                                  const struct CreepLammpsAtoms *atoms,
+                                  const struct CreepLammpsList *list,
+                                  double dt,
+                                  struct CreepLammpsPairForce *forces,
+                                  struct CreepLammpsCounts *counts,
+                                  char *err,
+                                  size_t err_len);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -14,7 +14,8 @@
 // owned-ghost pair (newton off) evaluate it identically and keep the same history.
 //
 // History storage: each contact's history once, in a pool with one slot per neighbour entry,
-// stepped in place by creep_lammps_compute_at; fix creep/history's per-atom rows are written
+// stepped in place by creep_lammps_compute_list (one call per step that walks the neighbour
+// list itself); fix creep/history's per-atom rows are written
 // from the pool only before exchange / at run end / for restarts (sync_history_rows) and read
 // back after each neighbour-list build (rebuild_slots), as LAMMPS' fix neigh/history does.
 #include "pair_granular_creep.h"
@@ -260,6 +261,7 @@ void PairGranularCreep::rebuild_slots()
   }
   slot_first[inum] = total;
   slot.assign(total, -1);
+  swap.resize(total);
   partner_tag.resize(total);
   built_nlocal = nlocal;
   nslots = 0;
@@ -270,7 +272,11 @@ void PairGranularCreep::rebuild_slots()
     double *rowi = rows[i];
     const int ni = static_cast<int>(rowi[0]);
     const int *jlist = firstneigh[i];
-    for (int jj = 0; jj < numneigh[i]; jj++) partner_tag[slot_first[ii] + jj] = tag[jlist[jj] & NEIGHMASK];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const tagint tj = tag[jlist[jj] & NEIGHMASK];
+      partner_tag[slot_first[ii] + jj] = tj;
+      swap[slot_first[ii] + jj] = tag[i] > tj ? 1 : 0;    // body p is the lower tag
+    }
     if (ni == 0) continue;
     const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
     for (int jj = 0; jj < numneigh[i]; jj++) {
@@ -362,8 +368,6 @@ void PairGranularCreep::compute(int eflag, int vflag)
   // Their history update only sets the contact's basis and radius (an identity for a contact
   // that was stepped before), so `run N; run M` and a restart continue alike.
   const double dt = update->setupflag ? 0.0 : update->dt;
-  const int hlen = fix_history->hlen;
-
   const int inum = list->inum;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
@@ -385,81 +389,51 @@ void PairGranularCreep::compute(int eflag, int vflag)
       error->one(FLERR, "pair granular/creep: atom {} has radius {} m, larger than the {} m the neighbour "
                  "cut-off was set up for (pair_style granular/creep maxradius R)", tag[i], radius[i], maxrad);
 
-  // The batch buffers hold one entry per neighbour-list entry at most: sized once per build
-  // (no push_back, with its capacity check, per contact).
-  if (batch.size() < slot.size()) {
-    batch.resize(slot.size());
-    batch_e.resize(slot.size());
-  }
-  CreepLammpsPair *const bp = batch.data();
-  int *const be = batch_e.data();
-  size_t n = 0;
-  double touching_here = 0.0;
-
-  // 1. The touching pairs, in neighbour-list order, body p the lower tag; each history stays
-  // where it is (a new contact gets a new, virgin slot).
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const int *jlist = firstneigh[i];
-    const int e0 = slot_first[ii];
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2], ri = radius[i];
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double dx = x[j][0] - xi, dy = x[j][1] - yi, dz = x[j][2] - zi;
-      const double rsum = ri + radius[j];
-      int &s = slot[e0 + jj];
-      if (dx * dx + dy * dy + dz * dz >= rsum * rsum) {
-        s = -1;    // apart: the history is dropped (its slot is reclaimed at the next build)
-        continue;
-      }
-      if (s < 0) s = nslots++;
-      const bool swap = tag[i] > tag[j];
-      CreepLammpsPair &c = bp[n];
-      c.p = swap ? j : i;
-      c.q = swap ? i : j;
-      c.slot = s;
-      be[n] = e0 + jj;
-      n++;
-      if (c.p < nlocal) touching_here += 1.0;
-    }
-  }
-
-  // 2. One call into the law: it reads the atoms, steps the histories in place in its store and
-  // adds the forces and torques of the owned atoms.
-  if (evflag) batch_force.resize(3 * n);
-  batch_touching.resize(n);
-  size_t dropped = 0;
+  // 1. One call into the law over the whole neighbour list: it finds the touching pairs (body
+  // p the lower tag, per swap[]), keeps each history where it is (slot[]: a new contact gets a
+  // new, virgin slot, a pair found apart -1, its slot reclaimed at the next build), steps them
+  // in place in its store and adds the forces and torques of the owned atoms.
+  const int nall = nlocal + atom->nghost;
   CreepLammpsAtoms at;
   at.nlocal = static_cast<size_t>(nlocal);
-  at.nall = static_cast<size_t>(nlocal + atom->nghost);
-  at.x = n ? x[0] : nullptr;
-  at.v = n ? v[0] : nullptr;
-  at.omega = n ? omega[0] : nullptr;
+  at.nall = static_cast<size_t>(nall);
+  at.x = nall ? x[0] : nullptr;
+  at.v = nall ? v[0] : nullptr;
+  at.omega = nall ? omega[0] : nullptr;
   at.radius = radius;
   at.rmass = rmass;
   at.type_ = type;
   at.f = nlocal ? f[0] : nullptr;
   at.torque = nlocal ? torque[0] : nullptr;
+  CreepLammpsList nl;
+  nl.inum = static_cast<size_t>(inum);
+  nl.ilist = ilist;
+  nl.numneigh = numneigh;
+  nl.firstneigh = firstneigh;
+  nl.maxatom = static_cast<size_t>(list->maxatom);
+  nl.neighmask = NEIGHMASK;
+  nl.nentries = slot.size();
+  nl.slot = slot.data();
+  nl.swap = swap.data();
+  // The contacts' forces only on the steps that tally the virial (sized once per build).
+  if (evflag && virial.size() < slot.size()) virial.resize(slot.size());
+  CreepLammpsCounts counts;
   char msg[512] = {0};
-  const int rc = creep_lammps_compute_pairs(model_table.data(), static_cast<size_t>(atom->ntypes), store, &at, dt, n,
-                                            batch.data(), static_cast<size_t>(nslots),
-                                            evflag ? batch_force.data() : nullptr, batch_touching.data(), &dropped,
-                                            msg, sizeof(msg));
+  const int rc = creep_lammps_compute_list(model_table.data(), static_cast<size_t>(atom->ntypes), store, &at, &nl,
+                                           dt, evflag ? virial.data() : nullptr, &counts, msg, sizeof(msg));
   if (rc != 0) error->one(FLERR, "pair granular/creep: {}", msg);
+  nslots = static_cast<int>(counts.nslots);
   rows_stale = true;
 
-  // 3. The virial (on the steps that ask for it; symmetric in p and q), and contacts the law
-  // dropped (coincident centres): their slots are freed.
+  // 2. The virial (on the steps that ask for it; symmetric in p and q).
   if (evflag)
-    for (size_t k = 0; k < n; k++) {
-      const int p = batch[k].p, q = batch[k].q;
-      const double *fp = &batch_force[3 * k];
-      ev_tally_xyz(p, q, nlocal, 0, 0.0, 0.0, fp[0], fp[1], fp[2], x[p][0] - x[q][0], x[p][1] - x[q][1],
-                   x[p][2] - x[q][2]);
+    for (size_t k = 0; k < counts.contacts; k++) {
+      const CreepLammpsPairForce &c = virial[k];
+      const int p = c.p, q = c.q;
+      ev_tally_xyz(p, q, nlocal, 0, 0.0, 0.0, c.force_p[0], c.force_p[1], c.force_p[2], x[p][0] - x[q][0],
+                   x[p][1] - x[q][1], x[p][2] - x[q][2]);
     }
-  if (dropped > 0)
-    for (size_t k = 0; k < n; k++)
-      if (!batch_touching[k]) slot[batch_e[k]] = -1;
+  const double touching_here = static_cast<double>(counts.owned_contacts);
   pvector[0] = touching_here;
   pvector[1] = dropped_total;
 }

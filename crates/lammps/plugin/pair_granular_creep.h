@@ -2,7 +2,7 @@
 //
 // pair_style granular/creep: Kuhn's creep-friction contact law (Hertz + damping from the
 // restitution + Cattaneo-Mindlin with Kuhn's creep) evaluated by the Rust crate creep-lammps
-// through its C ABI (creep_lammps.h), many contacts per call.
+// through its C ABI (creep_lammps.h), one call per step over the whole neighbour list.
 #ifndef CREEP_PAIR_GRANULAR_CREEP_H
 #define CREEP_PAIR_GRANULAR_CREEP_H
 
@@ -45,7 +45,8 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   // Contact histories, each stored once, in place between neighbour-list builds (as LAMMPS'
   // fix neigh/history does): neighbour entry e (entry jj of list atom ii is
   // slot_first[ii] + jj) has its history in slot slot[e] of `store` (-1: none), creep-law's own
-  // structs kept by the Rust side; the law steps them there (creep_lammps_compute_pairs). The
+  // structs kept by the Rust side; the law walks the list and steps them there
+  // (creep_lammps_compute_list). The
   // per-atom rows of fix creep/history are written from them only when atoms may move between
   // ranks or a restart is written (sync_history_rows), and read back after each neighbour-list
   // build (rebuild_slots); `stage` carries their flat form across the C ABI then.
@@ -67,11 +68,10 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   bool counting;               // a sync happened since the last rebuild
   double dropped_total;        // sum of (saved - restored) over this run's rebuilds
 
-  // Batch buffers (kept between steps: no allocation in the steady state).
-  std::vector<CreepLammpsPair> batch;
-  std::vector<int> batch_e;
-  std::vector<double> batch_force;
-  std::vector<uint8_t> batch_touching;
+  // Per neighbour entry: 1 where the neighbour is body p (the lower tag), set at the build.
+  std::vector<uint8_t> swap;
+  // The contacts' forces for the virial (kept between steps: no allocation in the steady state).
+  std::vector<CreepLammpsPairForce> virial;
 };
 
 }    // namespace LAMMPS_NS

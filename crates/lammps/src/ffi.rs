@@ -12,7 +12,10 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use creep_law::rolling_torque::RollingModel;
 
 use crate::model::{Contact, ContactOutput, Model, ModelError, Settings, Tier, WallContact};
-use crate::store::{Accumulators, Atoms, HistoryStore, ModelTable, PairIndex, PairOutputs};
+use crate::store::{
+    Accumulators, Atoms, HalfList, HistoryStore, ListCounts, ListEntries, ModelTable, PairForce,
+    PairIndex, PairOutputs,
+};
 
 /// Tangential tier: Cattaneo-Mindlin with exact load-history memory and Kuhn's creep.
 pub const CREEP_LAMMPS_TIER_EXACT: u32 = 0;
@@ -611,33 +614,14 @@ pub unsafe extern "C" fn creep_lammps_compute_pairs(
             .ok_or(ModelError::AtomArrays)?;
         // SAFETY: sizes and validity as the contract says; `[f64; 3]` has the layout of three
         // doubles; the mutable slices overlap nothing else.
-        let (models, atoms, mut acc, pairs, outputs) = unsafe {
-            let v3 =
-                |p: *const f64, len: usize| std::slice::from_raw_parts(p.cast::<[f64; 3]>(), len);
-            let v3m = |p: *mut f64, len: usize| -> &mut [[f64; 3]] {
-                if len == 0 {
-                    &mut []
-                } else {
-                    std::slice::from_raw_parts_mut(p.cast::<[f64; 3]>(), len)
-                }
-            };
+        let (models, (atoms, mut acc), pairs, outputs) = unsafe {
             (
                 std::slice::from_raw_parts(models, nm),
-                Atoms {
-                    x: v3(a.x, a.nall),
-                    v: v3(a.v, a.nall),
-                    omega: v3(a.omega, a.nall),
-                    radius: std::slice::from_raw_parts(a.radius, a.nall),
-                    mass: std::slice::from_raw_parts(a.rmass, a.nall),
-                    kind: std::slice::from_raw_parts(a.type_, a.nall),
-                },
-                Accumulators {
-                    force: v3m(a.f, a.nlocal),
-                    torque: v3m(a.torque, a.nlocal),
-                },
+                atom_slices(a),
                 std::slice::from_raw_parts(pairs, n),
                 PairOutputs {
-                    force_p: (!force_p.is_null()).then(|| v3m(force_p, n)),
+                    force_p: (!force_p.is_null())
+                        .then(|| std::slice::from_raw_parts_mut(force_p.cast::<[f64; 3]>(), n)),
                     touching: (!touching.is_null())
                         .then(|| std::slice::from_raw_parts_mut(touching, n)),
                 },
@@ -675,6 +659,250 @@ pub unsafe extern "C" fn creep_lammps_compute_pairs(
     if let (Ok(d), false) = (&result, dropped.is_null()) {
         // SAFETY: one writable size_t, by the contract.
         unsafe { *dropped = *d };
+    }
+    // SAFETY: `err` as the contract says.
+    unsafe { status(result.map(|_| ()), err, err_len) }
+}
+
+/// LAMMPS' half neighbour list of a pair style (`NeighList`) and the pair style's per-entry
+/// state, for [`creep_lammps_compute_list`]. Entry `e` is atom `ilist[ii]`'s `jj`-th neighbour,
+/// `e = numneigh[ilist[0]] + ... + numneigh[ilist[ii - 1]] + jj`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct CreepLammpsList {
+    /// Atoms whose neighbours are listed (`list->inum`).
+    pub inum: usize,
+    /// Their indices (`list->ilist`, `inum` values).
+    pub ilist: *const i32,
+    /// Per atom index, the number of neighbours (`list->numneigh`, `maxatom` values).
+    pub numneigh: *const i32,
+    /// Per atom index, its neighbours (`list->firstneigh`, `maxatom` pointers).
+    pub firstneigh: *const *const i32,
+    /// Length of `numneigh` and `firstneigh` (`list->maxatom`).
+    pub maxatom: usize,
+    /// Mask of a neighbour's atom index (LAMMPS' `NEIGHMASK`; the top bits flag special bonds).
+    pub neighmask: i32,
+    /// Entries of the list (the sum of `numneigh` over `ilist`), the length of `slot` and `swap`.
+    pub nentries: usize,
+    /// Per entry, its history slot in the store (-1: none); read and written.
+    pub slot: *mut i32,
+    /// Per entry, nonzero where the neighbour is body p (the lower atom tag).
+    pub swap: *const u8,
+}
+
+/// [`CreepLammpsList`] as a [`HalfList`]: the per-atom arrays as slices; a neighbour row is made
+/// a slice when asked for.
+struct RawList<'a> {
+    ilist: &'a [i32],
+    numneigh: &'a [i32],
+    firstneigh: &'a [*const i32],
+}
+
+impl HalfList for RawList<'_> {
+    fn atoms(&self) -> &[i32] {
+        self.ilist
+    }
+    fn neighbours(&self, i: usize) -> Option<&[i32]> {
+        let n = usize::try_from(*self.numneigh.get(i)?).ok()?;
+        let row = *self.firstneigh.get(i)?;
+        if n == 0 {
+            return Some(&[]);
+        }
+        if row.is_null() {
+            return None;
+        }
+        // SAFETY: the contract of `creep_lammps_compute_list`: for an atom `i` below
+        // `maxatom`, `firstneigh[i]` points to `numneigh[i]` ints that live through the call
+        // and are not written during it.
+        Some(unsafe { std::slice::from_raw_parts(row, n) })
+    }
+}
+
+/// The atom arrays of `a` as slices.
+///
+/// # Safety
+/// `a` describes valid arrays as [`CreepLammpsAtoms`] says, none null (`f`, `torque` may be
+/// null when `nlocal == 0`), `f` and `torque` overlapping no other buffer, living through `'a`.
+unsafe fn atom_slices<'a>(a: &CreepLammpsAtoms) -> (Atoms<'a>, Accumulators<'a>) {
+    // SAFETY: as this function's contract says; `[f64; 3]` has the layout of three doubles.
+    unsafe {
+        let v3 = |p: *const f64, len: usize| std::slice::from_raw_parts(p.cast::<[f64; 3]>(), len);
+        let v3m = |p: *mut f64, len: usize| -> &mut [[f64; 3]] {
+            if len == 0 {
+                &mut []
+            } else {
+                std::slice::from_raw_parts_mut(p.cast::<[f64; 3]>(), len)
+            }
+        };
+        (
+            Atoms {
+                x: v3(a.x, a.nall),
+                v: v3(a.v, a.nall),
+                omega: v3(a.omega, a.nall),
+                radius: std::slice::from_raw_parts(a.radius, a.nall),
+                mass: std::slice::from_raw_parts(a.rmass, a.nall),
+                kind: std::slice::from_raw_parts(a.type_, a.nall),
+            },
+            Accumulators {
+                force: v3m(a.f, a.nlocal),
+                torque: v3m(a.torque, a.nlocal),
+            },
+        )
+    }
+}
+
+/// The pair style's whole step in one call: walks LAMMPS' half neighbour list `list`, finds the
+/// touching pairs, steps each one's history in its slot of `store` (a new contact takes a new,
+/// virgin slot; an entry found apart or dropped gets slot -1) and adds the forces and torques
+/// into the owned atoms' `f` and `torque` in the list's order ([`crate::compute_list`]; the
+/// same bits as [`creep_lammps_compute_pairs`] on the same pairs). Body p of an entry is the
+/// neighbour where `list.swap` says so, else the list's atom. The model of atom types `ti`,
+/// `tj` is `models[ti * (ntypes + 1) + tj]` (null: no `pair_coeff`, an error if used).
+/// `forces` (null: not wanted) receives, for the host's virial, contact `k`'s atoms and force
+/// on p at `forces[k]` (`list.nentries` entries needed); `counts` (null: not wanted) the
+/// step's counts and the store's new number of slots. Returns 0, or 1 with the reason in `err`
+/// (as [`creep_lammps_compute_pairs`], and entries that do not match the list: nothing after
+/// the failing entry is evaluated).
+///
+/// # Safety
+/// `models` points to `(ntypes + 1)^2` model pointers (null or live); `store` is a live store;
+/// `atoms` describes valid arrays as [`CreepLammpsAtoms`] says (`f` and `torque` writable and
+/// overlapping no other buffer); `list` points to a [`CreepLammpsList`] whose `ilist` holds
+/// `inum` ints, `numneigh` and `firstneigh` `maxatom` values each, where for every atom `i`
+/// of `ilist` below `maxatom` `firstneigh[i]` points to `numneigh[i]` ints (null allowed when
+/// that is 0), `slot` to `nentries` writable ints and `swap` to `nentries` bytes, none of them
+/// written by anyone else during the call; `forces` is null or holds `list.nentries` entries;
+/// `counts` is null or one writable [`ListCounts`]; `err` is null or valid for writes of
+/// `err_len` bytes.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn creep_lammps_compute_list(
+    models: *const *const CreepLammpsModel,
+    ntypes: usize,
+    store: *mut CreepLammpsStore,
+    atoms: *const CreepLammpsAtoms,
+    list: *const CreepLammpsList,
+    dt: f64,
+    forces: *mut PairForce,
+    counts: *mut ListCounts,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    // SAFETY: null or valid, by the contract.
+    let (Some(store), Some(a), Some(l)) = (
+        unsafe { store.as_mut() },
+        unsafe { atoms.as_ref() },
+        unsafe { list.as_ref() },
+    ) else {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null store, atoms or list") };
+        return 1;
+    };
+    let any_null = models.is_null()
+        || (l.inum > 0 && l.ilist.is_null())
+        || (l.maxatom > 0 && (l.numneigh.is_null() || l.firstneigh.is_null()))
+        || (l.nentries > 0 && (l.slot.is_null() || l.swap.is_null()))
+        || (a.nall > 0
+            && ([a.x, a.v, a.omega, a.radius, a.rmass]
+                .iter()
+                .any(|p| p.is_null())
+                || a.type_.is_null()))
+        || (a.nlocal > 0 && (a.f.is_null() || a.torque.is_null()));
+    if any_null {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null buffer") };
+        return 1;
+    }
+    if a.nlocal > a.nall {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, &ModelError::AtomArrays.to_string()) };
+        return 1;
+    }
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        let nm = ntypes
+            .checked_add(1)
+            .and_then(|t| t.checked_mul(t))
+            .ok_or(ModelError::AtomArrays)?;
+        // SAFETY: sizes and validity as the contract says (null pointers only with zero
+        // lengths, checked above, and then not read).
+        let (models, (atoms, mut acc), raw, entries, forces) = unsafe {
+            fn slice<'a, T>(p: *const T, n: usize) -> &'a [T] {
+                // SAFETY: the caller's contract: `p` holds `n` values, or `n == 0`.
+                if n == 0 {
+                    &[]
+                } else {
+                    unsafe { std::slice::from_raw_parts(p, n) }
+                }
+            }
+            (
+                std::slice::from_raw_parts(models, nm),
+                if a.nall == 0 {
+                    (
+                        Atoms {
+                            x: &[],
+                            v: &[],
+                            omega: &[],
+                            radius: &[],
+                            mass: &[],
+                            kind: &[],
+                        },
+                        Accumulators {
+                            force: &mut [],
+                            torque: &mut [],
+                        },
+                    )
+                } else {
+                    atom_slices(a)
+                },
+                RawList {
+                    ilist: slice(l.ilist, l.inum),
+                    numneigh: slice(l.numneigh, l.maxatom),
+                    firstneigh: slice(l.firstneigh, l.maxatom),
+                },
+                ListEntries {
+                    slot: if l.nentries == 0 {
+                        &mut []
+                    } else {
+                        std::slice::from_raw_parts_mut(l.slot, l.nentries)
+                    },
+                    swap: slice(l.swap, l.nentries),
+                },
+                (!forces.is_null()).then(|| std::slice::from_raw_parts_mut(forces, l.nentries)),
+            )
+        };
+        let table = ModelTable {
+            ntypes,
+            // SAFETY: each pointer is null or a live model, as the contract says.
+            model_of: |k: usize| {
+                models
+                    .get(k)
+                    .and_then(|m| unsafe { m.as_ref() })
+                    .map(|m| &m.0)
+            },
+        };
+        crate::store::compute_list(
+            &table,
+            &mut store.0,
+            &atoms,
+            &mut acc,
+            &raw,
+            l.neighmask,
+            entries,
+            dt,
+            forces,
+        )
+    }));
+    let result = match result {
+        Ok(r) => r,
+        Err(_) => {
+            // SAFETY: `err` as the contract says.
+            unsafe { write_error(err, err_len, "internal error (panic) in the pair law") };
+            return 1;
+        }
+    };
+    if let (Ok(c), false) = (&result, counts.is_null()) {
+        // SAFETY: one writable ListCounts, by the contract.
+        unsafe { *counts = *c };
     }
     // SAFETY: `err` as the contract says.
     unsafe { status(result.map(|_| ()), err, err_len) }

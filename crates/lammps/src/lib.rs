@@ -12,7 +12,9 @@
 //! * [`model`]: the same evaluation as a safe Rust API (what [`ffi`] wraps).
 //! * [`store`]: the pair style's hot path: histories kept as creep-law's structs between
 //!   neighbour-list builds, stepped in place, forces added straight into the host's arrays
-//!   (the flat form only when LAMMPS needs it: migration, restarts).
+//!   (the flat form only when LAMMPS needs it: migration, restarts); [`compute_list`] walks
+//!   LAMMPS' half neighbour list itself (the plugin's one call per step,
+//!   `creep_lammps_compute_list`), [`compute_pairs`] takes the touching pairs from the host.
 //! * [`driver`]: a small reference DEM driver in Rust that evaluates the same kernel over a
 //!   LAMMPS data file and integrates it with the scheme of LAMMPS' `fix nve/sphere`, to compare
 //!   the plugin against (pressure and kinetic energy step by step).
@@ -30,5 +32,6 @@ pub mod store;
 
 pub use model::{Body, Contact, ContactOutput, Model, ModelError, Settings, Tier, WallContact};
 pub use store::{
-    Accumulators, Atoms, HistoryStore, ModelTable, PairIndex, PairOutputs, compute_pairs,
+    Accumulators, Atoms, HalfList, HistoryStore, ListCounts, ListEntries, ModelTable, PairForce,
+    PairIndex, PairOutputs, VecList, compute_list, compute_pairs,
 };

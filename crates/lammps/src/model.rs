@@ -163,6 +163,18 @@ pub enum ModelError {
     /// A null atom array where atoms are needed.
     #[error("null per-atom array")]
     NullArray,
+    /// An atom of a neighbour list (`ilist`) that is negative or outside the list's per-atom
+    /// arrays (`numneigh`, `firstneigh`).
+    #[error("neighbour list atom {0} outside the list's per-atom arrays")]
+    ListAtom(i32),
+    /// The host's per-entry arrays do not have one value per neighbour-list entry.
+    #[error("the per-entry arrays hold {got} entries, the neighbour list has {want}")]
+    ListEntries {
+        /// Given (the shorter of the slot and swap arrays).
+        got: usize,
+        /// Entries of the list.
+        want: usize,
+    },
     /// A contact's history could not be read (corrupt or from another build).
     #[error("contact {index}: {source}")]
     History {

@@ -16,7 +16,7 @@
 
 use creep_law::Vec3;
 use creep_law::pair::{
-    Cheap, ContactGeometry, ContactHistory, Exact, PairBody, TangentialLaw, pair_force,
+    Cheap, ContactGeometry, ContactHistory, Exact, PairBody, PairForces, TangentialLaw, pair_force,
 };
 use creep_law::{LawError, Surface};
 
@@ -215,21 +215,7 @@ where
     if !(dt.is_finite() && dt >= 0.0) {
         return Err(ModelError::TimeStep(dt));
     }
-    let nall = atoms.x.len();
-    if [
-        atoms.v.len(),
-        atoms.omega.len(),
-        atoms.radius.len(),
-        atoms.mass.len(),
-        atoms.kind.len(),
-    ]
-    .iter()
-    .any(|&l| l != nall)
-        || acc.force.len() != acc.torque.len()
-        || acc.force.len() > nall
-    {
-        return Err(ModelError::AtomArrays);
-    }
+    check_arrays(atoms, acc)?;
     for buf in [
         outputs.force_p.as_ref().map(|b| b.len()),
         outputs.touching.as_ref().map(|b| b.len()),
@@ -273,7 +259,6 @@ where
     F: Fn(usize) -> Option<&'a Model>,
 {
     let nall = atoms.x.len();
-    let nlocal = acc.force.len();
     let nslots = hist.len();
     let stride = table.ntypes + 1;
     let atom = |k: usize, a: i32| -> Result<usize, ModelError> {
@@ -296,13 +281,6 @@ where
                 kind: t,
                 ntypes: table.ntypes,
             })
-    };
-    let body = |a: usize| PairBody {
-        position: v3(atoms.x[a]),
-        velocity: v3(atoms.v[a]),
-        angular_velocity: v3(atoms.omega[a]),
-        surface: Surface::Sphere(atoms.radius[a]),
-        mass: atoms.mass[a],
     };
     // The per-contact checks of the models' tier and of the atoms' state, hoisted: when every
     // model of the table has the store's tier and every atom of the arrays is valid (one pass
@@ -329,49 +307,7 @@ where
         if !tiers_ok && m.tier() != tier {
             return Err(ModelError::MixedTiers);
         }
-        let (bp, bq) = (body(p), body(q));
-        if !atoms_ok {
-            check(k, atoms.radius[p], atoms.mass[p])?;
-            check(k, atoms.radius[q], atoms.mass[q])?;
-            let finite = |b: &PairBody| {
-                b.position.is_finite() && b.velocity.is_finite() && b.angular_velocity.is_finite()
-            };
-            if !(finite(&bp) && finite(&bq)) {
-                return Err(ModelError::AtomState { index: k });
-            }
-        }
-        let non_finite = |value: f64| ModelError::History {
-            index: k,
-            source: LawError::OutOfRange {
-                name: "contact force (NaN or infinite history)",
-                value,
-                range: "finite",
-            },
-        };
-        let f = match ContactGeometry::sphere_sphere(
-            bp.position,
-            atoms.radius[p],
-            bq.position,
-            atoms.radius[q],
-        ) {
-            Some(g) => pair_force(m.constants(), &bp, &bq, &g, h, dt),
-            None => {
-                // Coincident centres: no normal; the contact is dropped (as Model::step).
-                *h = ContactHistory::default();
-                Default::default()
-            }
-        };
-        if !all_finite(&[f.force_p, f.torque_p, f.torque_q]) {
-            return Err(non_finite(f.force_p.x));
-        }
-        if p < nlocal {
-            add(&mut acc.force[p], f.force_p);
-            add(&mut acc.torque[p], f.torque_p);
-        }
-        if q < nlocal {
-            add(&mut acc.force[q], -f.force_p);
-            add(&mut acc.torque[q], f.torque_q);
-        }
+        let f = step_contact(k, m, atoms, acc, p, q, h, dt, atoms_ok)?;
         if let Some(out) = outputs.force_p.as_deref_mut() {
             out[k] = [f.force_p.x, f.force_p.y, f.force_p.z];
         }
@@ -381,6 +317,355 @@ where
         dropped += usize::from(!f.touching);
     }
     Ok(dropped)
+}
+
+/// A half neighbour list as LAMMPS builds it for a pair style (`NeighList`: `ilist[..inum]`,
+/// `numneigh`, `firstneigh`), as [`compute_list`] walks it.
+pub trait HalfList {
+    /// The atoms whose neighbours are listed (`ilist[..inum]`), in the list's order.
+    fn atoms(&self) -> &[i32];
+    /// The neighbours of atom `i` (`firstneigh[i][..numneigh[i]]`, LAMMPS' special-bond bits
+    /// still in the top bits), or `None` when `i` lies outside the list's per-atom arrays.
+    fn neighbours(&self, i: usize) -> Option<&[i32]>;
+}
+
+/// A [`HalfList`] in Rust vectors (tests, hosts without LAMMPS): `neighbours[i]` are atom
+/// `i`'s neighbours.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct VecList {
+    /// The atoms whose neighbours are listed.
+    pub atoms: Vec<i32>,
+    /// Per atom index, its neighbours (atoms not in `atoms` may have any).
+    pub neighbours: Vec<Vec<i32>>,
+}
+
+impl HalfList for VecList {
+    fn atoms(&self) -> &[i32] {
+        &self.atoms
+    }
+    fn neighbours(&self, i: usize) -> Option<&[i32]> {
+        self.neighbours.get(i).map(Vec::as_slice)
+    }
+}
+
+/// The host's per-entry state of [`compute_list`], one value per neighbour-list entry in the
+/// list's order (entry `e` of atom `ilist[ii]`'s `jj`-th neighbour is `e = sum of numneigh over
+/// ilist[..ii] + jj`), kept between the steps of one neighbour-list build.
+#[derive(Debug)]
+pub struct ListEntries<'a> {
+    /// The entry's history slot in the store, -1 for none (apart, or never touched since the
+    /// build): written by [`compute_list`] (a new contact gets a new, virgin slot; a contact
+    /// found apart or dropped gets -1).
+    pub slot: &'a mut [i32],
+    /// Nonzero where the neighbour is body p (the LAMMPS shim: the lower atom tag is body p,
+    /// fixed per build), zero where the list's atom is.
+    pub swap: &'a [u8],
+}
+
+/// One contact's force for the host's virial: atoms `p` and `q` and the force on p (N).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PairForce {
+    /// Atom index of body p.
+    pub p: i32,
+    /// Atom index of body q.
+    pub q: i32,
+    /// Force on p (N) (`-force_p` on q); zero for a dropped contact.
+    pub force_p: [f64; 3],
+}
+
+/// What [`compute_list`] counted.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ListCounts {
+    /// Touching pairs of the step (centres closer than the sum of the radii).
+    pub contacts: usize,
+    /// Of those, the ones whose body p is an owned atom (summed over ranks: each contact once).
+    pub owned_contacts: usize,
+    /// Contacts the kernel dropped (coincident centres): their entries' slots are -1 again.
+    pub dropped: usize,
+    /// The store's slots after the step (the host's count for [`HistoryStore::save`]).
+    pub nslots: usize,
+}
+
+/// The pair style's whole step in one pass over LAMMPS' half neighbour list: for every entry
+/// `(i, j)` of `list` (`j` masked by `neighmask`, LAMMPS' `NEIGHMASK`), the pair is a contact
+/// when the centres are closer than the sum of the radii; its history is the one in the
+/// entry's slot ([`ListEntries::slot`]; a new contact takes a new, virgin slot at the store's
+/// end, an entry found apart gets -1: its history is abandoned and the slot reclaimed at the
+/// next build), body p is `j` where [`ListEntries::swap`] says so and `i` otherwise, and the
+/// kernel ([`pair_force`], the same per-contact code as [`compute_pairs`]) steps it in place and
+/// adds its force and torques into the owned atoms of `acc` in the list's order. With
+/// `forces`, the contacts' forces on p for the host's virial (index = the contact's number in
+/// the step; at least as many entries as the list has are needed).
+///
+/// This is [`compute_pairs`] with the host's neighbour loop folded in: no array of touching
+/// pairs is built by the host and read back, and the results are the same bits (the same
+/// contacts in the same order, the same kernel: test `list_path_is_bitwise_the_pairs_path`).
+///
+/// Errors (the step stops at the failing entry; `k` in a message is the contact's number in
+/// the step): as [`compute_pairs`], and entries that do not match the list (their number, a
+/// list atom outside the list's arrays, a neighbour outside the atom arrays, a slot outside
+/// the store).
+#[allow(clippy::too_many_arguments)]
+pub fn compute_list<'a, F, L: HalfList>(
+    table: &ModelTable<F>,
+    store: &mut HistoryStore,
+    atoms: &Atoms<'_>,
+    acc: &mut Accumulators<'_>,
+    list: &L,
+    neighmask: i32,
+    entries: ListEntries<'_>,
+    dt: f64,
+    forces: Option<&mut [PairForce]>,
+) -> Result<ListCounts, ModelError>
+where
+    F: Fn(usize) -> Option<&'a Model>,
+{
+    if !(dt.is_finite() && dt >= 0.0) {
+        return Err(ModelError::TimeStep(dt));
+    }
+    check_arrays(atoms, acc)?;
+    // The entries must be the list's, one per (i, j): checked before anything is written.
+    let mut total = 0usize;
+    for &i in list.atoms() {
+        let n = usize::try_from(i)
+            .ok()
+            .and_then(|i| list.neighbours(i))
+            .ok_or(ModelError::ListAtom(i))?
+            .len();
+        total += n;
+    }
+    if entries.slot.len() != total || entries.swap.len() != total {
+        return Err(ModelError::ListEntries {
+            got: entries.slot.len().min(entries.swap.len()),
+            want: total,
+        });
+    }
+    if let Some(out) = forces.as_deref()
+        && out.len() < total
+    {
+        return Err(ModelError::Output {
+            got: out.len(),
+            want: total,
+        });
+    }
+    let tier = store.tier();
+    match &mut store.0 {
+        Slots::Exact(v) => list_pairs(
+            table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
+        ),
+        Slots::Spring(v) => list_pairs(
+            table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
+        ),
+    }
+}
+
+/// [`compute_list`] for one tier (monomorphised: the kernel is inlined into this loop).
+#[allow(clippy::too_many_arguments)]
+fn list_pairs<'a, T: TangentialLaw, F, L: HalfList>(
+    table: &ModelTable<F>,
+    tier: Tier,
+    hist: &mut Vec<ContactHistory<T>>,
+    atoms: &Atoms<'_>,
+    acc: &mut Accumulators<'_>,
+    list: &L,
+    neighmask: i32,
+    entries: ListEntries<'_>,
+    dt: f64,
+    mut forces: Option<&mut [PairForce]>,
+) -> Result<ListCounts, ModelError>
+where
+    F: Fn(usize) -> Option<&'a Model>,
+{
+    let nall = atoms.x.len();
+    let nlocal = acc.force.len();
+    let stride = table.ntypes + 1;
+    let ListEntries { slot, swap } = entries;
+    // At most one new slot per entry: reserved once, so that no push below reallocates.
+    hist.reserve(slot.len());
+    let tiers_ok =
+        (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
+    let atoms_ok = atoms_valid(atoms);
+    let mut counts = ListCounts::default();
+    let mut e0 = 0usize;
+    for &ia in list.atoms() {
+        // Checked above: the atom is in the list's arrays.
+        let i = usize::try_from(ia).map_err(|_| ModelError::ListAtom(ia))?;
+        let neigh = list.neighbours(i).ok_or(ModelError::ListAtom(ia))?;
+        let n = neigh.len();
+        let (slots, swaps) = (&mut slot[e0..e0 + n], &swap[e0..e0 + n]);
+        e0 += n;
+        if i >= nall {
+            return Err(ModelError::AtomIndex {
+                index: counts.contacts,
+                atom: ia,
+                nall,
+            });
+        }
+        let xi = atoms.x[i];
+        let ri = atoms.radius[i];
+        for ((&jraw, s), &sw) in neigh.iter().zip(slots.iter_mut()).zip(swaps) {
+            let j = usize::try_from(jraw & neighmask)
+                .ok()
+                .filter(|&j| j < nall)
+                .ok_or(ModelError::AtomIndex {
+                    index: counts.contacts,
+                    atom: jraw & neighmask,
+                    nall,
+                })?;
+            let xj = atoms.x[j];
+            let (dx, dy, dz) = (xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]);
+            let rsum = ri + atoms.radius[j];
+            if dx * dx + dy * dy + dz * dz >= rsum * rsum {
+                *s = -1; // apart: the history is abandoned (its slot reclaimed at the next build)
+                continue;
+            }
+            let k = counts.contacts;
+            if *s < 0 {
+                let new = i32::try_from(hist.len()).map_err(|_| ModelError::Slot {
+                    index: k,
+                    slot: -1,
+                    len: hist.len(),
+                })?;
+                hist.push(ContactHistory::default());
+                *s = new;
+            }
+            let len = hist.len();
+            let h = usize::try_from(*s)
+                .ok()
+                .and_then(|s| hist.get_mut(s))
+                .ok_or(ModelError::Slot {
+                    index: k,
+                    slot: *s,
+                    len,
+                })?;
+            let (p, q) = if sw != 0 { (j, i) } else { (i, j) };
+            counts.contacts += 1;
+            counts.owned_contacts += usize::from(p < nlocal);
+            let kind = |a: usize| -> Result<usize, ModelError> {
+                let t = atoms.kind[a];
+                usize::try_from(t)
+                    .ok()
+                    .filter(|&t| (1..=table.ntypes).contains(&t))
+                    .ok_or(ModelError::AtomType {
+                        index: k,
+                        kind: t,
+                        ntypes: table.ntypes,
+                    })
+            };
+            let m = (table.model_of)(kind(p)? * stride + kind(q)?)
+                .ok_or(ModelError::MissingModel(k))?;
+            if !tiers_ok && m.tier() != tier {
+                return Err(ModelError::MixedTiers);
+            }
+            let f = step_contact(k, m, atoms, acc, p, q, h, dt, atoms_ok)?;
+            if !f.touching {
+                *s = -1;
+                counts.dropped += 1;
+            }
+            if let Some(out) = forces.as_deref_mut() {
+                out[k] = PairForce {
+                    // p and q are below nall, which came from C as a count of i32 indices.
+                    p: if sw != 0 { jraw & neighmask } else { ia },
+                    q: if sw != 0 { ia } else { jraw & neighmask },
+                    force_p: [f.force_p.x, f.force_p.y, f.force_p.z],
+                };
+            }
+        }
+    }
+    counts.nslots = hist.len();
+    Ok(counts)
+}
+
+/// One contact of [`compute_pairs`] / [`compute_list`] (`k`: its index in the step, for the
+/// errors): the atoms' checks when `atoms_ok` is false, the kernel on atoms `p` and `q` with
+/// model `m` and history `h`, and the force and torques added into the owned atoms of `acc`.
+/// Returns the kernel's forces (a dropped contact: `touching == false`, its history reset).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn step_contact<T: TangentialLaw>(
+    k: usize,
+    m: &Model,
+    atoms: &Atoms<'_>,
+    acc: &mut Accumulators<'_>,
+    p: usize,
+    q: usize,
+    h: &mut ContactHistory<T>,
+    dt: f64,
+    atoms_ok: bool,
+) -> Result<PairForces, ModelError> {
+    let body = |a: usize| PairBody {
+        position: v3(atoms.x[a]),
+        velocity: v3(atoms.v[a]),
+        angular_velocity: v3(atoms.omega[a]),
+        surface: Surface::Sphere(atoms.radius[a]),
+        mass: atoms.mass[a],
+    };
+    let (bp, bq) = (body(p), body(q));
+    if !atoms_ok {
+        check(k, atoms.radius[p], atoms.mass[p])?;
+        check(k, atoms.radius[q], atoms.mass[q])?;
+        let finite = |b: &PairBody| {
+            b.position.is_finite() && b.velocity.is_finite() && b.angular_velocity.is_finite()
+        };
+        if !(finite(&bp) && finite(&bq)) {
+            return Err(ModelError::AtomState { index: k });
+        }
+    }
+    let f = match ContactGeometry::sphere_sphere(
+        bp.position,
+        atoms.radius[p],
+        bq.position,
+        atoms.radius[q],
+    ) {
+        Some(g) => pair_force(m.constants(), &bp, &bq, &g, h, dt),
+        None => {
+            // Coincident centres: no normal; the contact is dropped (as Model::step).
+            *h = ContactHistory::default();
+            Default::default()
+        }
+    };
+    if !all_finite(&[f.force_p, f.torque_p, f.torque_q]) {
+        return Err(ModelError::History {
+            index: k,
+            source: LawError::OutOfRange {
+                name: "contact force (NaN or infinite history)",
+                value: f.force_p.x,
+                range: "finite",
+            },
+        });
+    }
+    let nlocal = acc.force.len();
+    if p < nlocal {
+        add(&mut acc.force[p], f.force_p);
+        add(&mut acc.torque[p], f.torque_p);
+    }
+    if q < nlocal {
+        add(&mut acc.force[q], -f.force_p);
+        add(&mut acc.torque[q], f.torque_q);
+    }
+    Ok(f)
+}
+
+/// The atom arrays all of one length, the accumulators of one length and no longer.
+fn check_arrays(atoms: &Atoms<'_>, acc: &Accumulators<'_>) -> Result<(), ModelError> {
+    let nall = atoms.x.len();
+    if [
+        atoms.v.len(),
+        atoms.omega.len(),
+        atoms.radius.len(),
+        atoms.mass.len(),
+        atoms.kind.len(),
+    ]
+    .iter()
+    .any(|&l| l != nall)
+        || acc.force.len() != acc.torque.len()
+        || acc.force.len() > nall
+    {
+        return Err(ModelError::AtomArrays);
+    }
+    Ok(())
 }
 
 /// Whether every atom of the arrays passes the per-contact checks of [`compute_pairs`]: finite

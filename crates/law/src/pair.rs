@@ -26,8 +26,10 @@
 //!   [`contact_rates`](crate::kinematics::contact_rates)) at the contact radius `a = sqrt(R* delta)`; without creep
 //!   ([`PairConstants::creep`] `None`) no rolling displacement is fed: plain Coulomb-Mindlin.
 //! * The tangential history lives in a tangent basis `(t1, t2)` carried by the contact: each
-//!   step the basis turns with the normal (the smallest rotation taking the last normal to the
-//!   new one) and about the normal with the pair's mean spin `(w_p + w_q) . n / 2`, then is
+//!   step the basis turns about the normal with the pair's mean spin `(w_p + w_q) . n / 2` and
+//!   follows the normal onto its new tangent plane, by projection for the small turns of a DEM
+//!   step (the smallest rotation taking the last normal to the new one to second order in the
+//!   turn, see `kernel::carry_tangent`; the rotation itself beyond a 45-degree turn), then is
 //!   re-orthonormalised, so the stored 2-D force follows the contact as a rigid body.
 //! * Optional contact-torque rolling resistance (creep-law [`rolling_torque`]).
 //!

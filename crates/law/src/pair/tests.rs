@@ -1,4 +1,4 @@
-use super::kernel::rates_and_approach;
+use super::kernel::{carry_tangent, rates_and_approach, sphere_rates_and_approach};
 use super::*;
 use crate::hertz;
 use crate::kalker;
@@ -509,4 +509,127 @@ fn creep_per_force_equals_the_steady_law() {
             "q {q} mu P {m} a {a}: {got} against {want}"
         );
     }
+}
+
+#[test]
+fn sphere_forms_equal_the_general_ones() {
+    // Two spheres: the kernel's short forms of Kuhn & Bagi's rates and of the torques (arms
+    // along the normal) against the general ones (kinematics::contact_rates; `(c - x) x f`)
+    // on random pairs, to rounding: relative to the size of the terms, 1e-14.
+    use crate::kinematics::{BodyMotion, contact_rates};
+    let mut seed = 0x1234_5678_9abc_def1u64;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let c = constants(0.5, 0.6, Some(CreepModel::Kuhn));
+    let mut checked = 0;
+    for _ in 0..2000 {
+        let (rp, rq) = (0.004 * (1.0 + rnd()), 0.004 * (1.0 + rnd()));
+        let dir = Vec3::new(rnd(), rnd(), rnd()).try_normalize().unwrap();
+        let xp = Vec3::new(rnd(), rnd(), rnd()) * 0.01;
+        let xq = xp + dir * ((rp + rq) * (1.0 - 0.01 * (rnd() + 0.5)));
+        let mut v = |s: f64| Vec3::new(rnd(), rnd(), rnd()) * s;
+        let p = sphere(xp, v(0.5), v(50.0), rp);
+        let q = sphere(xq, v(0.5), v(50.0), rq);
+        let g = ContactGeometry::sphere_sphere(p.position, rp, q.position, rq).unwrap();
+        let (n, cp) = (g.normal, g.point);
+        let (rho_p, rho_q) = ((cp - p.position).dot(n), (q.position - cp).dot(n));
+        let (r, dd) = sphere_rates_and_approach(&p, &q, rho_p, rho_q, n);
+        let motion = |b: &PairBody| BodyMotion {
+            position: b.position,
+            velocity: b.velocity,
+            angular_velocity: b.angular_velocity,
+            surface: b.surface,
+        };
+        let (mp, mq) = (motion(&p), motion(&q));
+        let k = contact_rates(&mp, &mq, cp, n);
+        let dd0 = -(mq.velocity_at(cp) - mp.velocity_at(cp)).dot(n);
+        // The size of the terms: the speeds and the spins times the radii.
+        let scale = (p.velocity.length() + q.velocity.length())
+            + (p.angular_velocity.length() * rp + q.angular_velocity.length() * rq);
+        let tol = 1e-14 * scale;
+        for (got, want) in [
+            (r.v_disp, k.v_disp),
+            (r.v_roll, k.v_roll),
+            (r.w_roll * rp, k.w_roll * rp),
+        ] {
+            assert!((got - want).length() <= tol, "{got:?} against {want:?}");
+        }
+        assert!((r.w_twist - k.w_twist).abs() * rp <= tol);
+        assert!((dd - dd0).abs() <= tol, "{dd} against {dd0}");
+        // The kernel's torques against the arms' cross products, over a few steps.
+        let mut h = ContactHistory::<Cheap>::default();
+        for _ in 0..3 {
+            let f = pair_force(&c, &p, &q, &g, &mut h, 1e-6);
+            assert!(f.touching);
+            let tp = (f.point - p.position).cross(f.force_p);
+            let tq = (f.point - q.position).cross(-f.force_p);
+            let tol = 1e-14 * (rp + rq) * f.force_p.length();
+            assert!(
+                (f.torque_p - tp).length() <= tol,
+                "{:?} against {tp:?}",
+                f.torque_p
+            );
+            assert!(
+                (f.torque_q - tq).length() <= tol,
+                "{:?} against {tq:?}",
+                f.torque_q
+            );
+            checked += 1;
+        }
+        // Some tangential force (else the torques would be zero on both sides).
+        assert!(h.tangential.q.length() > 0.0);
+    }
+    assert_eq!(checked, 6000);
+}
+
+#[test]
+fn carried_tangent_is_the_rotation_to_second_order() {
+    // The basis carried by projection against the smallest rotation (Rodrigues, `rotate_to`)
+    // and the spin turn: within (theta^2/4) |sin(2 phi)| + rounding for small turns theta of
+    // the normal, exact (to rounding) for a tangent in the plane of the turn or along its
+    // axis, and the rotation itself for large turns (a half turn reverses the tangent).
+    let from = Vec3::new(0.3, -0.5, 0.8).try_normalize().unwrap();
+    let (e1, e2) = from.tangent_basis();
+    let mut worst_ratio: f64 = 0.0;
+    for &theta in &[1e-7, 1e-5, 1e-3, 0.05] {
+        for k in 0..24 {
+            let psi = f64::from(k) * std::f64::consts::PI / 12.0; // direction of the turn
+            let axis = e1 * psi.cos() + e2 * psi.sin();
+            let to = rotate_about(from, axis, theta);
+            for j in 0..12 {
+                let phi = f64::from(j) * std::f64::consts::PI / 12.0; // tangent from the axis
+                let t1 = axis * phi.cos() + from.cross(axis) * phi.sin();
+                for spin in [0.0, 2e-6] {
+                    let got = carry_tangent(t1, from, to, spin).unwrap();
+                    let want = rotate_about(rotate_to(t1, from, to), to, spin);
+                    assert!((got.length() - 1.0).abs() < 1e-15);
+                    assert!(got.dot(to).abs() < 1e-15);
+                    let dev = (got - want).length();
+                    let bound = theta * theta / 4.0 * (2.0 * phi).sin().abs();
+                    assert!(
+                        dev <= 1.01 * bound + 1e-15,
+                        "theta {theta} phi {phi}: {dev:e} > {bound:e}"
+                    );
+                    if bound > 1e-12 {
+                        worst_ratio = worst_ratio.max(dev / bound);
+                    }
+                }
+            }
+        }
+    }
+    // The bound is the actual size of the difference (not a loose one).
+    assert!(worst_ratio > 0.9, "{worst_ratio}");
+    // Large turns: the rotation. 60 degrees with the tangent along the turn's direction, and
+    // a half turn of the normal.
+    let axis = e1;
+    let to = rotate_about(from, axis, 1.05);
+    let t1 = from.cross(axis);
+    let got = carry_tangent(t1, from, to, 0.0).unwrap();
+    assert!((got - rotate_to(t1, from, to)).length() < 1e-15);
+    let got = carry_tangent(e1, from, -from, 0.0).unwrap();
+    assert!((got + e1).length() < 1e-15, "{got:?}");
 }

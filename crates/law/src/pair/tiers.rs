@@ -281,8 +281,14 @@ fn onto_coulomb_limit(trial: Vec2, t2: f64, mu_p: f64, k: f64) -> (Vec2, f64) {
 /// 1 - c^3 = s` gives `F_ss/|Q| = 3/(G a^2 C11 (1 + c + c^2))`: no cancellation in `1 - c`
 /// (at small `s` this is closer to Kalker's linear limit `1/(G a^2 C11)` than `1 - c`,
 /// which rounds to 0 below `s ~ 1e-16`) and, with the cap `|Q|/k` compared by a product, one
-/// division for the result instead of four (`|Q|/(mu P)` is a product with `1/(mu P)`, which
-/// does not wait for `|Q|`). Past the Coulomb limit (`|Q| > mu P`, `s` clamped to 1, `c = 0`)
+/// division for the result. The cube root is left as the fraction of its Halley step,
+/// `c = t n/d` ([`kalker::cbrt_fraction`]), so that `1 + c + c^2 = (d^2 + t n d + (t n)^2)/d^2`
+/// and the result's division is the step's too; `1 - s` is `(mu P - |Q|)/(mu P)` and the
+/// reciprocal the cube root's polynomial needs is `mu P/(mu P - |Q|)`, two divisions that run
+/// side by side: the chain from `mu P` to the result holds two divisions where it held four
+/// (`1/(mu P)`, the cube root's `t/x` and Halley division, the result's; measured in the LAMMPS
+/// plugin's profile, the samples piled up after the last two). Past the Coulomb limit
+/// (`|Q| >= mu P`, `s` clamped to 1, `c = 0`)
 /// `F_ss/|Q| = 3 mu P/(G a^2 C11 |Q|)`. Every other case (another steady law, `mu P` or `G
 /// a^2` not finite and > 0) is [`kuhn_creepage`]'s, divided by `|Q|`. Test
 /// `creep_per_force_equals_the_steady_law`.
@@ -303,13 +309,18 @@ pub(super) fn creep_per_force(
         && ga2 > 0.0
         && ga2 < f64::INFINITY
     {
-        let inv_mu_p = 1.0 / mu_p;
         let q_abs = q2.sqrt();
-        let s = q_abs * inv_mu_p;
         let gc = ga2 * c11;
-        let (num, den) = if s < 1.0 {
-            let c = kalker::cbrt(1.0 - s);
-            (3.0 * roll, gc * (1.0 + c + c * c))
+        let (num, den) = if q_abs < mu_p {
+            // `1 - s = (mu P - |Q|)/(mu P)` (the difference exact where `s >= 1/2`, Sterbenz)
+            // and its reciprocal for the cube root's polynomial, two divisions side by side;
+            // `c = t n/d` (the cube root's Halley step as a fraction), so `1 + c + c^2 =
+            // (d^2 + t n d + (t n)^2)/d^2` and the creep term's one division takes the step's
+            // too (all terms > 0: no cancellation).
+            let diff = mu_p - q_abs;
+            let (t, n, d) = kalker::cbrt_fraction(diff / mu_p, mu_p / diff);
+            let tn = t * n;
+            (3.0 * roll * (d * d), gc * (d * (d + tn) + tn * tn))
         } else {
             (3.0 * roll * mu_p, gc * q_abs)
         };
