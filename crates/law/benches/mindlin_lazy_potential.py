@@ -1,4 +1,4 @@
-# Usage: python3 notes/memlazy-lazy-potential.py TRACE (a CREEP_MINDLIN_TRACE file).
+# Usage: python3 crates/law/benches/mindlin_lazy_potential.py TRACE (a CREEP_MINDLIN_TRACE file).
 # Lead (b) of issue 15 on the DEM trace: how many stored pieces a per-piece margin test could
 # skip. A piece is skippable when its margin to the slip limit before the update,
 # m = min over the piece of (kappa s - |u|), exceeds the bound of its shrinkage in one update,
