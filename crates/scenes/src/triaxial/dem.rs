@@ -249,6 +249,10 @@ impl Host for DemSpecimen {
         let e = self.dem.energy();
         (e.creep - self.energy0.0, e.slip - self.energy0.1)
     }
+
+    fn rebuilds(&self) -> Option<usize> {
+        Some(self.dem.counts().rebuilds)
+    }
 }
 
 /// [`super::compact`] on the creep-dem engine.
