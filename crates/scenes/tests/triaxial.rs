@@ -120,6 +120,19 @@ fn the_packing_moves_to_the_dem_engine() {
     let t = dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 2).unwrap();
     assert_eq!(t.len(), 27 * 8);
     assert!(dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 0).is_err());
+
+    // Another step for the shear (`--shear-rayleigh-fraction`): the engine's dt follows the
+    // fraction, which is range-checked.
+    let ds = creep_scenes::triaxial::DemSpecimen::from_specimen(&s).unwrap();
+    let d3 = ds.with_rayleigh_fraction(0.3).unwrap();
+    let p3 = TriaxialParams {
+        rayleigh_fraction: 0.3,
+        ..params
+    };
+    assert_eq!(d3.engine().config().dt, p3.time_step());
+    assert_eq!(d3.params().rayleigh_fraction, 0.3);
+    assert!(ds.with_rayleigh_fraction(0.31).is_err());
+    assert!(ds.with_rayleigh_fraction(f64::NAN).is_err());
 }
 
 #[test]

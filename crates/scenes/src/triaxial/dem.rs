@@ -70,6 +70,18 @@ impl DemSpecimen {
         })
     }
 
+    /// A copy whose steps from now on are `rayleigh_fraction` of the smallest ball's Rayleigh
+    /// time (in `(0, 0.3]`, [`TriaxialParams::rayleigh_fraction`]): e.g. a packing compacted
+    /// with one step sheared with another, which separates the step's effect on the shear from
+    /// its effect on the packing (a time-step study; `creep triaxial --shear-rayleigh-fraction`).
+    pub fn with_rayleigh_fraction(&self, rayleigh_fraction: f64) -> Result<Self, SceneError> {
+        let mut s = self.clone();
+        s.params.rayleigh_fraction = rayleigh_fraction;
+        s.params.validate()?;
+        s.dem.set_time_step(s.params.time_step()).map_err(dem_err)?;
+        Ok(s)
+    }
+
     /// The engine.
     pub fn engine(&self) -> &Dem<Exact> {
         &self.dem
