@@ -131,6 +131,9 @@ fn the_packing_moves_to_the_dem_engine() {
     };
     assert_eq!(d3.engine().config().dt, p3.time_step());
     assert_eq!(d3.params().rayleigh_fraction, 0.3);
+    // The shear servo's time stays the default step's (bit for bit at the default).
+    assert_eq!(p3.servo_time(), params.time_step());
+    assert_eq!(params.servo_time(), params.time_step());
     assert!(ds.with_rayleigh_fraction(0.31).is_err());
     assert!(ds.with_rayleigh_fraction(f64::NAN).is_err());
 }

@@ -51,7 +51,7 @@ mod specimen;
 mod stress;
 
 pub use dem::{DemSpecimen, compact_dem, shear_dem};
-pub use params::{TriaxialConfig, TriaxialEngine, TriaxialParams};
+pub use params::{SERVO_RAYLEIGH_FRACTION, TriaxialConfig, TriaxialEngine, TriaxialParams};
 pub use protocol::{CompactionSummary, ShearRun, compact, compact_observed, shear, shear_observed};
 pub use report::{
     CSV_HEADER, ShearSummary, TriaxialRow, time_compliant_steps, time_dem_steps,

@@ -131,7 +131,23 @@ impl TriaxialParams {
         let r_min = self.radius * (1.0 - self.radius_spread);
         self.rayleigh_fraction * creep_law::hertz::rayleigh_time_step(&self.material, r_min)
     }
+
+    /// The time over which the shear's servo removes its share of a wall's stress error \[s\]:
+    /// the time step at [`SERVO_RAYLEIGH_FRACTION`] of the smallest ball's Rayleigh time,
+    /// whatever the run's step, so that the lateral walls' stress lag behind a dilating packing
+    /// (`~ 1.5 v tau / (alpha delta)` of p0, `Stress::servo`) does not grow with the step.
+    /// Equal to [`TriaxialParams::time_step`], bit for bit, at the default 0.2. (The
+    /// compaction's servo keeps its gain per step: its packing is the default's only at the
+    /// default step anyway, docs/results/triaxial-dem-dt.)
+    pub fn servo_time(&self) -> f64 {
+        let r_min = self.radius * (1.0 - self.radius_spread);
+        SERVO_RAYLEIGH_FRACTION * creep_law::hertz::rayleigh_time_step(&self.material, r_min)
+    }
 }
+
+/// The Rayleigh fraction whose time step is the shear servo's time
+/// ([`TriaxialParams::servo_time`]): the default step's.
+pub const SERVO_RAYLEIGH_FRACTION: f64 = 0.2;
 
 /// The engine a triaxial test runs on (`engine = "dem"` or `"rapier"` in the TOML file).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]

@@ -184,6 +184,9 @@ pub(super) fn shear_on<E: Host>(
     let p0 = params.confining_pressure;
     let rate = params.strain_rate();
     let dt = params.time_step();
+    // The lateral servo's gain is per `servo_time`, not per step (its stress lag would grow
+    // with the step: `TriaxialParams::servo_time`).
+    let servo_time = params.servo_time();
     // One step at rest, so that the fresh regime has found its contacts.
     s.set_wall_speeds([0.0; 6])?;
     s.step()?;
@@ -223,7 +226,7 @@ pub(super) fn shear_on<E: Host>(
             *vk = if k / 2 == 1 {
                 -0.5 * rate * h0
             } else {
-                st.servo(k, p0, dt, 5.0 * rate * st.dims[k / 2] / 2.0)
+                st.servo(k, p0, servo_time, 5.0 * rate * st.dims[k / 2] / 2.0)
             };
         }
         s.set_wall_speeds(v)?;
