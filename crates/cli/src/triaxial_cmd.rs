@@ -39,10 +39,9 @@ pub struct TriaxialArgs {
     /// overrides the config file's `engine` key.
     #[arg(long)]
     engine: Option<String>,
-    /// A time-step study: shear with dt = this fraction (in (0, 0.3]) of the smallest ball's
-    /// Rayleigh time, from the packing compacted with the configuration's `rayleigh_fraction`
-    /// (engine `dem` only). Separates the step's effect on the shear from its effect on the
-    /// packing (docs/results/triaxial-dem-dt).
+    /// The shears' time step as a fraction (in (0, 0.3]) of the smallest ball's Rayleigh time;
+    /// overrides the config file's `shear_rayleigh_fraction` (the compaction keeps
+    /// `rayleigh_fraction`: docs/results/triaxial-dem-dt).
     #[arg(long)]
     shear_rayleigh_fraction: Option<f64>,
 }
@@ -73,19 +72,6 @@ impl Compacted {
         })
     }
 
-    /// The specimen with the shear's time step `rayleigh_fraction` T_R (creep-dem only).
-    fn with_shear_step(self, rayleigh_fraction: Option<f64>) -> Result<Self, String> {
-        match (self, rayleigh_fraction) {
-            (s, None) => Ok(s),
-            (Self::Dem(s), Some(f)) => Ok(Self::Dem(Box::new(
-                s.with_rayleigh_fraction(f).map_err(|e| e.to_string())?,
-            ))),
-            (Self::Rapier(_), Some(_)) => {
-                Err("--shear-rayleigh-fraction needs the dem engine".into())
-            }
-        }
-    }
-
     fn shear(
         &self,
         creep: bool,
@@ -114,6 +100,10 @@ fn config(args: &TriaxialArgs) -> Result<TriaxialConfig, Box<dyn std::error::Err
     if let Some(e) = &args.engine {
         cfg.engine = e.parse::<TriaxialEngine>()?;
     }
+    if let Some(f) = args.shear_rayleigh_fraction {
+        cfg.params.shear_rayleigh_fraction = f;
+        cfg.params.validate()?;
+    }
     if args.quick {
         let q = TriaxialParams::quick();
         let p = &mut cfg.params;
@@ -138,39 +128,15 @@ fn params_file(cfg: &TriaxialConfig) -> Result<String, Box<dyn std::error::Error
 pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     let cfg = config(args)?;
     let (engine, params) = (cfg.engine, cfg.params);
-    // Checked before the run: the fraction's range, and the engine.
-    let shear_params = match args.shear_rayleigh_fraction {
-        Some(f) => {
-            if engine != TriaxialEngine::Dem {
-                return Err("--shear-rayleigh-fraction needs the dem engine".into());
-            }
-            let q = TriaxialParams {
-                rayleigh_fraction: f,
-                ..params
-            };
-            q.validate()?;
-            Some(q)
-        }
-        None => None,
-    };
     create_dir(&args.out)?;
     // The parameters first: a run stopped half-way can still be repeated.
-    let mut params_text = params_file(&cfg)?;
-    if let Some(q) = &shear_params {
-        params_text = format!(
-            "# Run with --shear-rayleigh-fraction {}: the shears' dt = {:.3e} s (the file's\n\
-             # rayleigh_fraction is the compaction's); pass the flag again to repeat the run.\n{params_text}",
-            q.rayleigh_fraction,
-            q.time_step()
-        );
-    }
-    output::write(&args.out.join("params.toml"), &params_text)?;
+    output::write(&args.out.join("params.toml"), &params_file(&cfg)?)?;
     let n = params.n_per_side.pow(3);
     let m = params.material;
     let header = format!(
         "Drained triaxial compression, engine {} ({}), Coulomb-Mindlin vs creep-friction\n\
          {n} spheres, radius uniform in [{:.3e}, {:.3e}] m; G = {:.3e} Pa, nu = {}, rho = {} kg/m^3, mu = {}, e = {}\n\
-         confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R)\n\
+         confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R) in the compaction, {:.3e} s ({} T_R) in the shears\n\
          packing generator {GENERATOR}, seed {}",
         engine.name(),
         match engine {
@@ -190,16 +156,10 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         params.axial_strain * 100.0,
         params.time_step(),
         params.rayleigh_fraction,
+        params.shear_time_step(),
+        params.shear_rayleigh_fraction,
         params.seed,
     );
-    let header = match &shear_params {
-        Some(q) => format!(
-            "{header}\nshears with dt = {:.3e} s ({} T_R, --shear-rayleigh-fraction) from the packing compacted with the dt above",
-            q.time_step(),
-            q.rayleigh_fraction
-        ),
-        None => header,
-    };
     writeln!(out, "{header}")?;
     if args.quick {
         writeln!(
@@ -215,7 +175,6 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         pb.set_position((f * 1000.0) as u64)
     })?;
     pb.finish();
-    let specimen = specimen.with_shear_step(args.shear_rayleigh_fraction)?;
     let t_compact = t0.elapsed().as_secs_f64();
     let cpu_compact = cpu_since(c0);
     let mut lines = vec![header.clone(), String::new()];
@@ -463,23 +422,31 @@ mod tests {
         }
     }
 
-    /// `--shear-rayleigh-fraction` is checked before anything runs: in range, dem engine only.
+    /// `--shear-rayleigh-fraction` replaces the file's key, range-checked before anything runs.
     #[test]
-    fn a_bad_shear_step_is_an_error_before_the_run() {
-        let dir = std::env::temp_dir().join(format!("creep-triaxial-dt-{}", std::process::id()));
-        for (engine, f, why) in [
-            ("dem", 0.5, "rayleigh_fraction"),
-            ("dem", 0.0, "rayleigh_fraction"),
-            ("rapier", 0.25, "dem engine"),
-        ] {
+    fn the_shear_step_flag_overrides_the_file() {
+        let a = TriaxialArgs {
+            shear_rayleigh_fraction: Some(0.25),
+            ..args(None, false, None)
+        };
+        let cfg = config(&a).unwrap();
+        assert_eq!(cfg.params.shear_rayleigh_fraction, 0.25);
+        assert_eq!(
+            cfg.params.rayleigh_fraction,
+            TriaxialParams::default().rayleigh_fraction
+        );
+        let text = params_file(&cfg).unwrap();
+        assert!(text.contains("shear_rayleigh_fraction = 0.25"), "{text}");
+        for f in [0.5, 0.0, f64::NAN] {
             let a = TriaxialArgs {
-                out: dir.clone(),
                 shear_rayleigh_fraction: Some(f),
-                ..args(None, true, Some(engine))
+                ..args(None, false, None)
             };
-            let e = run(&a, &mut Vec::new()).unwrap_err();
-            assert!(e.to_string().contains(why), "{engine} {f}: {e}");
-            assert!(!dir.exists(), "nothing written before the check");
+            let e = config(&a).unwrap_err();
+            assert!(
+                e.to_string().contains("shear_rayleigh_fraction"),
+                "{f}: {e}"
+            );
         }
     }
 

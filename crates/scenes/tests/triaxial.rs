@@ -121,21 +121,21 @@ fn the_packing_moves_to_the_dem_engine() {
     assert_eq!(t.len(), 27 * 8);
     assert!(dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 0).is_err());
 
-    // Another step for the shear (`--shear-rayleigh-fraction`): the engine's dt follows the
-    // fraction, which is range-checked.
-    let ds = creep_scenes::triaxial::DemSpecimen::from_specimen(&s).unwrap();
-    let d3 = ds.with_rayleigh_fraction(0.3).unwrap();
+    // The shears' step is its own key, range-checked; the shear servo's time stays the
+    // default compaction step's (bit for bit at rayleigh_fraction 0.2).
     let p3 = TriaxialParams {
-        rayleigh_fraction: 0.3,
+        shear_rayleigh_fraction: 0.3,
         ..params
     };
-    assert_eq!(d3.engine().config().dt, p3.time_step());
-    assert_eq!(d3.params().rayleigh_fraction, 0.3);
-    // The shear servo's time stays the default step's (bit for bit at the default).
+    assert!((p3.shear_time_step() / p3.time_step() - 0.3 / params.rayleigh_fraction).abs() < 1e-12);
     assert_eq!(p3.servo_time(), params.time_step());
-    assert_eq!(params.servo_time(), params.time_step());
-    assert!(ds.with_rayleigh_fraction(0.31).is_err());
-    assert!(ds.with_rayleigh_fraction(f64::NAN).is_err());
+    for f in [0.31, 0.0, f64::NAN] {
+        let bad = TriaxialParams {
+            shear_rayleigh_fraction: f,
+            ..params
+        };
+        assert!(bad.validate().is_err(), "{f}");
+    }
 }
 
 #[test]

@@ -70,18 +70,6 @@ impl DemSpecimen {
         })
     }
 
-    /// A copy whose steps from now on are `rayleigh_fraction` of the smallest ball's Rayleigh
-    /// time (in `(0, 0.3]`, [`TriaxialParams::rayleigh_fraction`]): e.g. a packing compacted
-    /// with one step sheared with another, which separates the step's effect on the shear from
-    /// its effect on the packing (a time-step study; `creep triaxial --shear-rayleigh-fraction`).
-    pub fn with_rayleigh_fraction(&self, rayleigh_fraction: f64) -> Result<Self, SceneError> {
-        let mut s = self.clone();
-        s.params.rayleigh_fraction = rayleigh_fraction;
-        s.params.validate()?;
-        s.dem.set_time_step(s.params.time_step()).map_err(dem_err)?;
-        Ok(s)
-    }
-
     /// The engine.
     pub fn engine(&self) -> &Dem<Exact> {
         &self.dem
@@ -207,28 +195,27 @@ impl Host for DemSpecimen {
     }
 
     /// The shares from one more step's increments at the current velocities
-    /// ([`Dem::for_each_contact_force`] with the time step; the compliant regime reports those
-    /// of the last step).
+    /// ([`Dem::for_each_contact_force`] with the engine's time step; the compliant regime
+    /// reports those of the last step).
     fn contact_shares(&self) -> (usize, usize, usize, usize) {
         let (mut n, mut sliding, mut rolling, mut creeping) = (0, 0, 0, 0);
-        self.dem
-            .for_each_contact_force(self.params.time_step(), |c| {
-                if c.wall.is_some() {
-                    return;
-                }
-                let f = &c.forces;
-                n += 1;
-                sliding += usize::from(f.sliding);
-                let creep_ratio = if f.slide_length > 0.0 {
-                    f.creep_displacement.length() / f.slide_length
-                } else if f.creep_displacement != Vec2::ZERO {
-                    f64::INFINITY
-                } else {
-                    0.0
-                };
-                creeping += usize::from(creep_ratio >= CREEPING);
-                rolling += usize::from(f.v_roll.length() > f.v_disp.length());
-            });
+        self.dem.for_each_contact_force(self.dem.config().dt, |c| {
+            if c.wall.is_some() {
+                return;
+            }
+            let f = &c.forces;
+            n += 1;
+            sliding += usize::from(f.sliding);
+            let creep_ratio = if f.slide_length > 0.0 {
+                f.creep_displacement.length() / f.slide_length
+            } else if f.creep_displacement != Vec2::ZERO {
+                f64::INFINITY
+            } else {
+                0.0
+            };
+            creeping += usize::from(creep_ratio >= CREEPING);
+            rolling += usize::from(f.v_roll.length() > f.v_disp.length());
+        });
         (n, sliding, rolling, creeping)
     }
 
@@ -248,6 +235,9 @@ impl Host for DemSpecimen {
         let mut s = self.clone();
         s.dem
             .set_table(table(&self.params, self.params.mu, creep)?)
+            .map_err(dem_err)?;
+        s.dem
+            .set_time_step(self.params.shear_time_step())
             .map_err(dem_err)?;
         Ok(s)
     }

@@ -183,7 +183,7 @@ pub(super) fn shear_on<E: Host>(
     let params = *s.params();
     let p0 = params.confining_pressure;
     let rate = params.strain_rate();
-    let dt = params.time_step();
+    let dt = params.shear_time_step();
     // The lateral servo's gain is per `servo_time`, not per step (its stress lag would grow
     // with the step: `TriaxialParams::servo_time`).
     let servo_time = params.servo_time();
@@ -324,6 +324,15 @@ impl Host for Specimen {
                 co.set_friction(s.params.mu as f32);
             }
         }
+        // The shears' step, and the compliant regime's Rayleigh check at its fraction.
+        s.world.physics.integration_parameters.dt = s.params.shear_time_step() as f32;
+        let settings = *s.world.compliant.settings();
+        s.world
+            .compliant
+            .set_settings(creep_rapier::CompliantSettings {
+                rayleigh_fraction: s.params.shear_rayleigh_fraction,
+                ..settings
+            })?;
         Ok(s)
     }
     fn reset_energy(&mut self) {
