@@ -39,6 +39,11 @@ pub struct TriaxialArgs {
     /// overrides the config file's `engine` key.
     #[arg(long)]
     engine: Option<String>,
+    /// The shears' time step as a fraction (in (0, 0.3]) of the smallest ball's Rayleigh time;
+    /// overrides the config file's `shear_rayleigh_fraction` (the compaction keeps
+    /// `rayleigh_fraction`: docs/results/triaxial-dem-dt).
+    #[arg(long)]
+    shear_rayleigh_fraction: Option<f64>,
 }
 
 /// A compacted specimen on either engine.
@@ -95,6 +100,10 @@ fn config(args: &TriaxialArgs) -> Result<TriaxialConfig, Box<dyn std::error::Err
     if let Some(e) = &args.engine {
         cfg.engine = e.parse::<TriaxialEngine>()?;
     }
+    if let Some(f) = args.shear_rayleigh_fraction {
+        cfg.params.shear_rayleigh_fraction = f;
+        cfg.params.validate()?;
+    }
     if args.quick {
         let q = TriaxialParams::quick();
         let p = &mut cfg.params;
@@ -127,7 +136,7 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     let header = format!(
         "Drained triaxial compression, engine {} ({}), Coulomb-Mindlin vs creep-friction\n\
          {n} spheres, radius uniform in [{:.3e}, {:.3e}] m; G = {:.3e} Pa, nu = {}, rho = {} kg/m^3, mu = {}, e = {}\n\
-         confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R)\n\
+         confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R) in the compaction, {:.3e} s ({} T_R) in the shears\n\
          packing generator {GENERATOR}, seed {}",
         engine.name(),
         match engine {
@@ -147,6 +156,8 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         params.axial_strain * 100.0,
         params.time_step(),
         params.rayleigh_fraction,
+        params.shear_time_step(),
+        params.shear_rayleigh_fraction,
         params.seed,
     );
     writeln!(out, "{header}")?;
@@ -158,17 +169,21 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     }
 
     let t0 = Instant::now();
+    let c0 = cpu_seconds();
     let pb = bar(1000, "isotropic compaction");
     let (specimen, summary) = Compacted::compact(engine, params, &mut |f| {
         pb.set_position((f * 1000.0) as u64)
     })?;
     pb.finish();
     let t_compact = t0.elapsed().as_secs_f64();
+    let cpu_compact = cpu_since(c0);
     let mut lines = vec![header.clone(), String::new()];
     lines.push(format!(
-        "Compaction (frictionless): {} steps in {t_compact:.1} s ({:.3e} particle-steps/s); solid fraction {:.4}, coordination {:.2}; p from walls {:.4e} Pa, from contacts {:.4e} Pa ({:+.2} %)",
+        "Compaction (frictionless): {} steps in {t_compact:.1} s ({:.3e} particle-steps/s; CPU {}{}); solid fraction {:.4}, coordination {:.2}; p from walls {:.4e} Pa, from contacts {:.4e} Pa ({:+.2} %)",
         summary.steps,
         n as f64 * summary.steps as f64 / t_compact,
+        cpu_text(cpu_compact),
+        rebuilds_text(summary.rebuilds),
         summary.solid_fraction,
         summary.coordination,
         summary.p_walls,
@@ -178,6 +193,7 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     writeln!(out, "{}", lines.last().unwrap_or(&String::new()))?;
 
     let mut runs: Vec<(ShearRun, f64)> = Vec::new();
+    let mut cpus: Vec<Option<f64>> = Vec::new();
     for creep in [false, true] {
         let label = if creep {
             "shear, creep-friction"
@@ -186,9 +202,11 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         };
         let pb = bar(1000, label);
         let t = Instant::now();
+        let c = cpu_seconds();
         let run = specimen.shear(creep, &mut |f| pb.set_position((f * 1000.0) as u64))?;
         pb.finish();
         let secs = t.elapsed().as_secs_f64();
+        cpus.push(cpu_since(c));
         let name = if creep { "creep" } else { "coulomb" };
         write_csv(&args.out.join(format!("triaxial_{name}.csv")), &run.rows)?;
         runs.push((run, secs));
@@ -247,13 +265,20 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     lines.push(run_row("particle-steps per second", &|r, secs| {
         format!("{:.3e}", n as f64 * r.steps as f64 / secs)
     }));
+    lines.push(format!(
+        "| CPU time (this thread), neighbour-list rebuilds | {}{} | {}{} |",
+        cpu_text(cpus[0]),
+        rebuilds_text(runs[0].0.rebuilds),
+        cpu_text(cpus[1]),
+        rebuilds_text(runs[1].0.rebuilds)
+    ));
     let d_phi = sums[1].peak_friction_angle_deg - sums[0].peak_friction_angle_deg;
     let d_psi = sums[1].dilatancy_angle_deg - sums[0].dilatancy_angle_deg;
     lines.push(String::new());
     lines.push(format!(
         "Creep-friction changes the peak friction angle by {d_phi:+.2} deg and the dilatancy angle by {d_psi:+.2} deg (the talk: \"a minimal effect of creep-friction\" in a dense packing)."
     ));
-    for l in &lines[lines.len() - 16..] {
+    for l in &lines[lines.len() - 17..] {
         writeln!(out, "{l}")?;
     }
     output::write(&args.out.join("SUMMARY.md"), &(lines.join("\n") + "\n"))?;
@@ -264,6 +289,28 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         args.out.display()
     )?;
     Ok(())
+}
+
+/// CPU time of this thread so far \[s\] (Linux: the first field of
+/// `/proc/thread-self/schedstat`, nanoseconds on a CPU); `None` where that file is missing.
+/// The runs are single-threaded, so it is the run's CPU time, whatever else loads the machine.
+fn cpu_seconds() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
+/// CPU seconds since `start` (a [`cpu_seconds`] reading).
+fn cpu_since(start: Option<f64>) -> Option<f64> {
+    Some(cpu_seconds()? - start?)
+}
+
+fn cpu_text(cpu: Option<f64>) -> String {
+    cpu.map_or_else(|| "n/a".into(), |c| format!("{c:.1} s"))
+}
+
+fn rebuilds_text(rebuilds: Option<usize>) -> String {
+    rebuilds.map_or_else(String::new, |r| format!(", {r} rebuilds"))
 }
 
 /// A shear's rows as CSV: the scene's columns ([`CSV_HEADER`]) and number formats
@@ -371,6 +418,35 @@ mod tests {
             out: PathBuf::from("unused"),
             config,
             engine: engine.map(String::from),
+            shear_rayleigh_fraction: None,
+        }
+    }
+
+    /// `--shear-rayleigh-fraction` replaces the file's key, range-checked before anything runs.
+    #[test]
+    fn the_shear_step_flag_overrides_the_file() {
+        let a = TriaxialArgs {
+            shear_rayleigh_fraction: Some(0.25),
+            ..args(None, false, None)
+        };
+        let cfg = config(&a).unwrap();
+        assert_eq!(cfg.params.shear_rayleigh_fraction, 0.25);
+        assert_eq!(
+            cfg.params.rayleigh_fraction,
+            TriaxialParams::default().rayleigh_fraction
+        );
+        let text = params_file(&cfg).unwrap();
+        assert!(text.contains("shear_rayleigh_fraction = 0.25"), "{text}");
+        for f in [0.5, 0.0, f64::NAN] {
+            let a = TriaxialArgs {
+                shear_rayleigh_fraction: Some(f),
+                ..args(None, false, None)
+            };
+            let e = config(&a).unwrap_err();
+            assert!(
+                e.to_string().contains("shear_rayleigh_fraction"),
+                "{f}: {e}"
+            );
         }
     }
 

@@ -176,6 +176,20 @@ impl<T: TangentialLaw> Dem<T> {
     pub fn table(&self) -> &MaterialTable {
         &self.table
     }
+    /// Sets the time step \[s\] (finite and > 0) from the next step on. Velocity Verlet's
+    /// state between steps (positions, velocities, the forces at the positions) does not depend
+    /// on the step, so the run continues as if started with the new one; the contact histories
+    /// are kept (each step's tangential increment is its relative motion over that step).
+    pub fn set_time_step(&mut self, dt: f64) -> Result<(), DemError> {
+        check(
+            "time step dt",
+            dt,
+            dt.is_finite() && dt > 0.0,
+            "must be finite and > 0 [s]",
+        )?;
+        self.cfg.dt = dt;
+        Ok(())
+    }
     /// Replaces the material table (e.g. to switch friction on after compaction); the contact
     /// histories are kept. The table must have as many materials.
     pub fn set_table(&mut self, table: MaterialTable) -> Result<(), DemError> {

@@ -12,24 +12,26 @@ impl<T: TangentialLaw> Dem<T> {
         let n = self.len();
         self.counts.rebuilds += 1;
         // Old histories stay where they are; the carry-over indexes them by the smaller id
-        // (CSR), partner by the larger, so each history is copied once, into the new list (the
-        // exact tier's history is ~0.5 kB: copying it through the sort cost more than the rest
-        // of the rebuild).
-        let old_h = std::mem::replace(&mut self.nl_h, Vec::with_capacity(self.nl_j.len()));
-        let old_wh = std::mem::replace(&mut self.wl_h, Vec::with_capacity(self.wl_i.len()));
+        // (CSR), partner by the larger, so each history is moved once, to its place in the new
+        // list (the exact tier's history is ~0.5 kB: copying it through the sort cost more than
+        // the rest of the rebuild). The new list first records where each entry's history is
+        // in the old one (`src`), then the histories are moved within their own array
+        // ([`carry_in_place`]): a new array per rebuild was fresh memory from the system each
+        // time, page faults costing as much as the copy (the triaxial compaction rebuilds every
+        // other step).
         let mut carry = Carry::default();
         for i in 0..n {
             for k in self.nl_start.get(i).copied().unwrap_or(0) as usize
                 ..self.nl_start.get(i + 1).copied().unwrap_or(0) as usize
             {
-                if !old_h[k].is_virgin() {
+                if !self.nl_h[k].is_virgin() {
                     let (a, b) = (self.id[i], self.id[self.nl_j[k] as usize]);
                     carry.push(a.min(b), a.max(b), k as u32);
                 }
             }
         }
         for e in 0..self.wl_i.len() {
-            if !old_wh[e].is_virgin() {
+            if !self.wl_h[e].is_virgin() {
                 carry.push_wall(self.id[self.wl_i[e] as usize], self.wl_k[e], e as u32);
             }
         }
@@ -57,43 +59,43 @@ impl<T: TangentialLaw> Dem<T> {
         self.nl_start.clear();
         self.nl_j.clear();
         self.nl_start.push(0);
+        let mut src = Vec::with_capacity(self.nl_h.len());
         for i in 0..n {
             let xi = self.x[i];
             let ri = self.r[i];
             let (x, r, grid) = (&self.x, &self.r, &self.grid);
-            let (nl_j, nl_h, id) = (&mut self.nl_j, &mut self.nl_h, &self.id);
+            let (nl_j, id) = (&mut self.nl_j, &self.id);
             grid.for_half_neighbours(i, |j| {
                 let d = grid.min_image(x[j] - xi);
                 let cut = ri + r[j] + skin;
                 if d.dot(d) < cut * cut {
                     let (a, b) = (id[i], id[j]);
                     nl_j.push(j as u32);
-                    nl_h.push(
-                        carry
-                            .find(a.min(b), a.max(b))
-                            .map_or_else(ContactHistory::default, |k| old_h[k]),
-                    );
+                    src.push(carry.find(a.min(b), a.max(b)).map_or(NONE, |k| k as u32));
                 }
             });
             self.nl_start.push(self.nl_j.len() as u32);
         }
+        carry_in_place(&mut self.nl_h, &src, ContactHistory::default());
 
         // Wall lists.
         self.wl_k.clear();
         self.wl_i.clear();
+        src.clear();
         for (k, wall) in self.walls.iter().enumerate() {
             for i in 0..n {
                 if (self.x[i] - wall.point).dot(wall.normal) < self.r[i] + skin {
                     self.wl_k.push(k as u32);
                     self.wl_i.push(i as u32);
-                    self.wl_h.push(
+                    src.push(
                         carry
                             .find_wall(self.id[i], k as u32)
-                            .map_or_else(ContactHistory::default, |e| old_wh[e]),
+                            .map_or(NONE, |e| e as u32),
                     );
                 }
             }
         }
+        carry_in_place(&mut self.wl_h, &src, ContactHistory::default());
         // The lists grow by doubling at the first build (and when they grow later): give back
         // what is more than an eighth over their length, so the engine holds about what it uses.
         trim(&mut self.nl_j);
@@ -104,6 +106,78 @@ impl<T: TangentialLaw> Dem<T> {
         self.x_build.clone_from(&self.x);
         self.wall_build = self.walls.iter().map(|w| w.point).collect();
     }
+}
+
+/// No old entry: a `src` value of [`carry_in_place`].
+const NONE: u32 = u32::MAX;
+
+/// Rearranges `v` in place so that afterwards `v[k]` is the old `v[src[k]]` (or `fill` where
+/// `src[k]` is [`NONE`]) for every `k < src.len()`, and `v.len() == src.len()`. `src` must not
+/// name an old entry twice (each history goes to at most one place) nor one beyond `v.len()`.
+///
+/// A partial permutation: positions whose old value nobody takes are free; from each free
+/// position a chain fills it from its source, which is then free in turn, until a source is
+/// [`NONE`] or lies beyond the new length; what is left are closed cycles, turned with one
+/// temporary. Each entry is moved once (twice on a cycle's first), with no new array.
+fn carry_in_place<X: Copy>(v: &mut Vec<X>, src: &[u32], fill: X) {
+    let n_new = src.len();
+    if v.len() < n_new {
+        v.resize(n_new, fill);
+    }
+    // Who takes each old entry.
+    let mut dst = vec![NONE; v.len()];
+    for (k, &s) in src.iter().enumerate() {
+        if s != NONE {
+            debug_assert!(dst[s as usize] == NONE, "entry {s} carried twice");
+            dst[s as usize] = k as u32;
+        }
+    }
+    let mut done: Vec<bool> = src
+        .iter()
+        .enumerate()
+        .map(|(k, &s)| s as usize == k)
+        .collect();
+    // Chains, from the free positions.
+    for k0 in 0..n_new {
+        if done[k0] || dst[k0] != NONE {
+            continue;
+        }
+        let mut k = k0;
+        loop {
+            let s = src[k];
+            done[k] = true;
+            if s == NONE {
+                v[k] = fill;
+                break;
+            }
+            let s = s as usize;
+            v[k] = v[s];
+            // `s`'s old value has gone to `k`: `s` is free now.
+            if s >= n_new {
+                break;
+            }
+            k = s;
+        }
+    }
+    // Cycles: every position left takes the value of another one left.
+    for k0 in 0..n_new {
+        if done[k0] {
+            continue;
+        }
+        let first = v[k0];
+        let mut k = k0;
+        loop {
+            done[k] = true;
+            let s = src[k] as usize;
+            if s == k0 {
+                v[k] = first;
+                break;
+            }
+            v[k] = v[s];
+            k = s;
+        }
+    }
+    v.truncate(n_new);
 }
 
 /// Shrinks `v`'s capacity to its length plus an eighth when it holds more than a quarter
@@ -182,4 +256,55 @@ fn lookup(start: &[u32], entries: &[(u32, u32, u32)], owner: u32, partner: u32) 
         .iter()
         .find(|e| e.1 == partner)
         .map(|e| e.2 as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{NONE, carry_in_place};
+
+    /// The in-place carry-over equals building a new array, on random partial permutations
+    /// (lists that grow, shrink, keep entries in place, drop and add entries).
+    #[test]
+    fn carry_in_place_equals_a_new_array() {
+        let mut s: u64 = 12345;
+        let mut rnd = |m: usize| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 33) as usize) % m.max(1)
+        };
+        for case in 0..2000 {
+            let n_old = rnd(40);
+            let n_new = rnd(40);
+            let old: Vec<u64> = (0..n_old as u64).map(|k| 1000 + k).collect();
+            // A random injective map from new positions to old entries, some NONE, some in
+            // place.
+            let mut pool: Vec<u32> = (0..n_old as u32).collect();
+            for k in (1..pool.len()).rev() {
+                pool.swap(k, rnd(k + 1));
+            }
+            let mut src = vec![NONE; n_new];
+            for (k, slot) in src.iter_mut().enumerate() {
+                match rnd(4) {
+                    0 => {}
+                    1 if k < n_old && pool.contains(&(k as u32)) => {
+                        pool.retain(|&p| p != k as u32);
+                        *slot = k as u32;
+                    }
+                    _ => {
+                        if let Some(p) = pool.pop() {
+                            *slot = p;
+                        }
+                    }
+                }
+            }
+            let expected: Vec<u64> = src
+                .iter()
+                .map(|&s| if s == NONE { 7 } else { old[s as usize] })
+                .collect();
+            let mut v = old.clone();
+            carry_in_place(&mut v, &src, 7);
+            assert_eq!(v, expected, "case {case}: src {src:?}");
+        }
+    }
 }

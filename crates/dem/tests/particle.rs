@@ -484,7 +484,19 @@ fn bad_input_is_a_typed_error() {
         periodic: [Some((0.0, 1e-3)), None, None],
         ..cfg(1e-7, 1e-4)
     };
-    assert!(Dem::<Cheap>::new(small_box, table, &[p], &[]).is_err());
+    assert!(Dem::<Cheap>::new(small_box, table.clone(), &[p], &[]).is_err());
+    // A new time step: finite and > 0, else a typed error and the step unchanged.
+    let mut d = Dem::<Cheap>::new(cfg(1e-7, 1e-4), table, &[p], &[]).unwrap();
+    for dt in [0.0, -1e-7, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            d.set_time_step(dt),
+            Err(creep_dem::DemError::Parameter { .. })
+        ));
+    }
+    assert_eq!(d.config().dt, 1e-7);
+    d.set_time_step(2e-7).unwrap();
+    d.step().unwrap();
+    assert_eq!((d.config().dt, d.time()), (2e-7, 2e-7));
 }
 
 /// The `parallel` force loop: the same bits as the serial loop (each particle's force and

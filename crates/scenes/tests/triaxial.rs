@@ -120,6 +120,22 @@ fn the_packing_moves_to_the_dem_engine() {
     let t = dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 2).unwrap();
     assert_eq!(t.len(), 27 * 8);
     assert!(dem_engine_tiled::<creep_dem::Exact>(&s, true, false, 0).is_err());
+
+    // The shears' step is its own key, range-checked; the shear servo's time stays the
+    // default compaction step's (bit for bit at rayleigh_fraction 0.2).
+    let p3 = TriaxialParams {
+        shear_rayleigh_fraction: 0.3,
+        ..params
+    };
+    assert!((p3.shear_time_step() / p3.time_step() - 0.3 / params.rayleigh_fraction).abs() < 1e-12);
+    assert_eq!(p3.servo_time(), params.time_step());
+    for f in [0.31, 0.0, f64::NAN] {
+        let bad = TriaxialParams {
+            shear_rayleigh_fraction: f,
+            ..params
+        };
+        assert!(bad.validate().is_err(), "{f}");
+    }
 }
 
 #[test]

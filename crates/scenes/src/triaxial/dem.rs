@@ -195,28 +195,27 @@ impl Host for DemSpecimen {
     }
 
     /// The shares from one more step's increments at the current velocities
-    /// ([`Dem::for_each_contact_force`] with the time step; the compliant regime reports those
-    /// of the last step).
+    /// ([`Dem::for_each_contact_force`] with the engine's time step; the compliant regime
+    /// reports those of the last step).
     fn contact_shares(&self) -> (usize, usize, usize, usize) {
         let (mut n, mut sliding, mut rolling, mut creeping) = (0, 0, 0, 0);
-        self.dem
-            .for_each_contact_force(self.params.time_step(), |c| {
-                if c.wall.is_some() {
-                    return;
-                }
-                let f = &c.forces;
-                n += 1;
-                sliding += usize::from(f.sliding);
-                let creep_ratio = if f.slide_length > 0.0 {
-                    f.creep_displacement.length() / f.slide_length
-                } else if f.creep_displacement != Vec2::ZERO {
-                    f64::INFINITY
-                } else {
-                    0.0
-                };
-                creeping += usize::from(creep_ratio >= CREEPING);
-                rolling += usize::from(f.v_roll.length() > f.v_disp.length());
-            });
+        self.dem.for_each_contact_force(self.dem.config().dt, |c| {
+            if c.wall.is_some() {
+                return;
+            }
+            let f = &c.forces;
+            n += 1;
+            sliding += usize::from(f.sliding);
+            let creep_ratio = if f.slide_length > 0.0 {
+                f.creep_displacement.length() / f.slide_length
+            } else if f.creep_displacement != Vec2::ZERO {
+                f64::INFINITY
+            } else {
+                0.0
+            };
+            creeping += usize::from(creep_ratio >= CREEPING);
+            rolling += usize::from(f.v_roll.length() > f.v_disp.length());
+        });
         (n, sliding, rolling, creeping)
     }
 
@@ -237,6 +236,9 @@ impl Host for DemSpecimen {
         s.dem
             .set_table(table(&self.params, self.params.mu, creep)?)
             .map_err(dem_err)?;
+        s.dem
+            .set_time_step(self.params.shear_time_step())
+            .map_err(dem_err)?;
         Ok(s)
     }
 
@@ -248,6 +250,10 @@ impl Host for DemSpecimen {
     fn dissipation(&self) -> (f64, f64) {
         let e = self.dem.energy();
         (e.creep - self.energy0.0, e.slip - self.energy0.1)
+    }
+
+    fn rebuilds(&self) -> Option<usize> {
+        Some(self.dem.counts().rebuilds)
     }
 }
 

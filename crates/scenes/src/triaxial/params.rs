@@ -27,8 +27,15 @@ pub struct TriaxialParams {
     pub inertial_number: f64,
     /// Final axial strain [-], in `(0, 0.5]`.
     pub axial_strain: f64,
-    /// Time step as a fraction of the smallest Rayleigh time, in `(0, 0.3]`.
+    /// Time step of the generation and the compaction as a fraction of the smallest ball's
+    /// Rayleigh time, in `(0, 0.3]` (the packing depends on it: docs/results/triaxial-dem-dt).
     pub rayleigh_fraction: f64,
+    /// Time step of the shears as a fraction of the smallest ball's Rayleigh time, in
+    /// `(0, 0.3]`. Default 0.3: from the packing compacted at 0.2 the shears at 0.3 reproduce
+    /// those at 0.2 within 0.07 deg and 0.25 % (peak and dilatancy angles, wall and contact
+    /// stresses at the peak) in 0.7 of the CPU time (docs/results/triaxial-dem-dt); a stated
+    /// speed-accuracy choice.
+    pub shear_rayleigh_fraction: f64,
     /// Seed of the packing's generator ([`super::GENERATOR`]), in `[0, 2^63 - 1]` (TOML's
     /// integers are signed 64-bit).
     pub seed: u64,
@@ -39,7 +46,8 @@ pub struct TriaxialParams {
 impl Default for TriaxialParams {
     /// The default test: 4,096 softened-glass spheres of mean radius 1 mm (radii +-20 %),
     /// G = 29 MPa, nu = 0.2, rho = 2,500 kg/m^3, mu = 0.5, e = 0.5, p0 = 100 kPa, I = 8e-4,
-    /// 20 % axial strain, dt = 0.2 T_R (the repository's `crates/cli/assets/triaxial.toml`).
+    /// 20 % axial strain, dt = 0.2 T_R in the generation and the compaction, 0.3 T_R in the
+    /// shears (the repository's `crates/cli/assets/triaxial.toml`).
     fn default() -> Self {
         Self {
             n_per_side: 16,
@@ -52,6 +60,7 @@ impl Default for TriaxialParams {
             inertial_number: 8e-4,
             axial_strain: 0.2,
             rayleigh_fraction: 0.2,
+            shear_rayleigh_fraction: 0.3,
             seed: 2011,
             rows_per_percent: 4,
         }
@@ -100,6 +109,13 @@ impl TriaxialParams {
         check("axial_strain", self.axial_strain, 0.0, 0.5, true)?;
         check("rayleigh_fraction", self.rayleigh_fraction, 0.0, 0.3, true)?;
         check(
+            "shear_rayleigh_fraction",
+            self.shear_rayleigh_fraction,
+            0.0,
+            0.3,
+            true,
+        )?;
+        check(
             "rows_per_percent",
             self.rows_per_percent as f64,
             1.0,
@@ -126,12 +142,36 @@ impl TriaxialParams {
             / (self.mean_diameter() * (self.material.density() / self.confining_pressure).sqrt())
     }
 
-    /// Time step \[s\]: `rayleigh_fraction` of the smallest ball's Rayleigh time.
+    /// Time step of the generation and the compaction \[s\]: `rayleigh_fraction` of the
+    /// smallest ball's Rayleigh time.
     pub fn time_step(&self) -> f64 {
         let r_min = self.radius * (1.0 - self.radius_spread);
         self.rayleigh_fraction * creep_law::hertz::rayleigh_time_step(&self.material, r_min)
     }
+
+    /// Time step of the shears \[s\]: `shear_rayleigh_fraction` of the smallest ball's
+    /// Rayleigh time.
+    pub fn shear_time_step(&self) -> f64 {
+        let r_min = self.radius * (1.0 - self.radius_spread);
+        self.shear_rayleigh_fraction * creep_law::hertz::rayleigh_time_step(&self.material, r_min)
+    }
+
+    /// The time over which the shear's servo removes its share of a wall's stress error \[s\]:
+    /// the time step at [`SERVO_RAYLEIGH_FRACTION`] of the smallest ball's Rayleigh time,
+    /// whatever the run's step, so that the lateral walls' stress lag behind a dilating packing
+    /// (`~ 1.5 v tau / (alpha delta)` of p0, `Stress::servo`) does not grow with the step.
+    /// Equal to [`TriaxialParams::time_step`], bit for bit, at the default 0.2. (The
+    /// compaction's servo keeps its gain per step: its packing is the default's only at the
+    /// default step anyway, docs/results/triaxial-dem-dt.)
+    pub fn servo_time(&self) -> f64 {
+        let r_min = self.radius * (1.0 - self.radius_spread);
+        SERVO_RAYLEIGH_FRACTION * creep_law::hertz::rayleigh_time_step(&self.material, r_min)
+    }
 }
+
+/// The Rayleigh fraction whose time step is the shear servo's time
+/// ([`TriaxialParams::servo_time`]): the default step's.
+pub const SERVO_RAYLEIGH_FRACTION: f64 = 0.2;
 
 /// The engine a triaxial test runs on (`engine = "dem"` or `"rapier"` in the TOML file).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -214,6 +254,7 @@ struct ConfigFile {
     inertial_number: f64,
     axial_strain: f64,
     rayleigh_fraction: f64,
+    shear_rayleigh_fraction: f64,
     seed: u64,
     rows_per_percent: usize,
 }
@@ -241,6 +282,7 @@ impl From<TriaxialConfig> for ConfigFile {
             inertial_number: p.inertial_number,
             axial_strain: p.axial_strain,
             rayleigh_fraction: p.rayleigh_fraction,
+            shear_rayleigh_fraction: p.shear_rayleigh_fraction,
             seed: p.seed,
             rows_per_percent: p.rows_per_percent,
         }
@@ -266,6 +308,7 @@ impl ConfigFile {
             inertial_number: self.inertial_number,
             axial_strain: self.axial_strain,
             rayleigh_fraction: self.rayleigh_fraction,
+            shear_rayleigh_fraction: self.shear_rayleigh_fraction,
             seed: self.seed,
             rows_per_percent: self.rows_per_percent,
         };
