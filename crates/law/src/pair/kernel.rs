@@ -90,11 +90,14 @@ pub fn pair_force<T: TangentialLaw>(
     // point of a sphere's surface nearest the other body is on its normal through the centre),
     // `c - x_p = rho_p n`, `c - x_q = -rho_q n`; the rates and the torques then take the
     // shorter forms below (the same values to rounding; test `sphere_forms_equal_the_general_ones`).
-    let spheres = matches!(
-        (p.surface, q.surface),
-        (Surface::Sphere(_), Surface::Sphere(_))
-    );
-    let (rho_p, rho_q) = ((cp - p.position).dot(n), (q.position - cp).dot(n));
+    // The contact point being the middle of the overlap along the normal ([`ContactGeometry`]'s
+    // contract, as [`ContactGeometry::sphere_sphere`] places it), the arms' lengths are the radii
+    // less half the overlap, `rho = r - delta/2`: the projections `(c - x_p) . n` and
+    // `(x_q - c) . n` to rounding, without their two dot products.
+    let (spheres, rho_p, rho_q) = match (p.surface, q.surface) {
+        (Surface::Sphere(rp), Surface::Sphere(rq)) => (true, rp - 0.5 * delta, rq - 0.5 * delta),
+        _ => (false, 0.0, 0.0),
+    };
     let (rates, delta_dot) = if spheres {
         sphere_rates_and_approach(p, q, rho_p, rho_q, n)
     } else {
