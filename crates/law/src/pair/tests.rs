@@ -614,7 +614,7 @@ fn carried_tangent_is_the_rotation_to_second_order() {
             for j in 0..12 {
                 let phi = f64::from(j) * std::f64::consts::PI / 12.0; // tangent from the axis
                 let t1 = axis * phi.cos() + from.cross(axis) * phi.sin();
-                for spin in [0.0, 2e-6] {
+                for spin in [0.0, 2e-6, 0.2] {
                     let got = carry_tangent(t1, from, to, spin).unwrap();
                     let want = rotate_about(rotate_to(t1, from, to), to, spin);
                     assert!((got.length() - 1.0).abs() < 1e-15);
