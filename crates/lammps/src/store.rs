@@ -690,16 +690,17 @@ fn atoms_valid(atoms: &Atoms<'_>) -> bool {
         && positive(atoms.mass)
 }
 
-/// Whether every component of `v` is finite, as [`Vec3::is_finite`] of each, in the
-/// floating-point domain: `x - x` is 0 for a finite `x` and NaN otherwise, so the sum is 0
-/// exactly when all are finite (LLVM lowers `is_finite` to integer tests of the bit pattern,
-/// a dozen operations per vector; this is two per component).
+/// Whether every component of `v` is finite and the components' sum does not overflow (every
+/// component below ~1e307 in size: a force in N or a torque in N m that is not, is no
+/// contact's), in the floating-point domain with one sum: `s - s` is 0 for a finite sum `s`
+/// and NaN otherwise, and the sum is NaN or infinite when a component is (IEEE 754: `inf +
+/// x`, `NaN + x`). LLVM lowers `is_finite` to integer tests of the bit pattern, a dozen
+/// operations per vector; this is one addition per component.
 #[inline(always)]
-#[allow(clippy::eq_op)] // `x - x` is the point: 0 or NaN
+#[allow(clippy::eq_op)] // `s - s` is the point: 0 or NaN
 fn all_finite(v: &[Vec3]) -> bool {
-    v.iter().fold(0.0, |acc, c| {
-        acc + ((c.x - c.x) + (c.y - c.y) + (c.z - c.z))
-    }) == 0.0
+    let s = v.iter().fold(0.0, |acc, c| acc + (c.x + c.y + c.z));
+    s - s == 0.0
 }
 
 #[inline(always)]
@@ -725,5 +726,38 @@ fn check(k: usize, radius: f64, mass: f64) -> Result<(), ModelError> {
             radius,
             mass,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn all_finite_flags_each_non_finite_component() {
+        let ok = [
+            Vec3::new(1e3, -2.0, 0.0),
+            Vec3::new(-1e300, 1e300, 5.0),
+            Vec3::ZERO,
+        ];
+        assert!(all_finite(&ok));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for k in 0..9 {
+                let mut v = ok;
+                let c = &mut v[k / 3];
+                match k % 3 {
+                    0 => c.x = bad,
+                    1 => c.y = bad,
+                    _ => c.z = bad,
+                }
+                assert!(!all_finite(&v), "{bad} at component {k} not flagged");
+            }
+        }
+        // Opposite infinities sum to NaN: still flagged.
+        assert!(!all_finite(&[Vec3::new(
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            0.0
+        )]));
     }
 }

@@ -90,11 +90,14 @@ pub fn pair_force<T: TangentialLaw>(
     // point of a sphere's surface nearest the other body is on its normal through the centre),
     // `c - x_p = rho_p n`, `c - x_q = -rho_q n`; the rates and the torques then take the
     // shorter forms below (the same values to rounding; test `sphere_forms_equal_the_general_ones`).
-    let spheres = matches!(
-        (p.surface, q.surface),
-        (Surface::Sphere(_), Surface::Sphere(_))
-    );
-    let (rho_p, rho_q) = ((cp - p.position).dot(n), (q.position - cp).dot(n));
+    // The contact point being the middle of the overlap along the normal ([`ContactGeometry`]'s
+    // contract, as [`ContactGeometry::sphere_sphere`] places it), the arms' lengths are the radii
+    // less half the overlap, `rho = r - delta/2`: the projections `(c - x_p) . n` and
+    // `(x_q - c) . n` to rounding, without their two dot products.
+    let (spheres, rho_p, rho_q) = match (p.surface, q.surface) {
+        (Surface::Sphere(rp), Surface::Sphere(rq)) => (true, rp - 0.5 * delta, rq - 0.5 * delta),
+        _ => (false, 0.0, 0.0),
+    };
     let (rates, delta_dot) = if spheres {
         sphere_rates_and_approach(p, q, rho_p, rho_q, n)
     } else {
@@ -345,8 +348,9 @@ pub fn release<T: TangentialLaw>(
 pub(super) fn carry_tangent(t1: Vec3, from: Vec3, to: Vec3, spin_angle: f64) -> Option<Vec3> {
     if from.dot(to) > std::f64::consts::FRAC_1_SQRT_2 {
         // A turn of the normal below 45 degrees: the projection's length is at least
-        // cos(45 deg), no degeneracy.
-        return renormalize(rotate_about(t1, to, spin_angle).reject(to));
+        // cos(45 deg), no degeneracy. The spin about `to` without its part along `to`
+        // (Rodrigues' `to (to . t1)(1 - c)`), which the projection removes anyway.
+        return renormalize(spin_without_axial(t1, to, spin_angle).reject(to));
     }
     let rotated = rotate_about(rotate_to(t1, from, to), to, spin_angle);
     renormalize(rotated.reject(to))
@@ -413,11 +417,32 @@ pub fn rotate_about(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
     if angle == 0.0 {
         return v;
     }
+    let (s, c) = small_sin_cos(angle);
+    v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
+}
+
+/// [`rotate_about`] without Rodrigues' term along the unit `axis`, `axis (axis . v)(1 - c)`:
+/// `v c + (axis x v) s`. For a caller that projects the result onto the plane
+/// normal to `axis` (the carried tangent), the projection of this equals the projection of the
+/// rotation (to rounding), with one dot product and two vector products fewer.
+#[inline(always)]
+fn spin_without_axial(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
+    if angle == 0.0 {
+        return v;
+    }
+    let (s, c) = small_sin_cos(angle);
+    v * c + axis.cross(v) * s
+}
+
+/// `(sin a, cos a)` of an angle \[rad\]: below 1e-3 rad the Taylor series (exact to rounding
+/// there), otherwise libm's.
+#[inline(always)]
+fn small_sin_cos(angle: f64) -> (f64, f64) {
     // DEM steps turn a contact by micro-radians: the Taylor series is exact to rounding below
     // 1e-3 rad (next terms a^5/120, a^6/720 < 1e-17) and saves the libm call; the constant
     // divisions as products with the rounded reciprocals (a relative change of 1e-16 in terms of
     // size a^2 < 1e-6, far below the rounding of the result).
-    let (s, c) = if angle.abs() < 1e-3 {
+    if angle.abs() < 1e-3 {
         let a2 = angle * angle;
         (
             angle * (1.0 - a2 * (1.0 / 6.0)),
@@ -425,6 +450,5 @@ pub fn rotate_about(v: Vec3, axis: Vec3, angle: f64) -> Vec3 {
         )
     } else {
         angle.sin_cos()
-    };
-    v * c + axis.cross(v) * s + axis * (axis.dot(v) * (1.0 - c))
+    }
 }

@@ -536,7 +536,18 @@ fn sphere_forms_equal_the_general_ones() {
         let q = sphere(xq, v(0.5), v(50.0), rq);
         let g = ContactGeometry::sphere_sphere(p.position, rp, q.position, rq).unwrap();
         let (n, cp) = (g.normal, g.point);
-        let (rho_p, rho_q) = ((cp - p.position).dot(n), (q.position - cp).dot(n));
+        // The kernel's arms, the radii less half the overlap, are the projections of
+        // `c - x_p` and `x_q - c` on the normal, to rounding.
+        let (rho_p, rho_q) = (rp - 0.5 * g.overlap, rq - 0.5 * g.overlap);
+        for (got, want) in [
+            (rho_p, (cp - p.position).dot(n)),
+            (rho_q, (q.position - cp).dot(n)),
+        ] {
+            assert!(
+                (got - want).abs() <= 1e-14 * (rp + rq),
+                "{got} against {want}"
+            );
+        }
         let (r, dd) = sphere_rates_and_approach(&p, &q, rho_p, rho_q, n);
         let motion = |b: &PairBody| BodyMotion {
             position: b.position,
@@ -603,7 +614,7 @@ fn carried_tangent_is_the_rotation_to_second_order() {
             for j in 0..12 {
                 let phi = f64::from(j) * std::f64::consts::PI / 12.0; // tangent from the axis
                 let t1 = axis * phi.cos() + from.cross(axis) * phi.sin();
-                for spin in [0.0, 2e-6] {
+                for spin in [0.0, 2e-6, 0.2] {
                     let got = carry_tangent(t1, from, to, spin).unwrap();
                     let want = rotate_about(rotate_to(t1, from, to), to, spin);
                     assert!((got.length() - 1.0).abs() < 1e-15);
