@@ -648,20 +648,8 @@ pub unsafe extern "C" fn creep_lammps_compute_pairs(
             outputs,
         )
     }));
-    let result = match result {
-        Ok(r) => r,
-        Err(_) => {
-            // SAFETY: `err` as the contract says.
-            unsafe { write_error(err, err_len, "internal error (panic) in the pair law") };
-            return 1;
-        }
-    };
-    if let (Ok(d), false) = (&result, dropped.is_null()) {
-        // SAFETY: one writable size_t, by the contract.
-        unsafe { *dropped = *d };
-    }
-    // SAFETY: `err` as the contract says.
-    unsafe { status(result.map(|_| ()), err, err_len) }
+    // SAFETY: `dropped` is null or one writable size_t and `err` as the contract says.
+    unsafe { finish_step(result, dropped, err, err_len) }
 }
 
 /// LAMMPS' half neighbour list of a pair style (`NeighList`) and the pair style's per-entry
@@ -892,6 +880,23 @@ pub unsafe extern "C" fn creep_lammps_compute_list(
             forces,
         )
     }));
+    // SAFETY: `counts` is null or one writable ListCounts and `err` as the contract says.
+    unsafe { finish_step(result, counts, err, err_len) }
+}
+
+/// The end of a step's call (`creep_lammps_compute_pairs`, `creep_lammps_compute_list`): a panic
+/// becomes status 1 with its message, a result is written to `out` (when not null), and the
+/// status is [`status`]'s.
+///
+/// # Safety
+/// `out` is null or valid for one write of `T`; `err` is null or valid for writes of `err_len`
+/// bytes.
+unsafe fn finish_step<T: Copy>(
+    result: std::thread::Result<Result<T, ModelError>>,
+    out: *mut T,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
     let result = match result {
         Ok(r) => r,
         Err(_) => {
@@ -900,9 +905,9 @@ pub unsafe extern "C" fn creep_lammps_compute_list(
             return 1;
         }
     };
-    if let (Ok(c), false) = (&result, counts.is_null()) {
-        // SAFETY: one writable ListCounts, by the contract.
-        unsafe { *counts = *c };
+    if let (Ok(v), false) = (&result, out.is_null()) {
+        // SAFETY: `out` is valid for one write, by the contract.
+        unsafe { *out = *v };
     }
     // SAFETY: `err` as the contract says.
     unsafe { status(result.map(|_| ()), err, err_len) }
