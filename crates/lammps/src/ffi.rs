@@ -627,16 +627,8 @@ pub unsafe extern "C" fn creep_lammps_compute_pairs(
                 },
             )
         };
-        let table = ModelTable {
-            ntypes,
-            // SAFETY: each pointer is null or a live model, as the contract says.
-            model_of: |k: usize| {
-                models
-                    .get(k)
-                    .and_then(|m| unsafe { m.as_ref() })
-                    .map(|m| &m.0)
-            },
-        };
+        // SAFETY: each pointer of `models` is null or a live model, as the contract says.
+        let table = unsafe { model_table(models, ntypes) };
         crate::store::compute_pairs(
             &table,
             &mut store.0,
@@ -858,16 +850,8 @@ pub unsafe extern "C" fn creep_lammps_compute_list(
                 (!forces.is_null()).then(|| std::slice::from_raw_parts_mut(forces, l.nentries)),
             )
         };
-        let table = ModelTable {
-            ntypes,
-            // SAFETY: each pointer is null or a live model, as the contract says.
-            model_of: |k: usize| {
-                models
-                    .get(k)
-                    .and_then(|m| unsafe { m.as_ref() })
-                    .map(|m| &m.0)
-            },
-        };
+        // SAFETY: each pointer of `models` is null or a live model, as the contract says.
+        let table = unsafe { model_table(models, ntypes) };
         crate::store::compute_list(
             &table,
             &mut store.0,
@@ -882,6 +866,27 @@ pub unsafe extern "C" fn creep_lammps_compute_list(
     }));
     // SAFETY: `counts` is null or one writable ListCounts and `err` as the contract says.
     unsafe { finish_step(result, counts, err, err_len) }
+}
+
+/// The model table of a step's call over the caller's `[ntypes + 1][ntypes + 1]` array of model
+/// pointers (`creep_lammps_compute_pairs`, `creep_lammps_compute_list`).
+///
+/// # Safety
+/// Each pointer of `models` is null or a live model for as long as the table is used.
+unsafe fn model_table<'a>(
+    models: &'a [*const CreepLammpsModel],
+    ntypes: usize,
+) -> ModelTable<impl Fn(usize) -> Option<&'a Model> + 'a> {
+    ModelTable {
+        ntypes,
+        // SAFETY: each pointer is null or a live model, by the contract.
+        model_of: move |k: usize| {
+            models
+                .get(k)
+                .and_then(|m| unsafe { m.as_ref() })
+                .map(|m| &m.0)
+        },
+    }
 }
 
 /// The end of a step's call (`creep_lammps_compute_pairs`, `creep_lammps_compute_list`): a panic
