@@ -5,12 +5,14 @@
 //! list.
 #![allow(unsafe_code)] // calls the C ABI as C++ would
 
+mod common;
+use common::{Store, model};
+
 use creep_lammps::ffi::{
-    CREEP_LAMMPS_ROLLING_EPSD, CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms,
-    CreepLammpsList, CreepLammpsModel, CreepLammpsSettings, CreepLammpsStore,
-    creep_lammps_compute_list, creep_lammps_compute_pairs, creep_lammps_history_len,
-    creep_lammps_model_free, creep_lammps_model_new, creep_lammps_store_free,
-    creep_lammps_store_len, creep_lammps_store_new, creep_lammps_store_save,
+    CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms, CreepLammpsList,
+    CreepLammpsModel, creep_lammps_compute_list, creep_lammps_compute_pairs,
+    creep_lammps_history_len, creep_lammps_model_free, creep_lammps_store_len,
+    creep_lammps_store_new, creep_lammps_store_save,
 };
 use creep_lammps::{
     Accumulators, Atoms, HistoryStore, ListCounts, ListEntries, Model, ModelTable, PairForce,
@@ -20,33 +22,6 @@ use std::ffi::{CStr, c_char};
 
 /// LAMMPS' NEIGHMASK: the top bits of a neighbour index flag special bonds.
 const NEIGHMASK: i32 = 0x1FFF_FFFF;
-
-fn model(tier: u32) -> *mut CreepLammpsModel {
-    let s = CreepLammpsSettings {
-        young_modulus: 69.6e6,
-        poisson_ratio: 0.2,
-        restitution: 0.5,
-        friction: 0.5,
-        tier,
-        creep: 1,
-        rolling: CREEP_LAMMPS_ROLLING_EPSD,
-        rolling_friction: 0.2,
-        rolling_damping: 0.3,
-    };
-    let mut err = [0 as c_char; 256];
-    // SAFETY: valid settings and error buffer.
-    let m = unsafe { creep_lammps_model_new(&s, err.as_mut_ptr(), err.len()) };
-    assert!(!m.is_null());
-    m
-}
-
-struct Store(*mut CreepLammpsStore);
-impl Drop for Store {
-    fn drop(&mut self) {
-        // SAFETY: created by creep_lammps_store_new, freed once.
-        unsafe { creep_lammps_store_free(self.0) };
-    }
-}
 
 /// Eight spheres, 0..5 owned and 5..8 ghosts: a bent chain (i, i + 1 overlapping by ~1e-3 of
 /// the diameter) whose ends drift apart and back (so contacts open and new ones close),

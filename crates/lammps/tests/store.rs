@@ -3,35 +3,18 @@
 //! so the same bits; and its checks.
 #![allow(unsafe_code)] // calls the C ABI as C++ would
 
+mod common;
+use common::{Store, model};
+
 use creep_lammps::ffi::{
-    CREEP_LAMMPS_ROLLING_EPSD, CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms,
-    CreepLammpsModel, CreepLammpsSettings, CreepLammpsStore, creep_lammps_compute_pairs,
-    creep_lammps_history_len, creep_lammps_model_free, creep_lammps_model_new,
-    creep_lammps_store_free, creep_lammps_store_len, creep_lammps_store_load,
-    creep_lammps_store_new, creep_lammps_store_save,
+    CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms, CreepLammpsModel,
+    creep_lammps_compute_pairs, creep_lammps_history_len, creep_lammps_model_free,
+    creep_lammps_store_len, creep_lammps_store_load, creep_lammps_store_new,
+    creep_lammps_store_save,
 };
 use creep_lammps::{Body, Contact, ContactOutput, Model, PairIndex, Settings, Tier};
 use creep_law::rolling_torque::RollingModel;
 use std::ffi::{CStr, c_char};
-
-fn model(tier: u32) -> *mut CreepLammpsModel {
-    let s = CreepLammpsSettings {
-        young_modulus: 69.6e6,
-        poisson_ratio: 0.2,
-        restitution: 0.5,
-        friction: 0.5,
-        tier,
-        creep: 1,
-        rolling: CREEP_LAMMPS_ROLLING_EPSD,
-        rolling_friction: 0.2,
-        rolling_damping: 0.3,
-    };
-    let mut err = [0 as c_char; 256];
-    // SAFETY: valid settings and error buffer.
-    let m = unsafe { creep_lammps_model_new(&s, err.as_mut_ptr(), err.len()) };
-    assert!(!m.is_null());
-    m
-}
 
 /// A small cluster: atoms 0..4 owned, 4..6 ghosts (copies at other places), moving and
 /// spinning; every pair within touching distance is a contact. Deterministic pseudo-random.
@@ -81,14 +64,6 @@ fn body(c: &Cluster, i: usize) -> Body {
         omega: c.w[i],
         radius: c.r[i],
         mass: c.m[i],
-    }
-}
-
-struct Store(*mut CreepLammpsStore);
-impl Drop for Store {
-    fn drop(&mut self) {
-        // SAFETY: created by creep_lammps_store_new, freed once.
-        unsafe { creep_lammps_store_free(self.0) };
     }
 }
 

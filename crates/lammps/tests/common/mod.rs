@@ -1,0 +1,40 @@
+//! Fixtures shared by the C ABI's integration tests (`list.rs`, `store.rs`): a model made
+//! through the C ABI and a store handle that frees itself.
+#![allow(unsafe_code)] // calls the C ABI as C++ would
+#![allow(dead_code)] // each test file uses its own part
+
+use creep_lammps::ffi::{
+    CREEP_LAMMPS_ROLLING_EPSD, CreepLammpsModel, CreepLammpsSettings, CreepLammpsStore,
+    creep_lammps_model_new, creep_lammps_store_free,
+};
+use std::ffi::c_char;
+
+/// A glass-like model of `tier` (`CREEP_LAMMPS_TIER_*`) with creep and EPSD rolling
+/// resistance, made through the C ABI.
+pub fn model(tier: u32) -> *mut CreepLammpsModel {
+    let s = CreepLammpsSettings {
+        young_modulus: 69.6e6,
+        poisson_ratio: 0.2,
+        restitution: 0.5,
+        friction: 0.5,
+        tier,
+        creep: 1,
+        rolling: CREEP_LAMMPS_ROLLING_EPSD,
+        rolling_friction: 0.2,
+        rolling_damping: 0.3,
+    };
+    let mut err = [0 as c_char; 256];
+    // SAFETY: valid settings and error buffer.
+    let m = unsafe { creep_lammps_model_new(&s, err.as_mut_ptr(), err.len()) };
+    assert!(!m.is_null());
+    m
+}
+
+/// A store made by `creep_lammps_store_new`, freed on drop.
+pub struct Store(pub *mut CreepLammpsStore);
+impl Drop for Store {
+    fn drop(&mut self) {
+        // SAFETY: created by creep_lammps_store_new, freed once.
+        unsafe { creep_lammps_store_free(self.0) };
+    }
+}
