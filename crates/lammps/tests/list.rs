@@ -6,7 +6,7 @@
 #![allow(unsafe_code)] // calls the C ABI as C++ would
 
 mod common;
-use common::{Store, model};
+use common::{Cluster, Store, model, xorshift};
 
 use creep_lammps::ffi::{
     CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms, CreepLammpsList,
@@ -26,31 +26,9 @@ const NEIGHMASK: i32 = 0x1FFF_FFFF;
 /// Eight spheres, 0..5 owned and 5..8 ghosts: a bent chain (i, i + 1 overlapping by ~1e-3 of
 /// the diameter) whose ends drift apart and back (so contacts open and new ones close),
 /// moving and spinning; deterministic pseudo-random.
-struct Cluster {
-    x: Vec<[f64; 3]>,
-    v: Vec<[f64; 3]>,
-    w: Vec<[f64; 3]>,
-    r: Vec<f64>,
-    m: Vec<f64>,
-    kind: Vec<i32>,
-}
-
 fn cluster() -> Cluster {
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let mut c = Cluster {
-        x: vec![],
-        v: vec![],
-        w: vec![],
-        r: vec![],
-        m: vec![],
-        kind: vec![],
-    };
+    let mut rnd = xorshift(0x9e37_79b9_7f4a_7c15u64);
+    let mut c = Cluster::default();
     for i in 0..8 {
         c.x.push([i as f64 * 1.998e-3, 1e-4 * rnd(), 1e-4 * rnd()]);
         // Atoms 2 and 6 move off along y: their contacts open during the run.

@@ -4,7 +4,7 @@
 #![allow(unsafe_code)] // calls the C ABI as C++ would
 
 mod common;
-use common::{Store, model};
+use common::{Cluster, Store, model, xorshift};
 
 use creep_lammps::ffi::{
     CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms, CreepLammpsModel,
@@ -18,32 +18,10 @@ use std::ffi::{CStr, c_char};
 
 /// A small cluster: atoms 0..4 owned, 4..6 ghosts (copies at other places), moving and
 /// spinning; every pair within touching distance is a contact. Deterministic pseudo-random.
-struct Cluster {
-    x: Vec<[f64; 3]>,
-    v: Vec<[f64; 3]>,
-    w: Vec<[f64; 3]>,
-    r: Vec<f64>,
-    m: Vec<f64>,
-    kind: Vec<i32>,
-}
-
 fn cluster() -> Cluster {
-    let mut seed = 0x2545_f491_4f6c_dd1du64;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut rnd = xorshift(0x2545_f491_4f6c_dd1du64);
     let n: usize = 6;
-    let mut c = Cluster {
-        x: vec![],
-        v: vec![],
-        w: vec![],
-        r: vec![],
-        m: vec![],
-        kind: vec![],
-    };
+    let mut c = Cluster::default();
     for i in 0..n {
         // A chain along x with overlaps ~1e-3 of the diameter, bent a little.
         c.x.push([i as f64 * 1.998e-3, 1e-4 * rnd(), 1e-4 * rnd()]);

@@ -1,5 +1,6 @@
 //! Fixtures shared by the C ABI's integration tests (`list.rs`, `store.rs`): a model made
-//! through the C ABI and a store handle that frees itself.
+//! through the C ABI, a store handle that frees itself, the per-atom arrays of a test
+//! cluster and its pseudo-random numbers.
 #![allow(unsafe_code)] // calls the C ABI as C++ would
 #![allow(dead_code)] // each test file uses its own part
 
@@ -36,5 +37,27 @@ impl Drop for Store {
     fn drop(&mut self) {
         // SAFETY: created by creep_lammps_store_new, freed once.
         unsafe { creep_lammps_store_free(self.0) };
+    }
+}
+
+/// Per-atom arrays of a test cluster: positions \[m\], velocities \[m/s\], angular velocities
+/// \[rad/s\], radii \[m\], masses \[kg\] and atom types.
+#[derive(Default)]
+pub struct Cluster {
+    pub x: Vec<[f64; 3]>,
+    pub v: Vec<[f64; 3]>,
+    pub w: Vec<[f64; 3]>,
+    pub r: Vec<f64>,
+    pub m: Vec<f64>,
+    pub kind: Vec<i32>,
+}
+
+/// Marsaglia's (2003) xorshift64 from `seed`, as uniform numbers in `[-0.5, 0.5)`.
+pub fn xorshift(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     }
 }
