@@ -1,9 +1,10 @@
-//! The Cattaneo-Mindlin memory update (`MindlinState::update_with_radius`) against the frozen
-//! copy of the algorithm before its speed-up (`crates/law/src/mindlin/reference.rs`, also the
-//! crate's test oracle), side by side: every round times each load path with both
-//! versions, interleaved (each version's fastest of 4 alternating passes per round), and the
-//! medians over the rounds are printed (the machine may be loaded; only ratios measured in one
-//! run mean anything).
+//! The Cattaneo-Mindlin memory update (`MindlinState::update_with_radius`, which coalesces
+//! neighbours at the slip limit eagerly) and the same memory without eager coalescing
+//! (`MindlinUncoalesced`) against the frozen copy of the algorithm before its speed-up
+//! (`crates/law/src/mindlin/reference.rs`, also the crate's test oracle), side by side: every
+//! round times each load path with the three versions, interleaved (each version's fastest of
+//! 4 alternating passes per round), and the medians over the rounds are printed (the machine
+//! may be loaded; only ratios measured in one run mean anything).
 //!
 //! Load paths (1 mm glass beads at about 1 N, DEM-sized; one pass replays a precomputed input
 //! sequence from a virgin contact, so both versions see the same inputs):
@@ -15,14 +16,19 @@
 //!   packing (records of 59 little-endian f64: `r_star, e_star, g_star, g, nu, mu, c11, a,
 //!   du.x, du.y` and the state's `to_array`), each replayed from its recorded state.
 //!
-//! Every pass also checks that both versions agree to the tolerances of the crate's `reference_*`
-//! tests (a bench of a wrong answer is worthless) and prints the largest relative difference;
-//! a larger one aborts.
+//! Every pass also checks that the uncoalesced memory and the reference agree to the tolerances
+//! of the crate's `reference_*` tests (a bench of a wrong answer is worthless) and prints the
+//! largest relative difference; a larger one aborts. (The coalescing memory's bound against
+//! the uncoalesced one is the crate's test `coalescing_keeps_its_bound_against_the_uncoalesced_memory`.)
+//! On `dem_trace` the coalescing memory replays single updates from states the uncoalesced
+//! memory left (the trace's), so it shows only what coalescing saves within one update, not
+//! the shorter memories it keeps in a packing (for those: the engine, `examples/packing`).
 //!
 //! Run: `cargo bench -p creep-law --bench mindlin [-- ROUNDS]`
 //!
 //! Instructions: `CREEP_MINDLIN_TRACE=FILE valgrind --tool=callgrind <bench binary> count`
-//! replays the trace once with the optimised memory only (no timing, no reference);
+//! replays the trace once with the optimised memory only (no timing, no reference; `count
+//! uncoalesced`: with `MindlinUncoalesced`);
 //! `update_with_radius`'s inclusive count over the number of records is the instructions per
 //! update. With `CREEP_MINDLIN_OUT=FILE` that mode also writes every update's result and
 //! state (`q.x, q.y, slip_dissipation, truncation_energy` and `to_array`, little-endian f64),
@@ -38,7 +44,8 @@ pub use creep_law::{LawError, hertz, material, vector};
 #[path = "../src/mindlin/reference.rs"]
 mod reference;
 
-use creep_law::{Material, MindlinState, PairMaterial, Surface, Vec2, kalker};
+use creep_law::mindlin::{MAX_PIECES, MindlinMemory, MindlinUncoalesced};
+use creep_law::{Material, PairMaterial, Surface, Vec2, kalker};
 
 /// Glass beads of 1 mm radius: a DEM-sized contact.
 fn pair() -> PairMaterial {
@@ -206,19 +213,25 @@ fn rel(x: f64, y: f64, scale: f64) -> f64 {
     if d == 0.0 { 0.0 } else { d / scale }
 }
 
-/// Seconds per update of one pass over `path`: (new, reference). Checks that both versions'
-/// forces after every update agree to [`TOL_PATH`] of the largest force on the path, and their
-/// summed slip dissipation to [`TOL_PATH`] of the summed `|Q| |du|`; returns the largest relative
-/// differences too.
-fn time_path(pair: &PairMaterial, path: &Path, reps: usize) -> (f64, f64, f64) {
+/// Seconds per update of `reps` passes over `path` with `MindlinMemory<MAX_PIECES, C>`.
+fn time_memory<const C: u32>(pair: &PairMaterial, path: &Path, reps: usize) -> f64 {
     let t = Instant::now();
     for _ in 0..reps {
-        let mut new = MindlinState::new();
+        let mut new = MindlinMemory::<MAX_PIECES, C>::new();
         for x in &path.inputs {
             black_box(new.update_with_radius(black_box(pair), x.a, x.du));
         }
     }
-    let t_new = t.elapsed().as_secs_f64();
+    t.elapsed().as_secs_f64() / (reps * path.inputs.len()) as f64
+}
+
+/// Seconds per update of one pass over `path`: (coalescing, uncoalesced, reference). Checks
+/// that the uncoalesced memory's and the reference's forces after every update agree to
+/// [`TOL_PATH`] of the largest force on the path, and their summed slip dissipation to
+/// [`TOL_PATH`] of the summed `|Q| |du|`; returns the largest relative differences too.
+fn time_path(pair: &PairMaterial, path: &Path, reps: usize) -> (f64, f64, f64, f64) {
+    let t_coal = time_memory::<{ creep_law::mindlin::COALESCE_URAD }>(pair, path, reps);
+    let t_new = time_memory::<0>(pair, path, reps);
     let t = Instant::now();
     for _ in 0..reps {
         let mut old = reference::MindlinState::new();
@@ -226,8 +239,8 @@ fn time_path(pair: &PairMaterial, path: &Path, reps: usize) -> (f64, f64, f64) {
             black_box(old.update_with_radius(black_box(pair), x.a, x.du));
         }
     }
-    let t_old = t.elapsed().as_secs_f64();
-    let (mut new, mut old) = (MindlinState::new(), reference::MindlinState::new());
+    let t_old = t.elapsed().as_secs_f64() / (reps * path.inputs.len()) as f64;
+    let (mut new, mut old) = (MindlinUncoalesced::new(), reference::MindlinState::new());
     let (mut q_max, mut work, mut d_new, mut d_old) = (0.0f64, 0.0, 0.0, 0.0);
     let mut diffs = Vec::with_capacity(path.inputs.len());
     for x in &path.inputs {
@@ -246,14 +259,32 @@ fn time_path(pair: &PairMaterial, path: &Path, reps: usize) -> (f64, f64, f64) {
         "{}: results differ (force {dq:.1e}, dissipation {de:.1e})",
         path.name
     );
-    let k = (reps * path.inputs.len()) as f64;
-    (t_new / k, t_old / k, dq.max(de))
+    (t_coal, t_new, t_old, dq.max(de))
 }
 
-fn time_trace(recs: &[(PairMaterial, Input, [f64; 49])], reps: usize) -> (f64, f64, f64) {
-    let news: Vec<MindlinState> = recs
+/// Seconds per update of `reps` replays of the trace's single updates with
+/// `MindlinMemory<MAX_PIECES, C>`.
+fn time_trace_memory<const C: u32>(recs: &[(PairMaterial, Input, [f64; 49])], reps: usize) -> f64 {
+    let states: Vec<MindlinMemory<MAX_PIECES, C>> = recs
         .iter()
-        .map(|r| MindlinState::from_array(&r.2).expect("valid state"))
+        .map(|r| MindlinMemory::from_array(&r.2).expect("valid state"))
+        .collect();
+    let t = Instant::now();
+    for _ in 0..reps {
+        for (r, s) in recs.iter().zip(&states) {
+            let mut s = *s;
+            black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
+        }
+    }
+    t.elapsed().as_secs_f64() / (reps * recs.len()) as f64
+}
+
+fn time_trace(recs: &[(PairMaterial, Input, [f64; 49])], reps: usize) -> (f64, f64, f64, f64) {
+    let t_coal = time_trace_memory::<{ creep_law::mindlin::COALESCE_URAD }>(recs, reps);
+    let t_new = time_trace_memory::<0>(recs, reps);
+    let news: Vec<MindlinUncoalesced> = recs
+        .iter()
+        .map(|r| MindlinUncoalesced::from_array(&r.2).expect("valid state"))
         .collect();
     let olds: Vec<reference::MindlinState> = recs
         .iter()
@@ -261,20 +292,12 @@ fn time_trace(recs: &[(PairMaterial, Input, [f64; 49])], reps: usize) -> (f64, f
         .collect();
     let t = Instant::now();
     for _ in 0..reps {
-        for (r, s) in recs.iter().zip(&news) {
-            let mut s = *s;
-            black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
-        }
-    }
-    let t_new = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    for _ in 0..reps {
         for (r, s) in recs.iter().zip(&olds) {
             let mut s = *s;
             black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
         }
     }
-    let t_old = t.elapsed().as_secs_f64();
+    let t_old = t.elapsed().as_secs_f64() / (reps * recs.len()) as f64;
     let mut worst = 0.0f64;
     for ((r, n), o) in recs.iter().zip(&news).zip(&olds) {
         let (mut n, mut o) = (*n, *o);
@@ -296,12 +319,51 @@ fn time_trace(recs: &[(PairMaterial, Input, [f64; 49])], reps: usize) -> (f64, f
         );
         worst = worst.max(dq).max(de);
     }
-    let k = (reps * recs.len()) as f64;
-    (t_new / k, t_old / k, worst)
+    (t_coal, t_new, t_old, worst)
 }
 
-/// A load path's timings over the rounds: name, new, reference, per-round ratio.
-type Row = (&'static str, Vec<f64>, Vec<f64>, Vec<f64>, f64);
+/// A load path's timings over the rounds: name, coalescing, uncoalesced, reference, per-round
+/// ratios uncoalesced / coalescing and reference / uncoalesced, the largest difference.
+struct Row {
+    name: &'static str,
+    coal: Vec<f64>,
+    new: Vec<f64>,
+    old: Vec<f64>,
+    gain: Vec<f64>,
+    ratio: Vec<f64>,
+    diff: f64,
+}
+
+impl Row {
+    fn push(&mut self, (c, n, o, d): (f64, f64, f64, f64)) {
+        self.coal.push(c);
+        self.new.push(n);
+        self.old.push(o);
+        self.gain.push(n / c);
+        self.ratio.push(o / n);
+        self.diff = self.diff.max(d);
+    }
+}
+
+/// The trace's single updates from their recorded states with `MindlinMemory<MAX_PIECES, C>`:
+/// the sum of the forces, and every update's result and state.
+fn count<const C: u32>(recs: &[(PairMaterial, Input, [f64; 49])]) -> (Vec2, Vec<f64>) {
+    let mut q = Vec2::ZERO;
+    let mut out = Vec::new();
+    for r in recs {
+        let mut s = MindlinMemory::<MAX_PIECES, C>::from_array(&r.2).expect("valid state");
+        let step = black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
+        q += step.q;
+        out.extend([
+            step.q.x,
+            step.q.y,
+            step.slip_dissipation,
+            step.truncation_energy,
+        ]);
+        out.extend(s.to_array());
+    }
+    (q, out)
+}
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -319,20 +381,11 @@ fn main() {
     // `update_with_radius` over the number of records).
     if std::env::args().any(|a| a == "count") {
         let recs = trace().expect("count needs CREEP_MINDLIN_TRACE");
-        let mut q = Vec2::ZERO;
-        let mut out = Vec::new();
-        for r in &recs {
-            let mut s = MindlinState::from_array(&r.2).expect("valid state");
-            let step = black_box(s.update_with_radius(black_box(&r.0), r.1.a, r.1.du));
-            q += step.q;
-            out.extend([
-                step.q.x,
-                step.q.y,
-                step.slip_dissipation,
-                step.truncation_energy,
-            ]);
-            out.extend(s.to_array());
-        }
+        let (q, out) = if std::env::args().any(|a| a == "uncoalesced") {
+            count::<0>(&recs)
+        } else {
+            count::<{ creep_law::mindlin::COALESCE_URAD }>(&recs)
+        };
         // `CREEP_MINDLIN_OUT=FILE`: every update's result and state, for comparing two builds.
         if let Ok(file) = std::env::var("CREEP_MINDLIN_OUT") {
             let bytes: Vec<u8> = out.iter().flat_map(|x| x.to_le_bytes()).collect();
@@ -348,54 +401,57 @@ fn main() {
     let pair = pair();
     let paths = paths(&pair);
     let trace = trace();
-    let mut rows: Vec<Row> = Vec::new();
-    for p in &paths {
-        rows.push((p.name, Vec::new(), Vec::new(), Vec::new(), 0.0));
-    }
+    let row = |name| Row {
+        name,
+        coal: Vec::new(),
+        new: Vec::new(),
+        old: Vec::new(),
+        gain: Vec::new(),
+        ratio: Vec::new(),
+        diff: 0.0,
+    };
+    let mut rows: Vec<Row> = paths.iter().map(|p| row(p.name)).collect();
     if trace.is_some() {
-        rows.push(("dem_trace", Vec::new(), Vec::new(), Vec::new(), 0.0));
+        rows.push(row("dem_trace"));
     }
     // Within a round each version runs ALTERNATIONS times, alternating, and keeps its fastest
     // pass: on a loaded machine the minimum is the pass least disturbed by other jobs.
     const ALTERNATIONS: usize = 4;
-    let fastest = |f: &mut dyn FnMut() -> (f64, f64, f64)| {
-        let (mut n, mut o, mut d) = (f64::INFINITY, f64::INFINITY, 0.0f64);
+    let fastest = |f: &mut dyn FnMut() -> (f64, f64, f64, f64)| {
+        let (mut c, mut n, mut o, mut d) = (f64::INFINITY, f64::INFINITY, f64::INFINITY, 0.0f64);
         for _ in 0..ALTERNATIONS {
-            let (a, b, c) = f();
-            n = n.min(a);
-            o = o.min(b);
-            d = d.max(c);
+            let (w, x, y, z) = f();
+            c = c.min(w);
+            n = n.min(x);
+            o = o.min(y);
+            d = d.max(z);
         }
-        (n, o, d)
+        (c, n, o, d)
     };
     for _ in 0..rounds {
         for (i, p) in paths.iter().enumerate() {
-            let (n, o, d) = fastest(&mut || time_path(&pair, p, 6));
-            rows[i].1.push(n);
-            rows[i].2.push(o);
-            rows[i].3.push(o / n);
-            rows[i].4 = rows[i].4.max(d);
+            rows[i].push(fastest(&mut || time_path(&pair, p, 6)));
         }
         if let Some(t) = &trace {
-            let (n, o, d) = fastest(&mut || time_trace(t, 5));
             let r = rows.last_mut().expect("a row");
-            r.1.push(n);
-            r.2.push(o);
-            r.3.push(o / n);
-            r.4 = r.4.max(d);
+            r.push(fastest(&mut || time_trace(t, 5)));
         }
     }
     println!("{rounds} rounds, interleaved; medians");
     println!(
-        "| load path | new ns/update | reference ns/update | speed-up (median of per-round ratios) | largest relative difference |"
+        "| load path | coalescing ns/update | uncoalesced ns/update | reference ns/update | coalescing speed-up (per-round ratios) | uncoalesced over reference | largest relative difference, uncoalesced vs reference |"
     );
-    println!("|---|---|---|---|---|");
-    for (name, n, o, r, d) in rows {
+    println!("|---|---|---|---|---|---|---|");
+    for r in rows {
         println!(
-            "| {name} | {:.1} | {:.1} | {:.2} | {d:.1e} |",
-            median(n) * 1e9,
-            median(o) * 1e9,
-            median(r)
+            "| {} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {:.1e} |",
+            r.name,
+            median(r.coal) * 1e9,
+            median(r.new) * 1e9,
+            median(r.old) * 1e9,
+            median(r.gain),
+            median(r.ratio),
+            r.diff
         );
     }
 }

@@ -140,17 +140,30 @@ pub struct MindlinStep {
     pub truncation_energy: f64,
 }
 
+/// The angle within which two neighbouring annuli at the slip limit are coalesced into one as
+/// soon as an update leaves them so, in microradians (`COALESCE` of [`MindlinMemory`]; see the
+/// module docs, "Coalescing", for the error bound): 0.3 rad.
+pub const COALESCE_URAD: u32 = 300_000;
+
 /// Load-history state of one contact's Cattaneo-Mindlin tangential law, remembering at most
-/// [`MAX_PIECES`] pieces: the memory every host uses.
-pub type MindlinState = MindlinMemory<MAX_PIECES>;
+/// [`MAX_PIECES`] pieces and coalescing neighbours at the limit within [`COALESCE_URAD`]: the
+/// memory every host uses.
+pub type MindlinState = MindlinMemory<MAX_PIECES, COALESCE_URAD>;
+
+/// [`MindlinState`] without eager coalescing (`COALESCE = 0`): neighbours at the slip limit
+/// become one only when the memory is over its capacity (the memory before issue #15's
+/// `coalesce` branch, bit for bit; the reference the coalesced memory is tested against).
+pub type MindlinUncoalesced = MindlinMemory<MAX_PIECES, 0>;
 
 /// Load-history state of one contact's Cattaneo-Mindlin tangential law, remembering at most `N`
 /// pieces (`1 <= N <= MAX_PIECES`, checked at compile time): a smaller memory merges sooner
-/// (see `merge`), trading accuracy of long 2-D histories for speed. The storage is the same
-/// for every `N` (`MAX_PIECES + 1` slots, the flat layout of [`MindlinState::to_array`]).
-/// `Default` is a virgin, open contact.
+/// (see `merge`), trading accuracy of long 2-D histories for speed. Two neighbouring pieces
+/// that an update leaves at the slip limit in directions at most `COALESCE` microradians apart
+/// are made one at once (module docs, "Coalescing"; 0: only when over the capacity). The
+/// storage is the same for every `N` and `COALESCE` (`MAX_PIECES + 1` slots, the flat layout
+/// of [`MindlinState::to_array`]). `Default` is a virgin, open contact.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct MindlinMemory<const N: usize> {
+pub struct MindlinMemory<const N: usize, const COALESCE: u32 = COALESCE_URAD> {
     /// Contact radius of the last update \[m\].
     a: f64,
     /// Number of pieces in use.
@@ -162,9 +175,13 @@ pub struct MindlinMemory<const N: usize> {
     q: Vec2,
 }
 
-impl<const N: usize> MindlinMemory<N> {
+impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
     /// `1 <= N <= MAX_PIECES`, evaluated where a memory is created or updated.
     const CAPACITY_OK: () = assert!(N >= 1 && N <= MAX_PIECES, "capacity out of range");
+
+    /// `|e1 - e2|^2 = 2 (1 - cos theta)` of two unit vectors `COALESCE` microradians apart
+    /// (4 from `pi` on): the coalescing test's bound on the squared chord (0: none).
+    const CHORD2: f64 = chord2(COALESCE);
 
     /// A virgin, open contact (no force, no memory).
     pub fn new() -> Self {
@@ -377,7 +394,7 @@ impl<const N: usize> MindlinMemory<N> {
                 }
                 x_lo = x_hi.max(x_lo);
             }
-            merge::<N>(&mut self.pieces, self.n, a, kappa, touched)
+            merge::<N>(&mut self.pieces, self.n, a, kappa, touched, Self::CHORD2)
         } else if self.n + splits <= MAX_PIECES + 1 {
             // The split pieces fit in the storage: expand in place. First move every piece to
             // its final slot (from the outermost, so nothing unread is overwritten; a split
@@ -409,7 +426,7 @@ impl<const N: usize> MindlinMemory<N> {
                 }
                 x_lo = p.x_hi;
             }
-            merge::<N>(&mut self.pieces, pos, a, kappa, touched_out)
+            merge::<N>(&mut self.pieces, pos, a, kappa, touched_out, Self::CHORD2)
         } else {
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
             let mut m = 0;
@@ -431,7 +448,7 @@ impl<const N: usize> MindlinMemory<N> {
                 }
                 x_lo = p.x_hi;
             }
-            let (n, d_u2) = merge::<N>(&mut out, m, a, kappa, touched_out);
+            let (n, d_u2) = merge::<N>(&mut out, m, a, kappa, touched_out, Self::CHORD2);
             for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
                 *dst = *src;
             }
@@ -670,9 +687,11 @@ fn shifted_slip_work(
     w
 }
 
-/// Merges equal neighbours and drops empty pieces in place, then enforces the capacity `N`.
-/// Returns the number of pieces kept and the change of `integral |u|^2 dx` [m^3] that the
-/// enforcement caused (<= 0 means energy was lost, which the caller books as dissipation).
+/// Merges equal neighbours and drops empty pieces in place, coalesces neighbours at the slip
+/// limit whose directions differ by a squared chord of at most `chord2` (see [`coalescible`];
+/// 0: none), then enforces the capacity `N`. Returns the number of pieces kept and the change
+/// of `integral |u|^2 dx` [m^3] that the enforcement caused (<= 0 means energy was lost, which
+/// the caller books as dissipation).
 ///
 /// Over the limit, two neighbours are made one: preferably two pieces both at the slip limit
 /// (`u = kappa s e1`, `kappa s e2`), which become one at the limit along their summed force
@@ -688,6 +707,7 @@ fn merge<const N: usize>(
     a: f64,
     kappa: f64,
     touched: u32,
+    chord2: f64,
 ) -> (usize, f64) {
     let a2 = a * a;
     let mut n = 0;
@@ -712,6 +732,17 @@ fn merge<const N: usize>(
         let t = touched >> i & 1 != 0;
         if n > 0 && (t || prev_touched) && same_form(&out[n - 1], &p, a2) {
             out[n - 1].x_hi = p.x_hi;
+            prev_touched = true;
+        } else if chord2 > 0.0
+            && n > 0
+            && (t || prev_touched)
+            && coalescible(&out[n - 1], &p, kappa, chord2)
+        {
+            // Two neighbours at the limit in nearly the same direction: one along their summed
+            // force (module docs, "Coalescing": energy and `|u| <= kappa s` kept, the force
+            // changed by at most `1 - cos(theta / 2)` of theirs).
+            let lo = if n >= 2 { out[n - 2].x_hi } else { 0.0 };
+            out[n - 1] = limit_union(&out[n - 1], &p, a, kappa, lo);
             prev_touched = true;
         } else {
             if n != i {
@@ -743,19 +774,7 @@ fn merge<const N: usize>(
         }
         if let Some(i) = best_pair {
             let lo = if i == 0 { 0.0 } else { out[i - 1].x_hi };
-            let (p, q) = (out[i], out[i + 1]);
-            let sum = p.beta * int_s(a, lo, p.x_hi) + q.beta * int_s(a, p.x_hi, q.x_hi);
-            let l = sum.length();
-            let e = if l > 0.0 && l.is_finite() {
-                sum * (1.0 / l)
-            } else {
-                Vec2::new(1.0, 0.0)
-            };
-            out[i] = Piece {
-                x_hi: q.x_hi,
-                beta: e * kappa,
-                c: Vec2::ZERO,
-            };
+            out[i] = limit_union(&out[i], &out[i + 1], a, kappa, lo);
             remove_at(out, i + 1, n);
             n -= 1;
             continue;
@@ -879,6 +898,60 @@ fn least_squares_piece(p: &Piece, q: &Piece, a: f64, lo: f64) -> Piece {
 #[inline]
 fn at_limit(p: &Piece, kappa: f64) -> bool {
     p.c == Vec2::ZERO && p.beta.length_squared() >= kappa * kappa * (1.0 - 1e-9)
+}
+
+/// Two neighbouring pieces at the slip limit, `p` on `lo < x <= p.x_hi` and `q` on
+/// `p.x_hi < x <= q.x_hi`, made one at the limit along their summed force: `u = kappa s e`
+/// with `e` the direction of `p.beta int_p s dx + q.beta int_q s dx` (the stored energy and
+/// `|u| = kappa s` are unchanged; module docs, "Coalescing").
+#[inline]
+fn limit_union(p: &Piece, q: &Piece, a: f64, kappa: f64, lo: f64) -> Piece {
+    let sum = p.beta * int_s(a, lo, p.x_hi) + q.beta * int_s(a, p.x_hi, q.x_hi);
+    let l = sum.length();
+    let e = if l > 0.0 && l.is_finite() {
+        sum * (1.0 / l)
+    } else {
+        Vec2::new(1.0, 0.0)
+    };
+    Piece {
+        x_hi: q.x_hi,
+        beta: e * kappa,
+        c: Vec2::ZERO,
+    }
+}
+
+/// Whether two neighbours are both at the slip limit ([`at_limit`]) with directions whose
+/// squared chord `|e1 - e2|^2 = 2 (1 - cos theta)` is at most `chord2` (measured on
+/// `|beta1 - beta2|^2 <= chord2 kappa^2`: `|beta| = kappa` to rounding at the limit).
+#[inline]
+fn coalescible(p: &Piece, q: &Piece, kappa: f64, chord2: f64) -> bool {
+    p.c == Vec2::ZERO
+        && q.c == Vec2::ZERO
+        && (p.beta - q.beta).length_squared() <= chord2 * (kappa * kappa)
+        && at_limit(p, kappa)
+        && at_limit(q, kappa)
+}
+
+/// `2 (1 - cos theta)` for `theta = urad` microradians, by its Taylor series
+/// `theta^2 - theta^4 / 12 + theta^6 / 360 - ...` (no cancellation; exact to rounding for
+/// `theta <= pi` in 30 terms), and 4 (every direction) from `pi` on. A `const fn`, so that a
+/// memory's bound is a compile-time constant.
+const fn chord2(urad: u32) -> f64 {
+    let theta = urad as f64 * 1e-6;
+    if theta >= std::f64::consts::PI {
+        return 4.0;
+    }
+    // 2 (1 - cos theta) = 2 sum_{k >= 1} (-1)^(k+1) theta^(2k) / (2k)!.
+    let t2 = theta * theta;
+    let mut term = t2 / 2.0;
+    let mut sum = 0.0;
+    let mut k = 1.0;
+    while k < 31.0 {
+        sum += term;
+        term *= -t2 / ((2.0 * k + 1.0) * (2.0 * k + 2.0));
+        k += 1.0;
+    }
+    2.0 * sum
 }
 
 /// Whether two pieces hold the same field to rounding (so they can be one).

@@ -8,7 +8,7 @@ use super::*;
 /// contact radius, the piece count, the force (2) and `MAX_PIECES + 1` pieces of 5 numbers.
 pub const MINDLIN_FLAT_LEN: usize = 4 + 5 * (MAX_PIECES + 1);
 
-impl<const N: usize> MindlinMemory<N> {
+impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
     /// The state as a flat array of `f64` (for hosts that pass contact history through a C
     /// ABI, e.g. a LAMMPS pair style): `[a, n, q.x, q.y, (x_hi, beta.x, beta.y, c.x, c.y) x 9]`.
     pub fn to_array(&self) -> [f64; MINDLIN_FLAT_LEN] {

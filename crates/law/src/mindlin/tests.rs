@@ -594,14 +594,15 @@ const STEP_TOL_ENERGY: f64 = 1e-12;
 /// 3.4e-3 of the largest force and 8.5e-5 of the work (printed with `--nocapture`).
 const PATH_TOL: f64 = 1e-2;
 
-/// Drives the optimised memory and the frozen reference (`mindlin/reference.rs`, the algorithm
+/// Drives the optimised memory without eager coalescing ([`MindlinUncoalesced`], whose results
+/// are the memory's before coalescing, bit for bit) and the frozen reference (`mindlin/reference.rs`, the algorithm
 /// before its speed-up) through the same inputs: after every step, one update of the optimised
 /// memory from the reference's state must agree with the reference's to [`STEP_TOL_FORCE`] and
 /// [`STEP_TOL_ENERGY`], and the
 /// free-running optimised memory must stay within [`PATH_TOL`]. Returns the memory-depth
 /// histogram of the free-running optimised memory.
 fn run_against_reference(pair: &PairMaterial, inputs: &[(f64, Vec2)]) -> [usize; MAX_PIECES + 1] {
-    let mut new = MindlinState::new();
+    let mut new = MindlinUncoalesced::new();
     let mut old = reference::MindlinState::new();
     let mut depth = [0; MAX_PIECES + 1];
     let mut q_max = 0.0f64;
@@ -610,7 +611,7 @@ fn run_against_reference(pair: &PairMaterial, inputs: &[(f64, Vec2)]) -> [usize;
     let (mut dq_path, mut de_path) = (0.0f64, 0.0f64);
     let (mut dq_step, mut de_step) = (0.0f64, 0.0f64);
     for &(a, du) in inputs {
-        let mut one = MindlinState::from_array(&old.to_array()).expect("valid state");
+        let mut one = MindlinUncoalesced::from_array(&old.to_array()).expect("valid state");
         let stored = old.elastic_energy(pair);
         let s1 = one.update_with_radius(pair, a, du);
         let s = new.update_with_radius(pair, a, du);
@@ -664,13 +665,42 @@ fn run_against_reference(pair: &PairMaterial, inputs: &[(f64, Vec2)]) -> [usize;
     depth
 }
 
+/// The inputs `(a, du)` of a contact in a vibrating packing (6,000 steps from a seed): the
+/// radius grows or shrinks every step, the displacement turns by up to 0.2 rad per step,
+/// reverses every 500 steps, and moves by 1e-6 to 0.3 slip distances (those of `base` at
+/// `P`); the contact opens (and a bad radius comes) every 997 steps.
+fn jittering_dem_path(seed: u64, base: &PairMaterial) -> Vec<(f64, Vec2)> {
+    let a0 = hertz::contact_radius(base, P);
+    let ds = delta_s(&base.with_friction(0.5).unwrap(), P);
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ seed.wrapping_mul(0xbf58_476d_1ce4_e5b9));
+    let (mut a, mut dir) = (a0, 0.0f64);
+    let mut inputs = Vec::new();
+    for i in 0..6000 {
+        a = (a * (1.0 + 3e-3 * rng.sym())).clamp(0.5 * a0, 1.5 * a0);
+        dir += 0.2 * rng.sym();
+        if i % 500 == 250 {
+            dir += std::f64::consts::PI;
+        }
+        // Step lengths from 1e-6 to 0.3 slip distances.
+        let len = ds * 10f64.powf(-3.5 + 3.0 * rng.sym());
+        let du = Vec2::new(dir.cos(), dir.sin()) * len;
+        let a_in = match i % 997 {
+            500 => 0.0,                // opens
+            501 => f64::NAN,           // bad input: open
+            502 => a0 * (1.0 + 1e-15), // closes again
+            _ => a,
+        };
+        inputs.push((a_in, du));
+    }
+    inputs
+}
+
 #[test]
 fn reference_to_rounding_on_jittering_dem_paths() {
     // A contact in a vibrating packing: the radius grows or shrinks every step (the memory is
     // full and merges every step), the displacement turns, reverses, creeps and slides grossly;
     // sometimes the contact opens. Friction from 0 (walls) to +inf.
     let base = pair();
-    let a0 = hertz::contact_radius(&base, P);
     let mut full = 0;
     for (seed, mu) in [
         (1u64, 0.5),
@@ -681,27 +711,7 @@ fn reference_to_rounding_on_jittering_dem_paths() {
         (6, 0.5),
     ] {
         let pair = base.with_friction(mu).unwrap();
-        let ds = delta_s(&base.with_friction(0.5).unwrap(), P);
-        let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ seed.wrapping_mul(0xbf58_476d_1ce4_e5b9));
-        let (mut a, mut dir) = (a0, 0.0f64);
-        let mut inputs = Vec::new();
-        for i in 0..6000 {
-            a = (a * (1.0 + 3e-3 * rng.sym())).clamp(0.5 * a0, 1.5 * a0);
-            dir += 0.2 * rng.sym();
-            if i % 500 == 250 {
-                dir += std::f64::consts::PI;
-            }
-            // Step lengths from 1e-6 to 0.3 slip distances.
-            let len = ds * 10f64.powf(-3.5 + 3.0 * rng.sym());
-            let du = Vec2::new(dir.cos(), dir.sin()) * len;
-            let a_in = match i % 997 {
-                500 => 0.0,                // opens
-                501 => f64::NAN,           // bad input: open
-                502 => a0 * (1.0 + 1e-15), // closes again
-                _ => a,
-            };
-            inputs.push((a_in, du));
-        }
+        let inputs = jittering_dem_path(seed, &base);
         let depth = run_against_reference(&pair, &inputs);
         full += depth[MAX_PIECES];
     }
@@ -763,6 +773,151 @@ fn reference_to_rounding_on_cycles_and_rolling() {
     run_against_reference(&pair, &rolling);
 }
 
+/// Drives the uncoalesced memory ([`MindlinUncoalesced`]) along `inputs` and, before every
+/// step, copies its state into the coalescing memory `MindlinMemory<MAX_PIECES, C>`; both make
+/// the step. Where the uncoalesced update needed no capacity merge (it ends below the
+/// capacity), the two differ only by the coalescing, whose bound (module docs, "Coalescing") is
+/// asserted: the same slip dissipation and truncation energy (coalescing comes after the slip),
+/// the same stored energy to rounding, and a force within `k (1 - cos(theta / 2)) mu P` of the
+/// uncoalesced one, `k` the number of coalescings (the difference of the two depths), `theta`
+/// the coalescing angle; with `k = 0` the two updates are the same bits. Both memories keep
+/// `|Q| <= mu P`. Returns the number of steps checked and of steps that coalesced.
+fn coalesced_against_uncoalesced<const C: u32>(
+    pair: &PairMaterial,
+    inputs: &[(f64, Vec2)],
+) -> (usize, usize) {
+    let theta = f64::from(C) * 1e-6;
+    let per = 1.0 - (0.5 * theta.min(std::f64::consts::PI)).cos();
+    let kappa = kappa(pair);
+    let mut old = MindlinUncoalesced::new();
+    let (mut checked, mut coalesced) = (0, 0);
+    let mut worst = 0.0f64;
+    for &(a, du) in inputs {
+        let mut one = MindlinMemory::<MAX_PIECES, C>::from_array(&old.to_array()).unwrap();
+        let stored = old.elastic_energy(pair);
+        let s = one.update_with_radius(pair, a, du);
+        let r = old.update_with_radius(pair, a, du);
+        // mu P at the step's radius: 8 G* kappa integral_0^a s dx = 8 G* kappa (2/3) a^3.
+        let mu_p = 8.0 * pair.g_star * kappa * (2.0 / 3.0) * r.a.powi(3);
+        if mu_p.is_finite() {
+            for q in [s.q, r.q] {
+                assert!(
+                    q.length() <= mu_p * (1.0 + 1e-12),
+                    "|Q| {} > mu P {mu_p}",
+                    q.length()
+                );
+            }
+        }
+        if old.memory_depth() >= MAX_PIECES {
+            continue;
+        }
+        checked += 1;
+        assert!(one.memory_depth() <= old.memory_depth());
+        let k = old.memory_depth() - one.memory_depth();
+        if k == 0 {
+            assert_eq!(
+                one.to_array(),
+                old.to_array(),
+                "no coalescing, yet another state"
+            );
+            assert_eq!(s, r, "no coalescing, yet another step");
+            continue;
+        }
+        coalesced += 1;
+        let dq = (s.q - r.q).length();
+        worst = worst.max(dq / (k as f64 * per * mu_p));
+        assert!(
+            dq <= k as f64 * per * mu_p * (1.0 + 1e-9) + 1e-12 * mu_p,
+            "force moved by {dq:e}, bound {:e} (k = {k})",
+            k as f64 * per * mu_p
+        );
+        let scale = stored + s.slip_dissipation + r.q.length() * du.length();
+        assert!((s.slip_dissipation - r.slip_dissipation).abs() <= 1e-12 * scale);
+        assert_eq!(s.truncation_energy, r.truncation_energy);
+        let (w1, w2) = (one.elastic_energy(pair), old.elastic_energy(pair));
+        assert!(
+            (w1 - w2).abs() <= 1e-8 * (w1 + w2) + 1e-12 * scale,
+            "stored energy {w1:e} against {w2:e}"
+        );
+    }
+    println!(
+        "coalesced ({C} urad) against uncoalesced: {checked} steps checked, {coalesced} coalesced, \
+         largest force change {worst:.3} of the bound"
+    );
+    (checked, coalesced)
+}
+
+/// Eager coalescing against the uncoalesced memory, one update from the same state, on 2-D
+/// paths (the jittering DEM paths of the reference tests and a rolling contact whose
+/// tangential direction turns), at the default angle ([`COALESCE_URAD`]) and at a small and a
+/// large one; the bound of [`coalesced_against_uncoalesced`] holds and the paths do coalesce.
+#[test]
+fn coalescing_keeps_its_bound_against_the_uncoalesced_memory() {
+    let base = pair();
+    let mut paths: Vec<(PairMaterial, Vec<(f64, Vec2)>)> = [(1u64, 0.5), (2, 0.3), (5, 1e3)]
+        .iter()
+        .map(|&(seed, mu)| {
+            (
+                base.with_friction(mu).unwrap(),
+                jittering_dem_path(seed, &base),
+            )
+        })
+        .collect();
+    // Rolling under a slowly turning creepage with a jittering radius.
+    let a0 = hertz::contact_radius(&base, P);
+    let ds = delta_s(&base, P);
+    let mut rng = Rng(77);
+    let turning = (0..4000)
+        .map(|i| {
+            let t = i as f64 * 2e-3;
+            let a = a0 * (1.0 + 2e-3 * rng.sym());
+            (
+                a,
+                Vec2::new(t.cos(), t.sin()) * (0.05 * ds * (1.0 + 0.5 * rng.sym())),
+            )
+        })
+        .collect();
+    paths.push((base, turning));
+    let (mut checked, mut coalesced) = ([0; 3], [0; 3]);
+    for (pair, inputs) in &paths {
+        for (k, (c, n)) in [
+            coalesced_against_uncoalesced::<COALESCE_URAD>(pair, inputs),
+            coalesced_against_uncoalesced::<10_000>(pair, inputs),
+            coalesced_against_uncoalesced::<3_200_000>(pair, inputs),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            checked[k] += c;
+            coalesced[k] += n;
+        }
+    }
+    for k in 0..3 {
+        assert!(
+            checked[k] > 1000 && coalesced[k] > 100,
+            "{checked:?} {coalesced:?}"
+        );
+    }
+}
+
+/// The coalescing bound's squared chord is `2 (1 - cos theta)` (the `const fn` series against
+/// `cos`), 0 for no coalescing and 4 (every direction) from `pi` on.
+#[test]
+fn coalescing_chord_is_two_minus_two_cos() {
+    for urad in [1u32, 1_000, 10_000, 100_000, 300_000, 1_000_000, 3_000_000] {
+        let t = f64::from(urad) * 1e-6;
+        let exact = 4.0 * (0.5 * t).sin().powi(2);
+        assert!(
+            (chord2(urad) - exact).abs() <= 1e-15 * exact,
+            "{urad}: {}",
+            chord2(urad)
+        );
+    }
+    assert_eq!(chord2(0), 0.0);
+    assert_eq!(chord2(3_141_593), 4.0);
+    assert_eq!(MindlinUncoalesced::CHORD2, 0.0);
+}
+
 /// A smaller memory (`MindlinMemory<N>`, N < MAX_PIECES) is the same law until it is full: the
 /// collinear Mindlin-Deresiewicz paths (which never need more than a few pieces) are reproduced
 /// to rounding at N = 4 and 6 as at 8.
@@ -784,11 +939,11 @@ fn smaller_capacities_reproduce_mindlin_deresiewicz() {
 /// energies; and the flat form of a deeper memory is refused, not truncated.
 #[test]
 fn smaller_capacities_keep_their_bound_and_coulomb() {
-    fn run<const N: usize>() -> usize {
+    fn run<const N: usize, const C: u32>() -> usize {
         let pair = pair();
         let ds = delta_s(&pair, P);
         let mut rng = Rng(0x1234_5678_9abc_def1);
-        let mut st = MindlinMemory::<N>::new();
+        let mut st = MindlinMemory::<N, C>::new();
         let (mut p, mut dir) = (P, 0.0f64);
         let mut full = 0;
         for i in 0..4000 {
@@ -811,9 +966,17 @@ fn smaller_capacities_keep_their_bound_and_coulomb() {
         }
         full
     }
-    for (n, full) in [(4, run::<4>()), (6, run::<6>()), (8, run::<8>())] {
+    // Without coalescing the path keeps every capacity full most of the time; with it (the
+    // default) the bound and Coulomb's law hold as well.
+    for (n, full) in [(4, run::<4, 0>()), (6, run::<6, 0>()), (8, run::<8, 0>())] {
         println!("capacity {n}: full in {full} of 4000 steps");
         assert!(full > 1000, "capacity {n} full in only {full} steps");
+    }
+    for (n, full) in [
+        (4, run::<4, COALESCE_URAD>()),
+        (8, run::<8, COALESCE_URAD>()),
+    ] {
+        println!("capacity {n}, coalescing: full in {full} of 4000 steps");
     }
     // An 8-piece memory's flat form does not fit a 4-piece memory.
     let pair = pair();
