@@ -50,7 +50,7 @@
 //! `F1 + F2 = 8 G* kappa (w1 e1 + w2 e2)`, `w_i = integral_i s dx`. This is the capacity rule
 //! `merge` has always preferred (two annuli at the limit become one along their summed force),
 //! applied eagerly, so that the memory stays below its capacity and later updates visit fewer
-//! pieces (on creep-dem's 4,096 packing 5.0 instead of 7.1 pieces, 2.7 instead of 3.5 slipping
+//! pieces (on creep-dem's 4,096 packing 6.0 instead of 7.3 pieces, 2.6 instead of 3.2 slipping
 //! per update). What it changes, exactly:
 //! - every spring stays at the limit, `|u| = kappa s`: Coulomb's bound holds and the stored
 //!   energy `4 G* kappa^2 integral s^2 dx` is unchanged (no energy is added or booked; no work
