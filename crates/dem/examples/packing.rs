@@ -25,8 +25,10 @@
 //! entries and touching contacts per particle, the engine's bytes per particle, the
 //! neighbour-list rebuilds during the timed steps and the median CPU time of one step (which
 //! leaves the rebuild steps out when most steps have none: the tiled packings' seams, as
-//! dense as a wall, push apart at first and rebuild the list often); and the medians over the
-//! rounds (CPU time; wall clock for more than one thread).
+//! dense as a wall, push apart at first and rebuild the list often), the time per step the
+//! process's threads waited for a CPU (`run-delay`, from schedstat: what other jobs took; a
+//! wall-clock timing on more than one thread means something only where it is near 0); and
+//! the medians over the rounds (CPU time; wall clock for more than one thread).
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -222,6 +224,21 @@ fn cpu_s() -> Option<f64> {
     Some(s.split_whitespace().next()?.parse::<f64>().ok()? * 1e-9)
 }
 
+/// Sums over this process's threads of `/proc/self/task/*/schedstat`: CPU time and time spent
+/// waiting for a CPU (run delay) \[s\]; `None` where the system does not report them. The run
+/// delay tells how much other jobs took from a timing (0 on an otherwise idle machine).
+fn threads_cpu_and_delay() -> Option<(f64, f64)> {
+    let mut cpu = 0.0;
+    let mut delay = 0.0;
+    for e in std::fs::read_dir("/proc/self/task").ok()? {
+        let s = std::fs::read_to_string(e.ok()?.path().join("schedstat")).ok()?;
+        let mut f = s.split_whitespace();
+        cpu += f.next()?.parse::<f64>().ok()? * 1e-9;
+        delay += f.next()?.parse::<f64>().ok()? * 1e-9;
+    }
+    Some((cpu, delay))
+}
+
 /// What one timing measured.
 struct Timing {
     /// Mean CPU seconds per step (the thread's for one thread, the process's for more; the
@@ -239,6 +256,8 @@ struct Timing {
     rebuilds: usize,
     /// Median CPU seconds of one step (the steps without a rebuild, when most are).
     step_median: f64,
+    /// Mean time per step the process's threads waited for a CPU \[s\] (NaN where unknown).
+    run_delay: f64,
 }
 
 /// Mean seconds per step of `steps` steps (the set-up excluded) on `threads` threads.
@@ -254,6 +273,7 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
             .map_err(|e| e.to_string())?;
         let clock = if threads > 1 { process_cpu_s } else { cpu_s };
         let rebuilds = d.counts().rebuilds;
+        let cd0 = threads_cpu_and_delay();
         let (t, c) = (Instant::now(), clock());
         let mut per_step = Vec::with_capacity(steps);
         let mut last = c;
@@ -266,6 +286,10 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
             last = now;
         }
         let wall = t.elapsed().as_secs_f64();
+        let run_delay = match (cd0, threads_cpu_and_delay()) {
+            (Some(a), Some(b)) => (b.1 - a.1) / steps as f64,
+            _ => f64::NAN,
+        };
         let cpu = match (c, clock()) {
             (Some(a), Some(b)) => b - a,
             _ => wall,
@@ -284,6 +308,7 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
             } else {
                 f64::NAN
             },
+            run_delay,
         })
     };
     creep_dem::with_threads(threads, || run().map_err(|e| e.to_string()))?.map_err(Into::into)
@@ -345,7 +370,7 @@ fn main() -> Res<()> {
                     };
                     let n = p.particles.len() as f64;
                     println!(
-                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0} rebuilds {} median-step {:.4e} s {:.4e} particle-steps/s",
+                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0} rebuilds {} median-step {:.4e} s {:.4e} particle-steps/s run-delay {:.1} us/step",
                         t.cpu,
                         n / t.cpu,
                         t.wall,
@@ -355,7 +380,8 @@ fn main() -> Res<()> {
                         t.bytes,
                         t.rebuilds,
                         t.step_median,
-                        n / t.step_median
+                        n / t.step_median,
+                        t.run_delay * 1e6
                     );
                     let v = if th > 1 { n / t.wall } else { n / t.cpu };
                     let key = (tier, k, th);
