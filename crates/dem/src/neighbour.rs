@@ -69,9 +69,11 @@ impl<T: TangentialLaw> Dem<T> {
             self.nl_start.clear();
             self.nl_j.clear();
             self.nl_start.push(0);
+            let mut stencil = crate::grid::Stencil::default();
             for i in 0..n {
                 half_neighbours_of(
                     &self.grid,
+                    &mut stencil,
                     &self.x,
                     &self.r,
                     &self.id,
@@ -129,6 +131,7 @@ pub(crate) const NONE: u32 = u32::MAX;
 #[inline]
 pub(crate) fn half_neighbours_of(
     grid: &crate::grid::Grid,
+    stencil: &mut crate::grid::Stencil,
     x: &[creep_law::Vec3],
     r: &[f64],
     id: &[u32],
@@ -140,7 +143,7 @@ pub(crate) fn half_neighbours_of(
 ) {
     let xi = x[i];
     let ri = r[i];
-    grid.for_half_neighbours(i, |j| {
+    grid.for_half_neighbours(i, stencil, |j| {
         let d = grid.min_image(x[j] - xi);
         let cut = ri + r[j] + skin;
         if d.dot(d) < cut * cut {

@@ -18,6 +18,7 @@
 //! joined in order. So the results are the same bits as the serial loop's, for any thread
 //! count (test `parallel_force_loop_is_deterministic`).
 
+use crate::grid::Stencil;
 use crate::neighbour::{Carry, half_neighbours_of};
 use crate::step::{CHUNK, WallOut, add_partial, tally_parts, weight};
 use crate::{Dem, DemCounts, DemEnergy, DemError, ExternalForces, tally};
@@ -355,8 +356,20 @@ impl<T: TangentialLaw> Dem<T> {
                 blk.j.clear();
                 blk.src.clear();
                 blk.ends.clear();
+                let mut stencil = Stencil::default();
                 for i in b * LIST_BLOCK..((b + 1) * LIST_BLOCK).min(n) {
-                    half_neighbours_of(grid, x, r, id, skin, carry, i, &mut blk.j, &mut blk.src);
+                    half_neighbours_of(
+                        grid,
+                        &mut stencil,
+                        x,
+                        r,
+                        id,
+                        skin,
+                        carry,
+                        i,
+                        &mut blk.j,
+                        &mut blk.src,
+                    );
                     blk.ends.push(blk.j.len() as u32);
                 }
             });
