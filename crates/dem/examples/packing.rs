@@ -10,6 +10,7 @@
 //! target/release/examples/packing DIR 20 3 cheap 1,2,4        # the scale table: 4k, 32k, 256k
 //! cargo build --release -p creep-dem --features parallel --example packing
 //! target/release/examples/packing DIR 300 5 cheap 1 1,2       # one thread against two
+//! target/release/examples/packing DIR 40 1 exact 1 1 0.1      # skin 0.1 d (default 0.02 d)
 //! ```
 //!
 //! `tiers`: `cheap`, `exact` or `both` (default; interleaved per round). `tiles`: a list
@@ -336,17 +337,23 @@ fn median(mut v: Vec<f64>) -> f64 {
 fn main() -> Res<()> {
     let args: Vec<String> = std::env::args().collect();
     let dir = args.get(1).ok_or(
-        "usage: packing DIR [steps] [rounds] [cheap|exact|both] [tiles k,k,..] [threads t,t,..]",
+        "usage: packing DIR [steps] [rounds] [cheap|exact|both] [tiles k,k,..] [threads t,t,..] [skin/d]",
     )?;
     let steps: usize = args.get(2).map_or(Ok(400), |s| s.parse())?;
     let rounds: usize = args.get(3).map_or(Ok(3), |s| s.parse())?;
     let tiers = args.get(4).map_or("both", String::as_str);
     let tiles = list(args.get(5), 1)?;
     let threads = list(args.get(6), 1)?;
+    // The neighbour skin as a fraction of the mean diameter (default the peers' 0.02).
+    let skin_d: f64 = args.get(7).map_or(Ok(0.02), |s| s.parse())?;
+    if !(skin_d.is_finite() && skin_d > 0.0) {
+        return Err("skin/d must be finite and > 0".into());
+    }
     if steps == 0 || rounds == 0 || tiles.contains(&0) || threads.contains(&0) {
         return Err("steps, rounds, tiles and threads must be at least 1".into());
     }
-    let base = load(dir)?;
+    let mut base = load(dir)?;
+    base.skin *= skin_d / 0.02;
     let packings: Vec<Packing> = tiles.iter().map(|&k| tiled(&base, k)).collect();
     let mut names = Vec::new();
     for tier in ["cheap", "exact"] {
