@@ -10,6 +10,7 @@
 //! target/release/examples/packing DIR 20 3 cheap 1,2,4        # the scale table: 4k, 32k, 256k
 //! cargo build --release -p creep-dem --features parallel --example packing
 //! target/release/examples/packing DIR 300 5 cheap 1 1,2       # one thread against two
+//! target/release/examples/packing DIR 40 1 exact 1 1 0.1      # skin 0.1 d (default 0.02 d)
 //! ```
 //!
 //! `tiers`: `cheap`, `exact` or `both` (default; interleaved per round). `tiles`: a list
@@ -25,8 +26,10 @@
 //! entries and touching contacts per particle, the engine's bytes per particle, the
 //! neighbour-list rebuilds during the timed steps and the median CPU time of one step (which
 //! leaves the rebuild steps out when most steps have none: the tiled packings' seams, as
-//! dense as a wall, push apart at first and rebuild the list often); and the medians over the
-//! rounds (CPU time; wall clock for more than one thread).
+//! dense as a wall, push apart at first and rebuild the list often), the time per step the
+//! process's threads waited for a CPU (`run-delay`, from schedstat: what other jobs took; a
+//! wall-clock timing on more than one thread means something only where it is near 0); and
+//! the medians over the rounds (CPU time; wall clock for more than one thread).
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -222,6 +225,21 @@ fn cpu_s() -> Option<f64> {
     Some(s.split_whitespace().next()?.parse::<f64>().ok()? * 1e-9)
 }
 
+/// Sums over this process's threads of `/proc/self/task/*/schedstat`: CPU time and time spent
+/// waiting for a CPU (run delay) \[s\]; `None` where the system does not report them. The run
+/// delay tells how much other jobs took from a timing (0 on an otherwise idle machine).
+fn threads_cpu_and_delay() -> Option<(f64, f64)> {
+    let mut cpu = 0.0;
+    let mut delay = 0.0;
+    for e in std::fs::read_dir("/proc/self/task").ok()? {
+        let s = std::fs::read_to_string(e.ok()?.path().join("schedstat")).ok()?;
+        let mut f = s.split_whitespace();
+        cpu += f.next()?.parse::<f64>().ok()? * 1e-9;
+        delay += f.next()?.parse::<f64>().ok()? * 1e-9;
+    }
+    Some((cpu, delay))
+}
+
 /// What one timing measured.
 struct Timing {
     /// Mean CPU seconds per step (the thread's for one thread, the process's for more; the
@@ -239,6 +257,8 @@ struct Timing {
     rebuilds: usize,
     /// Median CPU seconds of one step (the steps without a rebuild, when most are).
     step_median: f64,
+    /// Mean time per step the process's threads waited for a CPU \[s\] (NaN where unknown).
+    run_delay: f64,
 }
 
 /// Mean seconds per step of `steps` steps (the set-up excluded) on `threads` threads.
@@ -254,6 +274,7 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
             .map_err(|e| e.to_string())?;
         let clock = if threads > 1 { process_cpu_s } else { cpu_s };
         let rebuilds = d.counts().rebuilds;
+        let cd0 = threads_cpu_and_delay();
         let (t, c) = (Instant::now(), clock());
         let mut per_step = Vec::with_capacity(steps);
         let mut last = c;
@@ -266,6 +287,10 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
             last = now;
         }
         let wall = t.elapsed().as_secs_f64();
+        let run_delay = match (cd0, threads_cpu_and_delay()) {
+            (Some(a), Some(b)) => (b.1 - a.1) / steps as f64,
+            _ => f64::NAN,
+        };
         let cpu = match (c, clock()) {
             (Some(a), Some(b)) => b - a,
             _ => wall,
@@ -284,6 +309,7 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
             } else {
                 f64::NAN
             },
+            run_delay,
         })
     };
     creep_dem::with_threads(threads, || run().map_err(|e| e.to_string()))?.map_err(Into::into)
@@ -311,17 +337,23 @@ fn median(mut v: Vec<f64>) -> f64 {
 fn main() -> Res<()> {
     let args: Vec<String> = std::env::args().collect();
     let dir = args.get(1).ok_or(
-        "usage: packing DIR [steps] [rounds] [cheap|exact|both] [tiles k,k,..] [threads t,t,..]",
+        "usage: packing DIR [steps] [rounds] [cheap|exact|both] [tiles k,k,..] [threads t,t,..] [skin/d]",
     )?;
     let steps: usize = args.get(2).map_or(Ok(400), |s| s.parse())?;
     let rounds: usize = args.get(3).map_or(Ok(3), |s| s.parse())?;
     let tiers = args.get(4).map_or("both", String::as_str);
     let tiles = list(args.get(5), 1)?;
     let threads = list(args.get(6), 1)?;
+    // The neighbour skin as a fraction of the mean diameter (default the peers' 0.02).
+    let skin_d: f64 = args.get(7).map_or(Ok(0.02), |s| s.parse())?;
+    if !(skin_d.is_finite() && skin_d > 0.0) {
+        return Err("skin/d must be finite and > 0".into());
+    }
     if steps == 0 || rounds == 0 || tiles.contains(&0) || threads.contains(&0) {
         return Err("steps, rounds, tiles and threads must be at least 1".into());
     }
-    let base = load(dir)?;
+    let mut base = load(dir)?;
+    base.skin *= skin_d / 0.02;
     let packings: Vec<Packing> = tiles.iter().map(|&k| tiled(&base, k)).collect();
     let mut names = Vec::new();
     for tier in ["cheap", "exact"] {
@@ -345,7 +377,7 @@ fn main() -> Res<()> {
                     };
                     let n = p.particles.len() as f64;
                     println!(
-                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0} rebuilds {} median-step {:.4e} s {:.4e} particle-steps/s",
+                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0} rebuilds {} median-step {:.4e} s {:.4e} particle-steps/s run-delay {:.1} us/step",
                         t.cpu,
                         n / t.cpu,
                         t.wall,
@@ -355,7 +387,8 @@ fn main() -> Res<()> {
                         t.bytes,
                         t.rebuilds,
                         t.step_median,
-                        n / t.step_median
+                        n / t.step_median,
+                        t.run_delay * 1e6
                     );
                     let v = if th > 1 { n / t.wall } else { n / t.cpu };
                     let key = (tier, k, th);

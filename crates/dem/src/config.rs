@@ -74,7 +74,8 @@ pub struct DemConfig {
     pub periodic: [Option<(f64, f64)>; 3],
     /// Gravity [m/s^2].
     pub gravity: Vec3,
-    /// Run the force loop on rayon's threads (needs the `parallel` feature; ignored without).
+    /// Run the step (and the neighbour-list build) on rayon's threads, with the serial loop's
+    /// results bit for bit (needs the `parallel` feature; ignored without).
     pub parallel: bool,
 }
 

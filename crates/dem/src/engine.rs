@@ -190,6 +190,24 @@ impl<T: TangentialLaw> Dem<T> {
         self.cfg.dt = dt;
         Ok(())
     }
+    /// Sets the neighbour-list skin \[m\] (finite and > 0) and rebuilds the list now, with the
+    /// contact histories carried over (the cells are refitted to `2 r_max + skin`). The physics
+    /// does not depend on the skin; a larger one rebuilds less often and tests more pairs per
+    /// step. Results change at the rounding level only (the list's order, and so the order of
+    /// each particle's force sum, follows the rebuilds).
+    pub fn set_skin(&mut self, skin: f64) -> Result<(), DemError> {
+        check(
+            "skin",
+            skin,
+            skin.is_finite() && skin > 0.0,
+            "must be finite and > 0 [m]",
+        )?;
+        let r_max = self.r.iter().fold(0.0_f64, |m, &r| m.max(r));
+        self.grid = grid::Grid::new(self.cfg.periodic, 2.0 * r_max + skin)?;
+        self.cfg.skin = skin;
+        self.rebuild();
+        Ok(())
+    }
     /// Replaces the material table (e.g. to switch friction on after compaction); the contact
     /// histories are kept. The table must have as many materials.
     pub fn set_table(&mut self, table: MaterialTable) -> Result<(), DemError> {

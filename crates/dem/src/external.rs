@@ -42,6 +42,13 @@ pub trait ExternalForces {
     /// Adds this step's external forces and torques. An error stops the step before the
     /// second half-kick (the state is then mid-step; the caller should discard the engine).
     fn add_forces(&mut self, view: ExternalView<'_>) -> Result<(), DemError>;
+
+    /// Whether [`ExternalForces::add_forces`] may add anything (default `true`). `false` lets
+    /// the engine's parallel step (the `parallel` feature) sum the contact forces and apply
+    /// the second half-kick in one pass over the particles, without the call in between.
+    fn adds_forces(&self) -> bool {
+        true
+    }
 }
 
 /// No external forces: [`Dem::step`] is `step_with(&mut NoExternal)`.
@@ -52,6 +59,10 @@ impl ExternalForces for NoExternal {
     #[inline]
     fn add_forces(&mut self, _view: ExternalView<'_>) -> Result<(), DemError> {
         Ok(())
+    }
+    #[inline]
+    fn adds_forces(&self) -> bool {
+        false
     }
 }
 

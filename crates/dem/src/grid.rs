@@ -25,6 +25,29 @@ const HALF: [[i32; 3]; 13] = [
 /// Most cells per particle (a sparse cloud gets larger cells instead).
 const MAX_CELLS_PER_PARTICLE: f64 = 4.0;
 
+/// The half stencil's particle ranges of one cell (see [`Grid::for_half_neighbours`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Stencil {
+    /// The cell they are of (`u32::MAX`: none yet).
+    cell: u32,
+    /// End of the cell's own particles.
+    end: u32,
+    /// The non-empty stencil cells' particle ranges, `len` of them.
+    ranges: [(u32, u32); 13],
+    len: usize,
+}
+
+impl Default for Stencil {
+    fn default() -> Self {
+        Self {
+            cell: u32::MAX,
+            end: 0,
+            ranges: [(0, 0); 13],
+            len: 0,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Grid {
     /// Periodic box per axis `(lo, length)`.
@@ -178,15 +201,38 @@ impl Grid {
     }
 
     /// Calls `f(j)` for every particle `j` of the own cell with `j > i` and of the 13 half-stencil
-    /// cells of particle `i` (sorted order). Needs at least 3 cells on periodic axes (checked
-    /// in [`Grid::new`]) so that no cell is visited twice.
+    /// cells of particle `i` (sorted order), in that order. Needs at least 3 cells on periodic
+    /// axes (checked in [`Grid::new`]) so that no cell is visited twice. `stencil` caches the
+    /// stencil's particle ranges for the cell of the last call (consecutive particles of one
+    /// cell share it: about two per cell in a dense packing); start with
+    /// `Stencil::default()`.
     #[inline]
-    pub(crate) fn for_half_neighbours(&self, i: usize, mut f: impl FnMut(usize)) {
-        let c = self.cell_of[i] as usize;
-        let end = self.start[c + 1] as usize;
-        for j in i + 1..end {
+    pub(crate) fn for_half_neighbours(
+        &self,
+        i: usize,
+        stencil: &mut Stencil,
+        mut f: impl FnMut(usize),
+    ) {
+        let c = self.cell_of[i];
+        if stencil.cell != c {
+            self.fill_stencil(c as usize, stencil);
+        }
+        for j in i + 1..stencil.end as usize {
             f(j);
         }
+        for &(a, b) in &stencil.ranges[..stencil.len] {
+            for j in a as usize..b as usize {
+                f(j);
+            }
+        }
+    }
+
+    /// The particle ranges of cell `c`'s half stencil (the 13 cells after it in [`HALF`]'s
+    /// order; those off a non-periodic edge left out; empty ones too).
+    fn fill_stencil(&self, c: usize, s: &mut Stencil) {
+        s.cell = c as u32;
+        s.end = self.start[c + 1];
+        s.len = 0;
         let nx = self.n[0] as usize;
         let ny = self.n[1] as usize;
         let cx = (c % nx) as i32;
@@ -205,13 +251,15 @@ impl Grid {
                 }
             }
             // Periodic axes with fewer than 3 cells would visit a cell twice: such a box has
-            // one or two cells, and all pairs are in the own cell's sweep below.
+            // one or two cells, and all pairs are in the own cell's sweep.
             if !ok {
                 continue;
             }
             let k = self.flat(nc);
-            for j in self.start[k] as usize..self.start[k + 1] as usize {
-                f(j);
+            let (a, b) = (self.start[k], self.start[k + 1]);
+            if a < b {
+                s.ranges[s.len] = (a, b);
+                s.len += 1;
             }
         }
     }

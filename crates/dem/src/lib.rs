@@ -22,11 +22,12 @@
 //! * plane walls (any number; moving with a prescribed velocity, e.g. the servo-controlled
 //!   walls of a triaxial box, with the force on each wall reported) and periodic boundaries per
 //!   axis (minimum image);
-//! * with the `parallel` feature and [`DemConfig::parallel`], the force loop runs on rayon's
-//!   threads: each pair's force goes to a buffer, then each particle sums its pairs' forces in
-//!   list order, the order in which the serial loop adds them (energies and counts per block of
-//!   particles in both), so results are the same bits as the serial loop's, run to run and for
-//!   any number of threads.
+//! * with the `parallel` feature and [`DemConfig::parallel`], the step runs on rayon's threads
+//!   in three regions (kick and drift; every contact's kernel, its output to a buffer; per
+//!   particle the sum of its contacts' outputs in list order, the order in which the serial loop
+//!   adds them, then the second half-kick), energies and counts summed per block of particles
+//!   in both, and the neighbour list is built per block of particles at rebuilds: results are
+//!   the same bits as the serial loop's, run to run and for any number of threads.
 //!
 //! Conventions are creep-law's: in a pair the particle with the smaller id is body p, the
 //! normal points from p to q; for a wall contact the wall is p, its normal points into the

@@ -55,30 +55,41 @@ impl<T: TangentialLaw> Dem<T> {
         }
 
         // Half neighbour list.
-        let skin = self.cfg.skin;
-        self.nl_start.clear();
-        self.nl_j.clear();
-        self.nl_start.push(0);
         let mut src = Vec::with_capacity(self.nl_h.len());
-        for i in 0..n {
-            let xi = self.x[i];
-            let ri = self.r[i];
-            let (x, r, grid) = (&self.x, &self.r, &self.grid);
-            let (nl_j, id) = (&mut self.nl_j, &self.id);
-            grid.for_half_neighbours(i, |j| {
-                let d = grid.min_image(x[j] - xi);
-                let cut = ri + r[j] + skin;
-                if d.dot(d) < cut * cut {
-                    let (a, b) = (id[i], id[j]);
-                    nl_j.push(j as u32);
-                    src.push(carry.find(a.min(b), a.max(b)).map_or(NONE, |k| k as u32));
-                }
-            });
-            self.nl_start.push(self.nl_j.len() as u32);
+        #[cfg(feature = "parallel")]
+        let done = if self.cfg.parallel {
+            self.half_list_parallel(&carry, &mut src);
+            true
+        } else {
+            false
+        };
+        #[cfg(not(feature = "parallel"))]
+        let done = false;
+        if !done {
+            self.nl_start.clear();
+            self.nl_j.clear();
+            self.nl_start.push(0);
+            let mut stencil = crate::grid::Stencil::default();
+            for i in 0..n {
+                half_neighbours_of(
+                    &self.grid,
+                    &mut stencil,
+                    &self.x,
+                    &self.r,
+                    &self.id,
+                    self.cfg.skin,
+                    &carry,
+                    i,
+                    &mut self.nl_j,
+                    &mut src,
+                );
+                self.nl_start.push(self.nl_j.len() as u32);
+            }
         }
         carry_in_place(&mut self.nl_h, &src, ContactHistory::default());
 
         // Wall lists.
+        let skin = self.cfg.skin;
         self.wl_k.clear();
         self.wl_i.clear();
         src.clear();
@@ -109,7 +120,39 @@ impl<T: TangentialLaw> Dem<T> {
 }
 
 /// No old entry: a `src` value of [`carry_in_place`].
-const NONE: u32 = u32::MAX;
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// Appends particle `i`'s half-list entries (the particles `j` of its cell after it and of the
+/// 13 half-stencil cells within `r_i + r_j + skin`, in the grid's order) to `nl_j`, and where
+/// each one's history is in the old list (or [`NONE`]) to `src`. The serial rebuild calls it
+/// for every particle in turn; the parallel one per block of particles, then joins the blocks
+/// in order: the same list.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn half_neighbours_of(
+    grid: &crate::grid::Grid,
+    stencil: &mut crate::grid::Stencil,
+    x: &[creep_law::Vec3],
+    r: &[f64],
+    id: &[u32],
+    skin: f64,
+    carry: &Carry,
+    i: usize,
+    nl_j: &mut Vec<u32>,
+    src: &mut Vec<u32>,
+) {
+    let xi = x[i];
+    let ri = r[i];
+    grid.for_half_neighbours(i, stencil, |j| {
+        let d = grid.min_image(x[j] - xi);
+        let cut = ri + r[j] + skin;
+        if d.dot(d) < cut * cut {
+            let (a, b) = (id[i], id[j]);
+            nl_j.push(j as u32);
+            src.push(carry.find(a.min(b), a.max(b)).map_or(NONE, |k| k as u32));
+        }
+    });
+}
 
 /// Rearranges `v` in place so that afterwards `v[k]` is the old `v[src[k]]` (or `fill` where
 /// `src[k]` is [`NONE`]) for every `k < src.len()`, and `v.len() == src.len()`. `src` must not
@@ -198,7 +241,7 @@ fn permute<X: Copy>(v: &mut Vec<X>, order: &[u32]) {
 /// Where the histories of the last list are, keyed by particle id (CSR), for the carry-over
 /// at a rebuild: `(smaller id, partner id or wall, index in the old list)`.
 #[derive(Default)]
-struct Carry {
+pub(crate) struct Carry {
     entries: Vec<(u32, u32, u32)>,
     walls: Vec<(u32, u32, u32)>,
     start: Vec<u32>,

@@ -18,16 +18,26 @@ impl<T: TangentialLaw> Dem<T> {
     /// half-step velocities, before the second half-kick.
     pub fn step_with<E: ExternalForces>(&mut self, external: &mut E) -> Result<(), DemError> {
         let dt = self.cfg.dt;
-        let h = 0.5 * dt;
-        let n = self.len();
         #[cfg(feature = "parallel")]
-        let d2_max = if self.cfg.parallel {
-            self.kick_drift_parallel(dt)
-        } else {
-            self.kick_drift(dt)
-        };
-        #[cfg(not(feature = "parallel"))]
+        if self.cfg.parallel {
+            return self.step_parallel(external);
+        }
+        let h = 0.5 * dt;
         let d2_max = self.kick_drift(dt);
+        self.move_walls_and_check(d2_max, dt)?;
+        self.forces(dt);
+        external.add_forces(self.external_view(dt))?;
+        self.kick(h);
+        self.time += dt;
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// What comes between the drift and the forces: the walls move, and the list is rebuilt if
+    /// a particle has moved more than half the skin (or a particle and a wall together more
+    /// than the skin) since the last rebuild; `d2_max` is the drift's largest squared
+    /// displacement \[m^2\]. A non-finite position is an error.
+    pub(crate) fn move_walls_and_check(&mut self, d2_max: f64, dt: f64) -> Result<(), DemError> {
         let mut wall_max: f64 = 0.0;
         for (k, wall) in self.walls.iter_mut().enumerate() {
             wall.point += wall.velocity * dt;
@@ -35,24 +45,14 @@ impl<T: TangentialLaw> Dem<T> {
         }
         let d_max = d2_max.sqrt();
         if !d_max.is_finite() {
-            let i = (0..n).find(|&i| !self.x[i].is_finite()).unwrap_or(0);
+            let i = (0..self.len())
+                .find(|&i| !self.x[i].is_finite())
+                .unwrap_or(0);
             return Err(DemError::NonFinite(self.id[i] as usize));
         }
         if 2.0 * d_max > self.cfg.skin || d_max + wall_max > self.cfg.skin {
             self.rebuild();
         }
-        self.forces(dt);
-        external.add_forces(self.external_view(dt))?;
-        #[cfg(feature = "parallel")]
-        if self.cfg.parallel {
-            self.kick_parallel(h);
-        } else {
-            self.kick(h);
-        }
-        #[cfg(not(feature = "parallel"))]
-        self.kick(h);
-        self.time += dt;
-        self.steps += 1;
         Ok(())
     }
 
@@ -83,18 +83,16 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// Evaluates every contact force (and gravity) into `f`, `t` and the wall forces.
     pub(crate) fn forces(&mut self, dt: f64) {
+        #[cfg(feature = "parallel")]
+        if self.cfg.parallel {
+            self.forces_parallel(dt, None);
+            return;
+        }
         let n = self.len();
         let g = self.cfg.gravity;
-        // The parallel gather starts each particle's sum from its weight itself.
-        #[cfg(feature = "parallel")]
-        let init = !self.cfg.parallel;
-        #[cfg(not(feature = "parallel"))]
-        let init = true;
-        if init {
-            for i in 0..n {
-                self.f[i] = weight(g, self.mass[i]);
-                self.t[i] = Vec3::ZERO;
-            }
+        for i in 0..n {
+            self.f[i] = weight(g, self.mass[i]);
+            self.t[i] = Vec3::ZERO;
         }
         let mut counts = DemCounts {
             neighbours: self.nl_j.len(),
@@ -102,25 +100,7 @@ impl<T: TangentialLaw> Dem<T> {
             ..DemCounts::default()
         };
         let mut energy = self.energy;
-        #[cfg(feature = "parallel")]
-        let done = if self.cfg.parallel {
-            self.pair_forces_parallel(dt, &mut counts, &mut energy);
-            true
-        } else {
-            false
-        };
-        #[cfg(not(feature = "parallel"))]
-        let done = false;
-        if !done {
-            self.pair_forces_serial(dt, &mut counts, &mut energy);
-        }
-        #[cfg(feature = "parallel")]
-        if self.cfg.parallel {
-            self.wall_forces_parallel(dt, &mut counts, &mut energy);
-        } else {
-            self.wall_forces(dt, &mut counts, &mut energy);
-        }
-        #[cfg(not(feature = "parallel"))]
+        self.pair_forces_serial(dt, &mut counts, &mut energy);
         self.wall_forces(dt, &mut counts, &mut energy);
         self.counts = counts;
         self.energy = energy;
@@ -339,7 +319,7 @@ pub(crate) fn tally(
 }
 
 #[inline]
-fn tally_parts(
+pub(crate) fn tally_parts(
     counts: &mut DemCounts,
     energy: &mut DemEnergy,
     d: &creep_law::pair::PairDissipation,
@@ -358,9 +338,9 @@ fn tally_parts(
 /// What a touching wall contact adds: the kernel's outputs the engine uses.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct WallOut {
-    force_p: Vec3,
-    torque_q: Vec3,
-    dissipation: creep_law::pair::PairDissipation,
-    sliding: bool,
-    creeping: bool,
+    pub(crate) force_p: Vec3,
+    pub(crate) torque_q: Vec3,
+    pub(crate) dissipation: creep_law::pair::PairDissipation,
+    pub(crate) sliding: bool,
+    pub(crate) creeping: bool,
 }

@@ -499,6 +499,55 @@ fn bad_input_is_a_typed_error() {
     assert_eq!((d.config().dt, d.time()), (2e-7, 2e-7));
 }
 
+/// `Dem::set_skin`: a bad skin is a typed error (the settings unchanged); a larger skin
+/// rebuilds the list at once with every contact's history carried over (the stored elastic
+/// energy and the touching contacts unchanged, more candidate pairs), and the run continues
+/// with the same physics: positions within rounding-level distance of a run with the old
+/// skin after 300 more steps (the list's order, and so the force sums' order, differs).
+#[test]
+fn set_skin_carries_the_histories_and_keeps_the_physics() {
+    let mut a = settling::<Cheap>(5, 0.2, false, false);
+    for _ in 0..600 {
+        a.step().unwrap();
+    }
+    let mut b = a.clone();
+    let skin = b.config().skin;
+    for bad in [0.0, -1e-4, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            b.set_skin(bad),
+            Err(creep_dem::DemError::Parameter { .. })
+        ));
+    }
+    assert_eq!(b.config().skin, skin);
+    let (e0, rebuilds) = (b.energy(), b.counts().rebuilds);
+    b.set_skin(3.0 * skin).unwrap();
+    assert_eq!(b.config().skin, 3.0 * skin);
+    assert_eq!(b.counts().rebuilds, rebuilds + 1);
+    let e1 = b.energy();
+    // The same terms summed in the new list's order.
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs();
+    assert!(
+        close(e1.tangential_elastic, e0.tangential_elastic),
+        "{e1:?} {e0:?}"
+    );
+    assert!(close(e1.normal_elastic, e0.normal_elastic), "{e1:?} {e0:?}");
+    assert!(e0.tangential_elastic > 0.0 && e0.normal_elastic > 0.0);
+    a.step().unwrap();
+    b.step().unwrap();
+    assert_eq!(a.counts().contacts, b.counts().contacts);
+    assert!(b.counts().neighbours > a.counts().neighbours);
+    for _ in 0..300 {
+        a.step().unwrap();
+        b.step().unwrap();
+    }
+    assert!(b.counts().rebuilds - rebuilds - 1 < a.counts().rebuilds - rebuilds);
+    let worst = (0..a.len())
+        .map(|i| (a.particle(i).position - b.particle(i).position).length())
+        .fold(0.0, f64::max);
+    println!("largest position difference after 300 steps: {worst:e} m");
+    assert!(worst < 1e-12, "{worst}");
+}
+
 /// The `parallel` force loop: the same bits as the serial loop (each particle's force and
 /// torque summed in list order, energies and counts per block of particles in both, see
 /// `par.rs`), so also identical run to run, over a settling run whose contacts amplify any
@@ -507,32 +556,57 @@ fn bad_input_is_a_typed_error() {
 #[cfg(feature = "parallel")]
 #[test]
 fn parallel_force_loop_is_deterministic() {
-    let bits = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
-    let run = |parallel: bool| {
-        let mut d = settling::<Exact>(6, 0.2, parallel, false);
-        for _ in 0..1500 {
-            d.step().unwrap();
+    /// An external force that adds nothing but does not say so (`adds_forces` is `true`): the
+    /// parallel step then sums the forces, calls it, and kicks in a separate pass.
+    struct Nothing;
+    impl ExternalForces for Nothing {
+        fn add_forces(&mut self, _view: ExternalView<'_>) -> Result<(), creep_dem::DemError> {
+            Ok(())
         }
-        let state = (0..d.len())
-            .map(|i| {
-                let p = d.particle(i);
-                [bits(p.position), bits(p.velocity), bits(p.angular_velocity)]
-            })
-            .collect::<Vec<_>>();
-        let e = d.energy();
-        let energy = [e.damping, e.slip, e.creep, e.rolling, e.truncation].map(f64::to_bits);
-        (state, energy, d.counts())
+    }
+    let bits = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+    let run = |parallel: bool, threads: usize, external: bool| {
+        creep_dem::with_threads(threads, || {
+            // 512 particles: 4 blocks of the contact loop, 2 of the parallel list build.
+            let mut d = settling::<Exact>(8, 0.2, parallel, false);
+            for _ in 0..1500 {
+                if external {
+                    d.step_with(&mut Nothing).unwrap();
+                } else {
+                    d.step().unwrap();
+                }
+            }
+            let state = (0..d.len())
+                .map(|i| {
+                    let p = d.particle(i);
+                    [bits(p.position), bits(p.velocity), bits(p.angular_velocity)]
+                })
+                .collect::<Vec<_>>();
+            let e = d.energy();
+            let energy = [e.damping, e.slip, e.creep, e.rolling, e.truncation].map(f64::to_bits);
+            let walls = (0..d.walls().len())
+                .map(|k| bits(d.wall_force(k)))
+                .collect::<Vec<_>>();
+            (state, energy, d.counts(), walls)
+        })
+        .unwrap()
     };
-    let a = run(true);
-    let b = run(true);
-    assert_eq!(a, b);
-    let s = run(false);
+    let s = run(false, 1, false);
     assert!(s.2.contacts > 100, "{:?}", s.2);
-    let differ = a.0.iter().zip(&s.0).filter(|(p, q)| p != q).count();
-    println!("parallel vs serial after 1500 steps: {differ} particles differ in any bit");
-    assert_eq!(differ, 0);
-    assert_eq!(a.1, s.1, "energies");
-    assert_eq!(a.2, s.2, "counts");
+    assert!(s.2.wall_contacts > 10, "{:?}", s.2);
+    assert!(s.2.rebuilds > 5, "{:?}", s.2);
+    for (threads, external) in [(2, false), (2, false), (1, false), (3, false), (2, true)] {
+        let a = run(true, threads, external);
+        let differ = a.0.iter().zip(&s.0).filter(|(p, q)| p != q).count();
+        println!(
+            "parallel ({threads} threads, external {external}) vs serial after 1500 steps: \
+             {differ} particles differ in any bit"
+        );
+        assert_eq!(differ, 0);
+        assert_eq!(a.1, s.1, "energies");
+        assert_eq!(a.2, s.2, "counts");
+        assert_eq!(a.3, s.3, "wall forces");
+    }
 }
 
 /// A constant external force on one free particle (no gravity, no contacts) through

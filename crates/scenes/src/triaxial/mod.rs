@@ -53,7 +53,7 @@ mod servo;
 mod specimen;
 mod stress;
 
-pub use dem::{DemSpecimen, compact_dem, shear_dem};
+pub use dem::{DemSpecimen, SHEAR_SKIN, compact_dem, shear_dem};
 pub use params::{SERVO_RAYLEIGH_FRACTION, TriaxialConfig, TriaxialEngine, TriaxialParams};
 pub use protocol::{CompactionSummary, ShearRun, compact, compact_observed, shear, shear_observed};
 pub use report::{
