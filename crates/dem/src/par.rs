@@ -20,7 +20,7 @@
 
 use crate::grid::Stencil;
 use crate::neighbour::{Carry, half_neighbours_of};
-use crate::step::{CHUNK, WallOut, add_partial, tally_parts, weight};
+use crate::step::{CHUNK, WallOut, add_partial, tally_wall, weight};
 use crate::{Dem, DemCounts, DemEnergy, DemError, ExternalForces, tally};
 use creep_law::Vec3;
 use creep_law::pair::{ContactHistory, PairForces, TangentialLaw};
@@ -265,20 +265,13 @@ impl<T: TangentialLaw> Dem<T> {
             *f = Vec3::ZERO;
         }
         for (e, o) in wall_out.iter().enumerate() {
-            match o {
-                Ok(o) => {
-                    self.wall_force[self.wl_k[e] as usize] += o.force_p;
-                    tally_parts(
-                        &mut counts,
-                        &mut energy,
-                        &o.dissipation,
-                        o.sliding,
-                        o.creeping,
-                    );
-                    counts.wall_contacts += 1;
-                }
-                Err(released) => energy.slip += released,
-            }
+            tally_wall(
+                o,
+                self.wl_k[e] as usize,
+                &mut self.wall_force,
+                &mut counts,
+                &mut energy,
+            );
         }
         // Gather from the particle's weight, the owned entries (one range of the list) and the
         // partnered ones (ascending in the reverse index) merged by entry number: the serial

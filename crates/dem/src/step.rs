@@ -261,17 +261,39 @@ impl<T: TangentialLaw> Dem<T> {
         counts: &mut DemCounts,
         energy: &mut DemEnergy,
     ) {
-        match out {
-            Ok(out) => {
-                let (k, i) = (self.wl_k[e] as usize, self.wl_i[e] as usize);
-                self.f[i] -= out.force_p;
-                self.t[i] += out.torque_q;
-                self.wall_force[k] += out.force_p;
-                tally_parts(counts, energy, &out.dissipation, out.sliding, out.creeping);
-                counts.wall_contacts += 1;
-            }
-            Err(released) => energy.slip += released,
+        if let Ok(o) = &out {
+            let i = self.wl_i[e] as usize;
+            self.f[i] -= o.force_p;
+            self.t[i] += o.torque_q;
         }
+        tally_wall(
+            &out,
+            self.wl_k[e] as usize,
+            &mut self.wall_force,
+            counts,
+            energy,
+        );
+    }
+}
+
+/// A wall-list entry's share of the counts, the energies and its wall's force `k` (both
+/// loops, in list order): a touching contact's dissipation, or the energy an opening one
+/// released.
+#[inline]
+pub(crate) fn tally_wall(
+    out: &Result<WallOut, f64>,
+    k: usize,
+    wall_force: &mut [Vec3],
+    counts: &mut DemCounts,
+    energy: &mut DemEnergy,
+) {
+    match out {
+        Ok(o) => {
+            wall_force[k] += o.force_p;
+            tally_parts(counts, energy, &o.dissipation, o.sliding, o.creeping);
+            counts.wall_contacts += 1;
+        }
+        Err(released) => energy.slip += released,
     }
 }
 
@@ -319,7 +341,7 @@ pub(crate) fn tally(
 }
 
 #[inline]
-pub(crate) fn tally_parts(
+fn tally_parts(
     counts: &mut DemCounts,
     energy: &mut DemEnergy,
     d: &creep_law::pair::PairDissipation,
