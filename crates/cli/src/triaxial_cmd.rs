@@ -41,7 +41,7 @@ pub struct TriaxialArgs {
     engine: Option<String>,
     /// The shears' time step as a fraction (in (0, 0.3]) of the smallest ball's Rayleigh time;
     /// overrides the config file's `shear_rayleigh_fraction` (the compaction keeps
-    /// `rayleigh_fraction`: docs/results/triaxial-dem-dt).
+    /// `rayleigh_fraction`: docs/results/triaxial-timestep).
     #[arg(long)]
     shear_rayleigh_fraction: Option<f64>,
 }

@@ -5,7 +5,7 @@
 # r_star, e_star, g_star, g, nu, mu, c11, a, du.x, du.y and the state's to_array
 # (a, n, q.x, q.y, then per piece x_hi, beta.x, beta.y, c.x, c.y).
 # (The angles an update leaves before its capacity merge, and what each theta_tol does to a
-# packing, need the engine: see docs/results/triaxial-dem-coalesce/README.md.)
+# packing, need the engine: see docs/results/triaxial-default/README.md.)
 import math
 import struct
 import sys

@@ -41,7 +41,7 @@ fn table(p: &TriaxialParams, mu: f64, creep: bool) -> Result<MaterialTable, Scen
 /// sets this skin ([`creep_dem::Dem::set_skin`]). With 0.02 the shears rebuilt the list every
 /// 8.8 steps (1,169 rebuilds in 10,269 steps), with 0.1 every ~48 (216), while the longer list
 /// adds 0.2 % to a step's instructions (exact tier, 4,096 packing: 3.69 -> 4.28 entries per
-/// particle); docs/results/triaxial-dem-dem2. The physics is the same; the shears' results
+/// particle); docs/results/triaxial-shear-skin. The physics is the same; the shears' results
 /// differ at the rounding level (the list's order, and so the order of each particle's force
 /// sum, follows the rebuilds).
 pub const SHEAR_SKIN: f64 = 0.1;

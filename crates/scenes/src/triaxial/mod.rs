@@ -24,7 +24,7 @@
 //! compliant regime's check, creep-law `hertz::rayleigh_time_step`): 0.2 in the generation
 //! and the compaction (`rayleigh_fraction`: the packing depends on it), 0.3 in the shears
 //! (`shear_rayleigh_fraction`: the shears at 0.3 reproduce those at 0.2 within 0.07 deg and
-//! 0.25 %, docs/results/triaxial-dem-dt). The number of steps of a shear is
+//! 0.25 %, docs/results/triaxial-timestep). The number of steps of a shear is
 //! `0.2 / (eps_dot dt)`, which grows as `sqrt(G / p0)`: the default material is a
 //! softened glass (G = 29 MPa, `G / p0 = 290`), with overlaps of ~2 % of the diameter. DEM
 //! practice softens the particles (e.g. Thornton 2000 used a reduced modulus) because the

@@ -28,12 +28,12 @@ pub struct TriaxialParams {
     /// Final axial strain [-], in `(0, 0.5]`.
     pub axial_strain: f64,
     /// Time step of the generation and the compaction as a fraction of the smallest ball's
-    /// Rayleigh time, in `(0, 0.3]` (the packing depends on it: docs/results/triaxial-dem-dt).
+    /// Rayleigh time, in `(0, 0.3]` (the packing depends on it: docs/results/triaxial-timestep).
     pub rayleigh_fraction: f64,
     /// Time step of the shears as a fraction of the smallest ball's Rayleigh time, in
     /// `(0, 0.3]`. Default 0.3: from the packing compacted at 0.2 the shears at 0.3 reproduce
     /// those at 0.2 within 0.07 deg and 0.25 % (peak and dilatancy angles, wall and contact
-    /// stresses at the peak) in 0.7 of the CPU time (docs/results/triaxial-dem-dt); a stated
+    /// stresses at the peak) in 0.7 of the CPU time (docs/results/triaxial-timestep); a stated
     /// speed-accuracy choice.
     pub shear_rayleigh_fraction: f64,
     /// Seed of the packing's generator ([`super::GENERATOR`]), in `[0, 2^63 - 1]` (TOML's
@@ -162,7 +162,7 @@ impl TriaxialParams {
     /// (`~ 1.5 v tau / (alpha delta)` of p0, `Stress::servo`) does not grow with the step.
     /// Equal to [`TriaxialParams::time_step`], bit for bit, at the default 0.2. (The
     /// compaction's servo keeps its gain per step: its packing is the default's only at the
-    /// default step anyway, docs/results/triaxial-dem-dt.)
+    /// default step anyway, docs/results/triaxial-timestep.)
     pub fn servo_time(&self) -> f64 {
         let r_min = self.radius * (1.0 - self.radius_spread);
         SERVO_RAYLEIGH_FRACTION * creep_law::hertz::rayleigh_time_step(&self.material, r_min)

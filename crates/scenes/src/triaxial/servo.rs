@@ -9,7 +9,7 @@ use super::stress::Stress;
 /// moving at `v` is `~ 1.5 v tau / (alpha delta)` of p0, `delta` the overlap of the wall's
 /// balls and `tau` the time the share is removed in: about 2 % while the default test's packing
 /// dilates (lateral walls at ~0.035 m/s, `delta` ~4e-5 m, `tau` 5.1 µs). Measured on the full
-/// default shear (docs/results/triaxial-dem-dt): the lateral stress is 1.5 % above p0 on
+/// default shear (docs/results/triaxial-timestep): the lateral stress is 1.5 % above p0 on
 /// average (2.15 % at most). With `tau` the step, as it was in the shear until the `triaxdt`
 /// branch and still is in the compaction, the lag grows with the step: 1.9 % at 0.25 T_R,
 /// 2.3 % at 0.3 T_R; the shear now uses `TriaxialParams::servo_time` (the step at 0.2 T_R,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares `creep triaxial` runs with a reference run (the bounds of issue #15): peak friction
+"""Compares `creep triaxial` runs with a reference run: peak friction
 angle and dilatancy angle (within 0.5 deg), wall and contact stress (within 1 %), from the
 runs' CSVs, computed as creep-scenes' ShearSummary computes them.
 
