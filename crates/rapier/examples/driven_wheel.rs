@@ -1,0 +1,83 @@
+//! A rubber wheel (a Rapier cylinder, line contact) rolls at 0.1 m/s, driven by a torque `T`
+//! about its axle and held back at the axle by `T/R`, so the floor's traction is `Q = T/R`.
+//! The wheel turns faster than it travels by the creepage of Carter's line contact (Carter
+//! 1926; Johnson 1985, §8.2): `xi = mu (a/R) (1 - sqrt(1 - Q/(mu P)))`, with the contact's
+//! half-width `a = sqrt(4 P R / (pi E* w))` on a wheel of width `w`. Each drive runs with creep
+//! and with Coulomb; the difference is compared with Carter.
+//!
+//! `cargo run --release -p creep-rapier --example driven_wheel`
+
+use creep_law::{Material, PairMaterial, Surface};
+use creep_rapier::prelude::*;
+use rapier3d::prelude::*;
+
+const R: f64 = 0.05;
+const WIDTH: f64 = 0.04;
+const SPEED: f64 = 0.1;
+const DT: f64 = 1.0 / 240.0;
+const STEPS: usize = 240;
+
+/// The creepage `(w R - v)/v` at the contact, mean over the second half [-], and the mass [kg].
+fn run(rubber: Material, share: f64, fidelity: Fidelity) -> Result<(f64, f64), PluginError> {
+    let mut world = CreepWorld::new(DT as f32, CreepSettings::default())?;
+    let params = &mut world.physics.integration_parameters;
+    params.num_solver_iterations = 1; // one substep: the rolling correction is exact there
+    params.num_internal_pgs_iterations = 16; // the line contact's coupled rows
+    params.length_unit = R as f32; // Rapier's allowed overlap scales with it (rolling radius)
+    let mat = CreepMaterial::new(rubber).with_fidelity(fidelity);
+    let mu = rubber.friction() as f32;
+    // The floor first: with the wheel as the pair's first collider Rapier's cylinder-cuboid
+    // manifold can miss a step on a large cuboid (a half-space never does).
+    let floor = RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0));
+    world.insert(floor, ColliderBuilder::cuboid(1.0e3, 0.5, 1.0e3).friction(mu), Some(mat));
+    let (r, v) = (R as f32, SPEED as f32);
+    let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, r, 0.0))
+        .rotation(Vector::new(std::f32::consts::FRAC_PI_2, 0.0, 0.0)) // axle along z
+        .linvel(Vector::new(v, 0.0, 0.0))
+        .angvel(Vector::new(0.0, 0.0, -v / r))
+        .enabled_rotations(true, false, true) // upright, heading held: an axle's job
+        .enabled_translations(true, true, false)
+        .can_sleep(false);
+    let wheel = ColliderBuilder::cylinder(0.5 * WIDTH as f32, r).friction(mu);
+    let (wheel, _) = world.insert(body, wheel, Some(mat));
+    let b = &mut world.physics.bodies[wheel];
+    let mass = f64::from(b.mass());
+    let torque = share * rubber.friction() * mass * 9.81 * R;
+    b.add_torque(Vector::new(0.0, 0.0, -torque as f32), true); // drive
+    b.add_force(Vector::new((-torque / R) as f32, 0.0, 0.0), true); // the load at the axle
+    let (mut xi, mut n) = (0.0, 0.0);
+    for i in 0..STEPS {
+        world.step()?;
+        let b = &world.physics.bodies[wheel];
+        if i >= STEPS / 2 {
+            // The wheel's surface velocity at the floor (y = 0), along the travel.
+            let u = f64::from(b.linvel().x) + f64::from(b.angvel().z) * f64::from(b.translation().y);
+            (xi, n) = (xi - u / f64::from(b.linvel().x), n + 1.0);
+        }
+    }
+    Ok((xi / n, mass))
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let rubber = Material::new(1.0e6, 0.5, 0.9, 1100.0)?; // G [Pa], nu, mu, rho [kg/m^3]
+    let pair = PairMaterial::new(&rubber, &rubber, Surface::Sphere(R), Surface::Plane)?;
+    let mu = rubber.friction();
+    println!("Q/(mu P)  creepage (creep - Coulomb)  Carter  error [% of mu P]");
+    let mut worst: f64 = 0.0;
+    for share in [0.1, 0.3, 0.5, 0.7, 0.9] {
+        let (xi_creep, mass) = run(rubber, share, Fidelity::Creep)?;
+        let (xi_coulomb, _) = run(rubber, share, Fidelity::Coulomb)?;
+        let p = mass * 9.81;
+        let a = (4.0 * p * R / (std::f64::consts::PI * pair.e_star * WIDTH)).sqrt();
+        let xi = xi_creep - xi_coulomb;
+        let carter = mu * a / R * (1.0 - (1.0 - share).sqrt());
+        // Carter's force at the measured creepage, against the applied Q/(mu P).
+        let force = 1.0 - (1.0 - (xi / (mu * a / R)).min(1.0)).powi(2);
+        worst = worst.max((force - share).abs());
+        println!("{share:8.2}  {xi:26.4e}  {carter:.4e}  {:+.3}", 100.0 * (force - share));
+    }
+    println!("largest error: {:.3} % of mu P", 100.0 * worst);
+    assert!(worst < 0.01);
+    Ok(())
+}
