@@ -1,4 +1,4 @@
-//! `creep report [--quick] [--out DIR]`: the speed-against-error report (issue #8). Measures on
+//! `creep report [--quick] [--out DIR]`: the speed-against-error report. Measures on
 //! this machine what each model tier costs per contact update and how wrong it is against the
 //! exact theory, and writes `REPORT.md`, the CSVs behind it and SVG/PNG plots into `DIR`.
 //!

@@ -20,7 +20,7 @@
 //! `valgrind --tool=callgrind --toggle-collect='*count_batch*' BENCH_BINARY --count 2`
 //! (instructions of `count_batch` / (4096 P)). `-- --time CASE [--blend]` prints that
 //! variant's CPU ns per evaluation alone (median of 3 measurements of 1000 passes), for
-//! alternating two builds of this bench in one script (e.g. main's and a branch's).
+//! alternating two builds of this bench in one script (e.g. before and after a change).
 
 use std::hint::black_box;
 use std::time::Instant;

@@ -47,8 +47,8 @@
 //! with `mu_s` the sliding and `mu_r` the rolling friction coefficients between particles (pp)
 //! and between particle and wall (pw), `mu_r` a length in mm (their rolling torque is
 //! `M = mu_r P`, Zhou et al. 1999, Physica A 269, 536), `d` the diameter in mm. Caveats: (a)
-//! the equation is quoted from the paper's abstract as the project knows it; the tools of this
-//! session could not retrieve the paper's text, so its constants, units and range of validity
+//! the equation is quoted from the paper's abstract as the project knows it; the paper's text
+//! was not checked, so its constants, units and range of validity
 //! (the sliding and rolling coefficients, sizes and container thickness of their runs, coarse
 //! spheres of millimetres) must be checked against the paper before a number here is
 //! published; (b) their piles stand between two walls 4-ish diameters apart, which raise the
@@ -63,8 +63,7 @@
 //!
 //! `creep run repose --mu M --rolling 0.1,0.3 --grains 576 --out DIR` (release build; a
 //! 12 x 12 x 4 column of 576 grains on a 46 x 4 base of 184 fixed grains, every case settled;
-//! load average 18-20 on the two shared cores: 110-255 s of wall clock and 16-18 s of CPU per
-//! four cases). Angles in degrees; `mu = 0.5` with seeds 1, 2, 3 (median, range), the other
+//! 16-18 s of CPU per four cases). Angles in degrees; `mu = 0.5` with seeds 1, 2, 3 (median, range), the other
 //! `mu` seed 1 only. Rolling: the EPSD `mu_r`; the correlation at `mu_r R* = 0.05` and
 //! `0.15 mm`, `d = 2 mm`.
 //!

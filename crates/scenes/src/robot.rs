@@ -1,4 +1,4 @@
-//! A differential-drive robot (issue #17, part 4): a chassis, two driven crowned rubber wheels
+//! A differential-drive robot: a chassis, two driven crowned rubber wheels
 //! on revolute joints with velocity motors, and a caster ball on a spherical joint, on a flat
 //! rubber floor; it turns on the spot or drives an arc, with creep-friction or as a Coulomb twin.
 //!

@@ -1,4 +1,4 @@
-//! Wheels in the rigid regime (issue #17, part 4): a cylinder collider rolling on a floor, with
+//! Wheels in the rigid regime: a cylinder collider rolling on a floor, with
 //! a line contact (Carter 1926) or crowned (Hertz's ellipse, Kalker's theory).
 //!
 //! * [`driven`]: a wheel driven by a torque `T` about its axle and held back at the axle by the

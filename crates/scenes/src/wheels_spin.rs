@@ -1,5 +1,5 @@
 //! A ball rolling on a plane while it spins about the normal: the spin creep moment of the rigid
-//! regime (crate creep-rapier, module `creep3d`) makes the spin decay (issue #17, part 4).
+//! regime (crate creep-rapier, module `creep3d`) makes the spin decay.
 //!
 //! # Closed form (Kalker's linear theory, Kalker 1967; Kalker 1990, §1.2 and Table E.3)
 //!

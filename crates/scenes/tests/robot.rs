@@ -1,4 +1,4 @@
-//! The differential-drive robot (issue #17, part 4; creep-scenes `robot`): its kinematics
+//! The differential-drive robot (creep-scenes `robot`): its kinematics
 //! against the closed forms of a differential drive, its wheels' creepages, and the energy its
 //! contacts dissipate with creep and in the Coulomb twin.
 

@@ -1,5 +1,5 @@
 //! The triaxial scenario at a small size: the defaults file, input errors, and the physics
-//! checks the issue asks of the test (walls and contacts agree on the stress, the compaction
+//! checks of the test (walls and contacts agree on the stress, the compaction
 //! reaches the confining pressure, the shear is quasi-static).
 
 use creep_scenes::SceneError;

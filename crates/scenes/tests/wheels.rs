@@ -1,4 +1,4 @@
-//! The rigid regime's 3-D creep against closed forms (issue #17, part 4): a ball spun about
+//! The rigid regime's 3-D creep against closed forms: a ball spun about
 //! the normal while rolling (Kalker's linear theory of spin creep), wheels.
 
 use creep_rapier::Fidelity;

@@ -2,7 +2,7 @@
 //! and 20 m/s, at dt = 1/30, 1/60 and 1/120 s, on a half-space, a flat triangle mesh and a flat
 //! heightfield, for 10 s ([`crate::rolling_ball`]). Free rolling carries no tangential load, so
 //! creep-friction adds nothing and every change of the energy or of the centre's height is the
-//! engine's (or the plugin's) own error. Bounds (issue 14): the energy never exceeds its start
+//! engine's (or the plugin's) own error. Bounds: the energy never exceeds its start
 //! by more than 1e-6 of it; the energy lost over the run is at most 1e-3 of the start; the
 //! centre never rises more than 0.1 mm above, nor sinks more than 0.1 mm below, its resting
 //! height. Each case runs the plugin (`Fidelity::Creep`) and plain Rapier with the same

@@ -1,4 +1,4 @@
-//! The hard-case matrix of the rigid regime (DESIGN.md §3): scenes where the feedback
+//! The hard-case matrix of the rigid regime: scenes where the feedback
 //! Q -> creep slip -> Q is strong (long steps, soft material near the friction limit, a 1000:1
 //! mass ratio, fast spin, a column of ten spheres), plus a sphere at rest. Each V-incline case
 //! runs [`STEPS`] steps twice, once with creep-friction (`Fidelity::Creep`) and once with
