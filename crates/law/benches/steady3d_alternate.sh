@@ -3,7 +3,7 @@
 # evaluation, the median of 3 measurements of 1000 passes) in one script, ROUNDS rounds of
 # CASE = fss, 1-4 (the bench's table cases) for each binary in turn; prints the medians per
 # binary and case, and the load. For comparing two builds (e.g. main's and a branch's) on a
-# loaded machine (docs/CREEP3D.md, "Between rows under 50 ns").
+# loaded machine (docs/CREEP3D.md, "Cost").
 #
 # usage: crates/law/benches/steady3d_alternate.sh ROUNDS BENCH_BINARY_1 BENCH_BINARY_2 ...
 # (the binaries: `cargo bench -p creep-law --bench steady3d --no-run` prints the path; copy

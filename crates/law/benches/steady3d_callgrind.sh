@@ -2,7 +2,7 @@
 # Load-free cost of one variant of the steady3d bench: instructions per evaluation under
 # callgrind (the bench's `--count CASE [--blend]` mode, 5 passes over its 4096 inputs in
 # `count_batch`): the total per evaluation (with about 25 instructions of the bench's loop
-# and closure) and `Steady3d::loads` inclusive (docs/CREEP3D.md, "Between rows under 50 ns").
+# and closure) and `Steady3d::loads` inclusive (docs/CREEP3D.md, "Cost").
 #
 # usage: crates/law/benches/steady3d_callgrind.sh BENCH_BINARY CASE [--blend]
 #   CASE: 0-4 (the bench's table cases) or fss
