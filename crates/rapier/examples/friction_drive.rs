@@ -29,7 +29,8 @@ fn run(torque: f64, fidelity: Fidelity) -> Result<(f64, f64, f64), PluginError> 
     world.physics.integration_parameters.num_solver_iterations = 1;
     let mat = CreepMaterial::new(steel).with_fidelity(fidelity);
     let r = R as f32;
-    let input = RigidBodyBuilder::kinematic_velocity_based().angvel(Vector::new(0.0, 0.0, OMEGA as f32));
+    let input =
+        RigidBodyBuilder::kinematic_velocity_based().angvel(Vector::new(0.0, 0.0, OMEGA as f32));
     let (input, _) = world.insert(input, ColliderBuilder::ball(r).friction(mu), Some(mat));
     let output = RigidBodyBuilder::dynamic()
         .translation(Vector::new(0.0, 2.0 * r, 0.0))
@@ -40,7 +41,10 @@ fn run(torque: f64, fidelity: Fidelity) -> Result<(f64, f64, f64), PluginError> 
     world.physics.bodies[output].add_torque(Vector::new(0.0, 0.0, torque as f32), true); // the brake
     let (mut a_in, mut a_out, mut q, mut p, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for i in 0..STEPS {
-        let (r_in, r_out) = (*world.physics.bodies[input].rotation(), *world.physics.bodies[output].rotation());
+        let (r_in, r_out) = (
+            *world.physics.bodies[input].rotation(),
+            *world.physics.bodies[output].rotation(),
+        );
         world.step()?;
         if i >= STEPS / 2 {
             a_in += turned(r_in, *world.physics.bodies[input].rotation());
@@ -50,7 +54,11 @@ fn run(torque: f64, fidelity: Fidelity) -> Result<(f64, f64, f64), PluginError> 
             }
         }
     }
-    Ok(((a_in - a_out) / (0.5 * (a_in + a_out)), q / n.max(1.0), p / n.max(1.0)))
+    Ok((
+        (a_in - a_out) / (0.5 * (a_in + a_out)),
+        q / n.max(1.0),
+        p / n.max(1.0),
+    ))
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -70,10 +78,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let measured = xi_creep - xi_coulomb;
         let error = measured / expected - 1.0;
         worst = worst.max(error.abs());
-        println!("{:8.3}  {measured:26.4e}  {expected:11.4e}  {:+5.2} %  {xi_coulomb:.1e}",
-            q / mu_p, 100.0 * error);
+        println!(
+            "{:8.3}  {measured:26.4e}  {expected:11.4e}  {:+5.2} %  {xi_coulomb:.1e}",
+            q / mu_p,
+            100.0 * error
+        );
     }
-    println!("largest error against Kalker's curve: {:.2} %", 100.0 * worst);
+    println!(
+        "largest error against Kalker's curve: {:.2} %",
+        100.0 * worst
+    );
     assert!(worst < 0.05);
     Ok(())
 }

@@ -38,9 +38,17 @@ fn run(fidelity: Fidelity) -> Result<Run, PluginError> {
     world.physics.gravity = Vector::new((G * THETA.sin()) as f32, (-G * THETA.cos()) as f32, 0.0);
     let mat = CreepMaterial::new(steel).with_fidelity(fidelity);
     let ground = RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0));
-    world.insert(ground, ColliderBuilder::cuboid(1.0e3, 0.5, 10.0).friction(mu), Some(mat));
+    world.insert(
+        ground,
+        ColliderBuilder::cuboid(1.0e3, 0.5, 10.0).friction(mu),
+        Some(mat),
+    );
     let ball = RigidBodyBuilder::dynamic().translation(Vector::new(0.0, R as f32, 0.0));
-    let (ball, _) = world.insert(ball, ColliderBuilder::ball(R as f32).friction(mu), Some(mat));
+    let (ball, _) = world.insert(
+        ball,
+        ColliderBuilder::ball(R as f32).friction(mu),
+        Some(mat),
+    );
     let (mut x0, mut angle) = (0.0, 0.0);
     let (mut q, mut p, mut n, mut dissipated) = (0.0, 0.0, 0.0, 0.0);
     for i in 0..STEPS {
@@ -77,15 +85,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let a = hertz::contact_radius(&pair, creep.p);
     let kalker = kalker::steady_creepage(creep.q / mu_p, mu_p, pair.g, a, pair.c11);
     let measured = creep.slip - coulomb.slip;
-    println!("acceleration: Coulomb {:.4} m/s^2, creep {:.4} m/s^2, (5/7) g sin(theta) {:.4} m/s^2",
-        coulomb.acceleration, creep.acceleration, 5.0 / 7.0 * G * THETA.sin());
-    println!("contact: P = {:.2} N, Q = {:.3} N, Q/(mu P) = {:.3}, Hertz radius a = {:.3e} m",
-        creep.p, creep.q, creep.q / mu_p, a);
-    println!("creep slip (creep run - Coulomb run): {measured:.4e}, Kalker's F_ss: {kalker:.4e} ({:+.2} %)",
-        100.0 * (measured / kalker - 1.0));
+    println!(
+        "acceleration: Coulomb {:.4} m/s^2, creep {:.4} m/s^2, (5/7) g sin(theta) {:.4} m/s^2",
+        coulomb.acceleration,
+        creep.acceleration,
+        5.0 / 7.0 * G * THETA.sin()
+    );
+    println!(
+        "contact: P = {:.2} N, Q = {:.3} N, Q/(mu P) = {:.3}, Hertz radius a = {:.3e} m",
+        creep.p,
+        creep.q,
+        creep.q / mu_p,
+        a
+    );
+    println!(
+        "creep slip (creep run - Coulomb run): {measured:.4e}, Kalker's F_ss: {kalker:.4e} ({:+.2} %)",
+        100.0 * (measured / kalker - 1.0)
+    );
     println!("Rapier's own slip in the Coulomb run: {:.2e}", coulomb.slip);
-    println!("energy dissipated by creep over 1 s: {:.3e} J (Coulomb: {:.1e} J)",
-        creep.dissipated, coulomb.dissipated);
+    println!(
+        "energy dissipated by creep over 1 s: {:.3e} J (Coulomb: {:.1e} J)",
+        creep.dissipated, coulomb.dissipated
+    );
     assert!((measured / kalker - 1.0).abs() < 0.05 && creep.dissipated > 0.0);
     Ok(())
 }

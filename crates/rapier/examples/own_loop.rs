@@ -18,13 +18,20 @@ use rapier3d::prelude::*;
 fn main() -> Result<(), PluginError> {
     let (theta, g, r) = (20f32.to_radians(), 9.81f32, 0.1f32);
     let gravity = Vector::new(g * theta.sin(), -g * theta.cos(), 0.0);
-    let mut params = IntegrationParameters { dt: 1.0 / 240.0, ..Default::default() };
+    let mut params = IntegrationParameters {
+        dt: 1.0 / 240.0,
+        ..Default::default()
+    };
     configure_parameters(&mut params);
     params.num_solver_iterations = 1; // one substep (see the rolling_ball example)
     let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
-    let (mut islands, mut broad_phase, mut narrow_phase) =
-        (IslandManager::new(), BroadPhaseBvh::new(), NarrowPhase::new());
-    let (mut impulse_joints, mut multibody_joints) = (ImpulseJointSet::new(), MultibodyJointSet::new());
+    let (mut islands, mut broad_phase, mut narrow_phase) = (
+        IslandManager::new(),
+        BroadPhaseBvh::new(),
+        NarrowPhase::new(),
+    );
+    let (mut impulse_joints, mut multibody_joints) =
+        (ImpulseJointSet::new(), MultibodyJointSet::new());
     let (mut soft_bodies, mut ccd_solver) = (SoftBodySet::new(), CCDSolver::new());
     let mut physics_pipeline = PhysicsPipeline::new();
 
@@ -65,10 +72,15 @@ fn main() -> Result<(), PluginError> {
     let expected_mass = steel.density() * 4.0 / 3.0 * std::f64::consts::PI * f64::from(r).powi(3);
     let acceleration = b.linvel().x / (steps as f32 * params.dt);
     let closed_form = 5.0 / 7.0 * g * theta.sin();
-    println!("ball mass {:.3} kg (rho 4/3 pi R^3 = {expected_mass:.3} kg)", b.mass());
+    println!(
+        "ball mass {:.3} kg (rho 4/3 pi R^3 = {expected_mass:.3} kg)",
+        b.mass()
+    );
     println!("acceleration {acceleration:.4} m/s^2, (5/7) g sin(theta) = {closed_form:.4} m/s^2");
-    println!("last step: {} contact(s) on the creep path, {} hook(s) on, creep power {:.3e} W",
-        last.creep, last.hooks_on, last.creep_power);
+    println!(
+        "last step: {} contact(s) on the creep path, {} hook(s) on, creep power {:.3e} W",
+        last.creep, last.hooks_on, last.creep_power
+    );
     println!("energy dissipated by creep in 1 s: {energy:.3e} J");
     assert!(last.creep == 1 && (acceleration / closed_form - 1.0).abs() < 2e-3);
     Ok(())

@@ -22,7 +22,12 @@ const DT: f32 = 1.0 / 60.0;
 /// A world with the ground and a ball at height `y` moving at `v` and rolling about the point
 /// midway through the overlap (where Rapier's solve rolls it); registered with the plugin when
 /// `plugin`.
-fn world(substeps: usize, plugin: bool, y: f32, v: f32) -> Result<(CreepWorld, RigidBodyHandle), PluginError> {
+fn world(
+    substeps: usize,
+    plugin: bool,
+    y: f32,
+    v: f32,
+) -> Result<(CreepWorld, RigidBodyHandle), PluginError> {
     let mut world = CreepWorld::new(DT, CreepSettings::default())?;
     world.physics.integration_parameters.num_solver_iterations = substeps;
     let steel = Material::steel();
@@ -36,7 +41,9 @@ fn world(substeps: usize, plugin: bool, y: f32, v: f32) -> Result<(CreepWorld, R
         .linvel(Vector::new(v, 0.0, 0.0))
         .angvel(Vector::new(0.0, 0.0, -v / arm))
         .can_sleep(false);
-    let ball = ColliderBuilder::ball(R).density(steel.density() as f32).friction(mu);
+    let ball = ColliderBuilder::ball(R)
+        .density(steel.density() as f32)
+        .friction(mu);
     let (ball, _) = world.insert(body, ball, mat);
     Ok((world, ball))
 }
@@ -53,7 +60,10 @@ fn step(world: &mut CreepWorld, plugin: bool) -> Result<(), PluginError> {
 fn energy(world: &CreepWorld, ball: RigidBodyHandle, rest: f32) -> f64 {
     let b = &world.physics.bodies[ball];
     let i = f64::from(b.mass_properties().local_mprops.principal_inertia().z);
-    let (v, w) = (f64::from(b.linvel().length()), f64::from(b.angvel().length()));
+    let (v, w) = (
+        f64::from(b.linvel().length()),
+        f64::from(b.angvel().length()),
+    );
     let m = f64::from(b.mass());
     0.5 * m * v * v + 0.5 * i * w * w + m * 9.81 * f64::from(b.translation().y - rest)
 }
@@ -77,7 +87,9 @@ fn run(substeps: usize, plugin: bool) -> Result<(f64, f32, f32), PluginError> {
 }
 
 fn main() -> Result<(), PluginError> {
-    println!("10 m/s steel ball, 1/60 s, 10 s on a half-space: energy lost, largest rise, largest sink");
+    println!(
+        "10 m/s steel ball, 1/60 s, 10 s on a half-space: energy lost, largest rise, largest sink"
+    );
     let mut one = (0.0, 0.0, 0.0);
     for (name, substeps, plugin) in [
         ("plain Rapier, 4 substeps", 4, false),
@@ -85,7 +97,11 @@ fn main() -> Result<(), PluginError> {
         ("plugin,       1 substep ", 1, true),
     ] {
         let (loss, rise, sink) = run(substeps, plugin)?;
-        println!("{name}: lost {loss:+.2e} of E0, rise {:.3} mm, sink {:.4} mm", 1e3 * rise, 1e3 * sink);
+        println!(
+            "{name}: lost {loss:+.2e} of E0, rise {:.3} mm, sink {:.4} mm",
+            1e3 * rise,
+            1e3 * sink
+        );
         one = (loss, rise, sink);
     }
     let (loss, _, sink) = one;
