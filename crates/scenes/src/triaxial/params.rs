@@ -178,7 +178,8 @@ pub const SERVO_RAYLEIGH_FRACTION: f64 = 0.2;
 #[serde(rename_all = "lowercase")]
 pub enum TriaxialEngine {
     /// creep-dem ([`super::DemSpecimen`]): f64, neighbour lists, the exact tangential tier;
-    /// the default (it agrees with the Rapier regime sheared from the same packing, README).
+    /// the default (it agrees with the Rapier regime sheared from the same packing: the user
+    /// guide, docs/guide, "The DEM engine and the talk's triaxial test").
     #[default]
     Dem,
     /// The compliant regime of creep-rapier ([`super::Specimen`]).
