@@ -67,9 +67,10 @@ pub struct TriaxialArgs {
     #[arg(long, value_name = "DIR", conflicts_with_all = ["quick", "config", "engine", "shear_rayleigh_fraction"])]
     resume: Option<PathBuf>,
     /// Testing: stop as Ctrl-C would (checkpoint, then exit with an error) at the first step
-    /// boundary at or after engine step N.
-    #[arg(long, value_name = "N", hide = true)]
-    stop_at_step: Option<u64>,
+    /// boundary of PHASE (compaction, shear_coulomb or shear_creep) at or after engine step N
+    /// (each shear's engine counts on from the compaction's last step).
+    #[arg(long, value_name = "PHASE:N", hide = true)]
+    stop_at: Option<String>,
 }
 
 /// The checkpoint's file name in the output directory.
@@ -306,7 +307,24 @@ fn run_dem(
     let dump_dir = args.dump.clone();
     let dump_every = args.dump_every;
     let every = args.checkpoint_every;
-    let stop_at = args.stop_at_step;
+    let stop_at = match &args.stop_at {
+        None => None,
+        Some(text) => {
+            let parsed = text.split_once(':').and_then(|(phase, n)| {
+                let phase = [
+                    Phase::Compaction,
+                    Phase::Shear { creep: false },
+                    Phase::Shear { creep: true },
+                ]
+                .into_iter()
+                .find(|p| p.name() == phase)?;
+                Some((phase, n.parse::<u64>().ok()?))
+            });
+            Some(parsed.ok_or_else(|| {
+                format!("--stop-at {text}: expected PHASE:STEP, PHASE one of compaction, shear_coulomb, shear_creep")
+            })?)
+        }
+    };
     let mut bars: Option<(Phase, indicatif::ProgressBar)> = None;
     let mut progress = |phase: Phase, f: f64| {
         if bars.as_ref().map(|b| b.0) != Some(phase) {
@@ -338,7 +356,7 @@ fn run_dem(
         }
         let steps = dem.steps();
         if INTERRUPTED.load(std::sync::atomic::Ordering::SeqCst)
-            || stop_at.is_some_and(|s| steps >= s)
+            || stop_at.is_some_and(|(p, s)| p == phase && steps >= s)
         {
             return Ok(Boundary::Stop);
         }
@@ -634,7 +652,7 @@ mod tests {
             dump_every: 1000,
             checkpoint_every: None,
             resume: None,
-            stop_at_step: None,
+            stop_at: None,
         }
     }
 

@@ -78,8 +78,8 @@ fn a_stopped_quick_run_resumes_to_the_same_bits() {
     assert!(!straight.join("checkpoint.ckpt").exists());
 
     // Stopped as Ctrl-C stops (the checkpoint at the next step boundary) in the compaction,
-    // then in the creep shear, then run to the end. The shears' engines count on from the
-    // compaction's steps; each shear adds one step at rest.
+    // then in the creep shear, then run to the end. Each shear's engine counts on from the
+    // compaction's steps.
     let b = dir("stopped");
     let bs = b.to_str().unwrap();
     let o = run(&[
@@ -87,19 +87,18 @@ fn a_stopped_quick_run_resumes_to_the_same_bits() {
         "--quick",
         "--out",
         bs,
-        "--stop-at-step",
-        &(compaction / 2).to_string(),
+        "--stop-at",
+        &format!("compaction:{}", compaction / 2),
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("--resume"), "{}", text(&o));
     assert!(b.join("checkpoint.ckpt").is_file());
-    let in_creep_shear = compaction + 2 * (shear + 1) - shear / 2;
     let o = run(&[
         "triaxial",
         "--resume",
         bs,
-        "--stop-at-step",
-        &in_creep_shear.to_string(),
+        "--stop-at",
+        &format!("shear_creep:{}", compaction + shear / 2),
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("shear_creep"), "{}", text(&o));
@@ -204,7 +203,14 @@ fn foreign_or_damaged_checkpoints_are_errors() {
     assert!(text(&o).contains("not a creep checkpoint"), "{}", text(&o));
 
     // A real checkpoint, then cut short and with a flipped byte.
-    let o = run(&["triaxial", "--quick", "--out", es, "--stop-at-step", "50"]);
+    let o = run(&[
+        "triaxial",
+        "--quick",
+        "--out",
+        es,
+        "--stop-at",
+        "compaction:50",
+    ]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     let good = std::fs::read(&ckpt).unwrap();
     std::fs::write(&ckpt, &good[..good.len() / 2]).unwrap();

@@ -442,10 +442,16 @@ impl Snapshots {
         self.written.iter().map(|w| w.0)
     }
 
-    /// Writes a snapshot if the engine's step count is a multiple of the interval (and none
-    /// was written at this step); returns whether it wrote one.
+    /// Writes a snapshot unless one was written in the same interval of steps (`steps /
+    /// every`), so that callers that step by more than one step at a time still write one per
+    /// interval; the first call always writes. Returns whether it wrote one.
     pub fn maybe_write<T: TangentialLaw>(&mut self, dem: &Dem<T>) -> Result<bool, DumpError> {
-        if dem.steps() % self.every != 0 || self.written.last().map(|w| w.0) == Some(dem.steps()) {
+        let block = dem.steps() / self.every;
+        if self
+            .written
+            .last()
+            .is_some_and(|w| w.0 / self.every == block)
+        {
             return Ok(false);
         }
         self.write(dem)?;
@@ -729,8 +735,9 @@ mod tests {
         assert!(c.column("fn").unwrap().iter().any(|&x| x > 0.0));
     }
 
-    /// The snapshot writer writes the dumps, the .vtp files and the .pvd collections, every
-    /// `every` steps only; a zero interval is refused.
+    /// The snapshot writer writes the dumps, the .vtp files and the .pvd collections, once per
+    /// interval of `every` steps (the first call always), also when stepped several steps at
+    /// a time; a zero interval is refused.
     #[test]
     fn snapshots_write_the_series() {
         let mut dem = heap();
@@ -747,6 +754,16 @@ mod tests {
         }
         let steps: Vec<u64> = snaps.written().collect();
         assert_eq!(steps, vec![8000, 8010, 8020]);
+        // Three steps at a time: the first step of each interval of 10 reached.
+        let mut coarse = Snapshots::new(dir.join("coarse"), 10).unwrap();
+        for _ in 0..8 {
+            coarse.maybe_write(&dem).unwrap();
+            for _ in 0..3 {
+                dem.step().unwrap();
+            }
+        }
+        let steps: Vec<u64> = coarse.written().collect();
+        assert_eq!(steps, vec![8025, 8031, 8040]);
         for s in &steps {
             for f in ["particles", "contacts"] {
                 for ext in ["dump", "vtp"] {
