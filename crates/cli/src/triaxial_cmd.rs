@@ -361,7 +361,7 @@ fn run_dem(
             return Ok(Boundary::Stop);
         }
         Ok(match every {
-            Some(k) if steps % k == 0 => Boundary::Checkpoint,
+            Some(k) if steps.is_multiple_of(k) => Boundary::Checkpoint,
             _ => Boundary::Continue,
         })
     };

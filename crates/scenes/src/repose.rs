@@ -544,12 +544,15 @@ pub fn run(p: &ReposeParams, progress: &mut dyn FnMut(f64)) -> Result<ReposeRun,
     run_observed(p, progress, &mut |_, _| Ok(()))
 }
 
+/// What [`run_observed`] calls with the engine (and whether the pile has settled).
+pub type ReposeObserver<'a> = dyn FnMut(&Dem<Cheap>, bool) -> Result<(), SceneError> + 'a;
+
 /// [`run`], calling `observe(engine, false)` before the first step and after every step, and
 /// `observe(engine, true)` once more with the settled pile (e.g. to write snapshots).
 pub fn run_observed(
     p: &ReposeParams,
     progress: &mut dyn FnMut(f64),
-    observe: &mut dyn FnMut(&Dem<Cheap>, bool) -> Result<(), SceneError>,
+    observe: &mut ReposeObserver<'_>,
 ) -> Result<ReposeRun, SceneError> {
     let (mut dem, mut fixed) = build(p)?;
     observe(&dem, false)?;

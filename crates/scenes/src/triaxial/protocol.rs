@@ -148,7 +148,7 @@ impl CompactLoop {
         } else {
             self.settled_for = 0;
         }
-        if i % 200 == 0 {
+        if i.is_multiple_of(200) {
             let est = (p_walls / p0).clamp(0.0, 1.0) * 0.9 + 0.1 * self.settled_for as f64 / 200.0;
             progress(est);
         }
@@ -298,7 +298,7 @@ impl ShearLoop {
         let st = s.wall_stress();
         let eps_a = (h0 - st.dims[1]) / h0;
         let last = i == self.total_steps || eps_a >= params.axial_strain;
-        if i % self.record_every == 0 || last {
+        if i.is_multiple_of(self.record_every) || last {
             let row = row(s, &s.stress(), eps_a, self.v0, self.solids);
             if eps_a > 0.01 {
                 let dp = (row.p_contacts / row.p - 1.0).abs();

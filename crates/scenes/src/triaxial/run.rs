@@ -92,15 +92,20 @@ pub enum Outcome {
     },
 }
 
+/// [`RunHooks::boundary`]'s type.
+pub type BoundaryHook<'a> = dyn FnMut(Phase, &Dem<Exact>) -> Result<Boundary, RunError> + 'a;
+/// [`RunHooks::phase_done`]'s type.
+pub type PhaseDoneHook<'a> = dyn FnMut(Phase, &Dem<Exact>, &DemRun) -> Result<(), RunError> + 'a;
+
 /// The callbacks of [`DemRun::run`].
 pub struct RunHooks<'a> {
     /// Progress of a phase, `[0, 1]`.
     pub progress: &'a mut dyn FnMut(Phase, f64),
     /// At every step boundary (and once more when a phase ends), with the engine: what to do
     /// (e.g. write a snapshot, ask for a checkpoint every so many steps or on Ctrl-C).
-    pub boundary: &'a mut dyn FnMut(Phase, &Dem<Exact>) -> Result<Boundary, RunError>,
+    pub boundary: &'a mut BoundaryHook<'a>,
     /// When a phase ends, with the engine as it ended and the run (its results so far).
-    pub phase_done: &'a mut dyn FnMut(Phase, &Dem<Exact>, &DemRun) -> Result<(), RunError>,
+    pub phase_done: &'a mut PhaseDoneHook<'a>,
     /// `[wall, cpu]` seconds now on some clock (differences are added to [`DemRun::seconds`]).
     pub clock: &'a mut dyn FnMut() -> [f64; 2],
     /// Where [`Boundary::Checkpoint`] and [`Boundary::Stop`] write.
@@ -110,7 +115,7 @@ pub struct RunHooks<'a> {
 enum Stage {
     Compacting {
         spec: Box<DemSpecimen>,
-        lp: CompactLoop,
+        lp: Box<CompactLoop>,
     },
     Shearing {
         compacted: Box<DemSpecimen>,
@@ -154,7 +159,7 @@ impl DemRun {
             max_compaction_steps,
             stage: Stage::Compacting {
                 spec: Box::new(spec),
-                lp,
+                lp: Box::new(lp),
             },
             compaction: None,
             shears: Vec::new(),
@@ -389,11 +394,11 @@ impl DemRun {
                 let spec = DemSpecimen::read_checkpoint(&mut r, p, frictionless()?)?;
                 Stage::Compacting {
                     spec: Box::new(spec),
-                    lp: CompactLoop {
+                    lp: Box::new(CompactLoop {
                         i,
                         settled_for,
                         last,
-                    },
+                    }),
                 }
             }
             1 => {
