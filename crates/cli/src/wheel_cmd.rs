@@ -352,3 +352,51 @@ fn write_out(dir: &Path, drives: &[Drive], single: bool) -> Res {
     )?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The drives with snapshots give the sweep's results, bit for bit, and write a series of
+    /// dumps per drive that read back with every grain.
+    #[test]
+    fn drives_with_dumps_are_the_sweeps() {
+        let mut s = WheelOnSand::with_grains(2000).unwrap();
+        s.settle_steps = 300;
+        s.sink_steps = 3;
+        s.drive_steps = 6;
+        let models = [Some(CreepModel::Kuhn)];
+        let slips = [0.2];
+        let plain = sweep::<Cheap>(&s, &slips, &models, 1, |_| {}).unwrap();
+        let dir = std::env::temp_dir().join(format!("creep-wheel-dump-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let dumped = sweep_with_dumps(&s, &slips, &models, &dir, 50, |_| {}).unwrap();
+        assert_eq!(plain.len(), 1);
+        assert_eq!(plain[0].rows, dumped[0].rows);
+        let (a, b) = (&plain[0].steady, &dumped[0].steady);
+        assert_eq!(
+            (a.sinkage, a.drawbar_pull, a.torque, a.travel),
+            (b.sinkage, b.drawbar_pull, b.torque, b.travel)
+        );
+        let drive = dir.join("creep_slip0.2");
+        let mut dumps: Vec<_> = std::fs::read_dir(&drive)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| {
+                let name = p.file_name().unwrap().to_string_lossy().to_string();
+                name.starts_with("particles.") && name.ends_with(".dump")
+            })
+            .collect();
+        dumps.sort();
+        // 6 game steps of 20 DEM steps, one snapshot per 50 steps, the start and the end.
+        assert!(dumps.len() >= 3, "{dumps:?}");
+        let text = std::fs::read_to_string(dumps.last().unwrap()).unwrap();
+        let frames = creep_dem::dump::read_dump(&text).unwrap();
+        let mut ids = frames[0].column("id").unwrap();
+        ids.sort_by(f64::total_cmp);
+        let n = ids.len();
+        assert!(n >= 2000, "{n} grains");
+        assert!(ids.iter().enumerate().all(|(k, &id)| id == (k + 1) as f64));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
