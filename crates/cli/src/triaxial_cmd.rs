@@ -287,6 +287,7 @@ fn run_dem(
     n: usize,
     out: &mut dyn Write,
 ) -> Res {
+    let resuming = resumed.is_some();
     let mut run = match resumed {
         Some(run) => {
             writeln!(
@@ -346,6 +347,7 @@ fn run_dem(
             let mut snaps = snaps.borrow_mut();
             if snaps.as_ref().map(|s| s.0) != Some(phase) {
                 let s = Snapshots::new(root.join(phase.name()), dump_every)
+                    .and_then(|s| if resuming { s.adopt_existing() } else { Ok(s) })
                     .map_err(|e| SceneError::Parameter(format!("--dump: {e}")))?;
                 *snaps = Some((phase, s));
             }
@@ -361,7 +363,7 @@ fn run_dem(
             return Ok(Boundary::Stop);
         }
         Ok(match every {
-            Some(k) if steps.is_multiple_of(k) => Boundary::Checkpoint,
+            Some(k) if steps > 0 && steps.is_multiple_of(k) => Boundary::Checkpoint,
             _ => Boundary::Continue,
         })
     };

@@ -432,12 +432,51 @@ impl Snapshots {
         self
     }
 
+    /// Takes the snapshots already in the directory (this prefix's `particles.<step>.dump`,
+    /// with their `ITEM: TIME`) into the series, so that the `.pvd` collections list them too
+    /// and an interval that has one is not written again: for a run resumed from a checkpoint
+    /// (its frames are the same bits as the stopped run's).
+    pub fn adopt_existing(mut self) -> Result<Self, DumpError> {
+        let io = |source| DumpError::Io {
+            path: self.dir.clone(),
+            source,
+        };
+        let head = format!("{}particles.", self.prefix);
+        for entry in std::fs::read_dir(&self.dir).map_err(io)? {
+            let name = entry.map_err(io)?.file_name();
+            let name = name.to_string_lossy();
+            let Some(step) = name
+                .strip_prefix(&head)
+                .and_then(|r| r.strip_suffix(".dump"))
+                .and_then(|r| r.parse::<u64>().ok())
+            else {
+                continue;
+            };
+            let path = self.dir.join(name.as_ref());
+            let text = std::fs::read_to_string(&path).map_err(|source| DumpError::Io {
+                path: path.clone(),
+                source,
+            })?;
+            // The header only: up to the count.
+            let cut = text.find("ITEM: NUMBER OF").unwrap_or(text.len());
+            let time = text[..cut]
+                .split_once("ITEM: TIME\n")
+                .and_then(|(_, t)| t.lines().next()?.trim().parse::<f64>().ok())
+                .unwrap_or(f64::NAN);
+            if !self.written.iter().any(|w| w.0 == step) {
+                self.written.push((step, time));
+            }
+        }
+        self.written.sort_by_key(|w| w.0);
+        Ok(self)
+    }
+
     /// The directory.
     pub fn dir(&self) -> &Path {
         &self.dir
     }
 
-    /// The steps written so far.
+    /// The steps of the series so far, ascending.
     pub fn written(&self) -> impl Iterator<Item = u64> + '_ {
         self.written.iter().map(|w| w.0)
     }
@@ -447,11 +486,7 @@ impl Snapshots {
     /// interval; the first call always writes. Returns whether it wrote one.
     pub fn maybe_write<T: TangentialLaw>(&mut self, dem: &Dem<T>) -> Result<bool, DumpError> {
         let block = dem.steps() / self.every;
-        if self
-            .written
-            .last()
-            .is_some_and(|w| w.0 / self.every == block)
-        {
+        if self.written.iter().any(|w| w.0 / self.every == block) {
             return Ok(false);
         }
         self.write(dem)?;
@@ -471,6 +506,7 @@ impl Snapshots {
         })?;
         self.written.retain(|w| w.0 != step);
         self.written.push((step, dem.time()));
+        self.written.sort_by_key(|w| w.0);
         if self.vtk {
             self.file(&name("particles", "vtp"), |w| {
                 dem.write_particle_vtp(&counts, w)
@@ -775,6 +811,9 @@ mod tests {
         }
         let coarse_steps: Vec<u64> = coarse.written().collect();
         assert_eq!(coarse_steps, vec![8025, 8031, 8040]);
+        // A resumed writer takes the series over, times and all.
+        let adopted = Snapshots::new(&dir, 10).unwrap().adopt_existing().unwrap();
+        assert_eq!(adopted.written, snaps.written);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
