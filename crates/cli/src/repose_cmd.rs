@@ -7,6 +7,8 @@
 use std::io::Write;
 use std::path::PathBuf;
 
+use creep_dem::dump::Snapshots;
+use creep_scenes::SceneError;
 use creep_scenes::repose::{self, ReposeParams};
 
 use crate::output::{Csv, create_dir};
@@ -36,6 +38,14 @@ pub struct ReposeArgs {
     /// Directory for `repose.csv`, `repose_profiles.csv` and the plot `repose.svg`/`.png`.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Write snapshots into DIR, one subdirectory per case (e.g. `mu0.5_creep_rolling0.1`):
+    /// LAMMPS-style text dumps of the particles and contacts (OVITO, ParaView) and VTK .vtp
+    /// files with .pvd series (ParaView). The base's fixed grains are particles of type 1 too.
+    #[arg(long, value_name = "DIR")]
+    dump: Option<PathBuf>,
+    /// Steps between two snapshots (with --dump); the settled pile's state is written too.
+    #[arg(long, value_name = "N", default_value_t = 2000, requires = "dump")]
+    dump_every: u64,
 }
 
 /// Why the arguments were refused.
@@ -83,7 +93,26 @@ pub fn run(a: &ReposeArgs, out: &mut dyn Write) -> Res {
     writeln!(out, "{}", header.join(","))?;
     let mut runs = Vec::new();
     for c in &cases {
-        let r = repose::run(c, &mut |_| {})?;
+        let r = match &a.dump {
+            None => repose::run(c, &mut |_| {})?,
+            Some(root) => {
+                let mut name = format!("mu{}_{}", c.mu, if c.creep { "creep" } else { "coulomb" });
+                if let Some(r) = c.rolling {
+                    name += &format!("_rolling{r}");
+                }
+                let mut snaps = Snapshots::new(root.join(name), a.dump_every)?;
+                repose::run_observed(c, &mut |_| {}, &mut |dem, settled| {
+                    let done = snaps.written().last() == Some(dem.steps());
+                    let r = if settled && !done {
+                        snaps.write(dem).map(|()| true)
+                    } else {
+                        snaps.maybe_write(dem)
+                    };
+                    r.map(|_| ())
+                        .map_err(|e| SceneError::Parameter(format!("--dump: {e}")))
+                })?
+            }
+        };
         let (mu, rolling, creep) = (format!("{}", c.mu), field(c.rolling), c.creep);
         let angle = format!("{:.2}", r.angle_deg);
         let corr = field(r.correlation_deg);

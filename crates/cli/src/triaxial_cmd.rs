@@ -7,9 +7,13 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use creep_dem::dump::Snapshots;
+use creep_dem::{Dem, Exact};
+use creep_scenes::SceneError;
 use creep_scenes::triaxial::{
-    CSV_HEADER, CompactionSummary, DemSpecimen, GENERATOR, ShearRun, ShearSummary, Specimen,
-    TriaxialConfig, TriaxialEngine, TriaxialParams, compact, compact_dem, shear, shear_dem,
+    Boundary, CSV_HEADER, CompactionSummary, DemRun, GENERATOR, Outcome, Phase, RunError, RunHooks,
+    ShearRun, ShearSummary, Specimen, TriaxialConfig, TriaxialEngine, TriaxialParams, compact,
+    shear,
 };
 
 use crate::output::{self, Csv, create_dir};
@@ -44,44 +48,46 @@ pub struct TriaxialArgs {
     /// `rayleigh_fraction`: docs/results/triaxial-timestep).
     #[arg(long)]
     shear_rayleigh_fraction: Option<f64>,
+    /// Write snapshots into DIR: LAMMPS-style text dumps of the particles and of the contacts
+    /// (OVITO, ParaView) and VTK .vtp files with .pvd series (ParaView), one subdirectory per
+    /// phase (compaction, shear_coulomb, shear_creep). dem engine only.
+    #[arg(long, value_name = "DIR")]
+    dump: Option<PathBuf>,
+    /// Steps between two snapshots (with --dump); each phase's last state is written too.
+    #[arg(long, value_name = "N", default_value_t = 1000, requires = "dump")]
+    dump_every: u64,
+    /// Write a checkpoint (OUT/checkpoint.ckpt) every N steps, from which `--resume OUT`
+    /// continues the run to the same results, bit for bit; one is always written on Ctrl-C.
+    /// dem engine only.
+    #[arg(long, value_name = "N")]
+    checkpoint_every: Option<u64>,
+    /// Continue the run stopped in DIR (its checkpoint.ckpt: the parameters, the phase, the
+    /// engines with every contact history, the servo state, the rows so far); the results go to
+    /// DIR.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["quick", "config", "engine", "shear_rayleigh_fraction"])]
+    resume: Option<PathBuf>,
+    /// Testing: stop as Ctrl-C would (checkpoint, then exit with an error) at the first step
+    /// boundary of PHASE (compaction, shear_coulomb or shear_creep) at or after engine step N
+    /// (each shear's engine counts on from the compaction's last step).
+    #[arg(long, value_name = "PHASE:N", hide = true)]
+    stop_at: Option<String>,
 }
 
-/// A compacted specimen on either engine.
-enum Compacted {
-    Dem(Box<DemSpecimen>),
-    Rapier(Box<Specimen>),
-}
+/// The checkpoint's file name in the output directory.
+pub const CHECKPOINT: &str = "checkpoint.ckpt";
 
-impl Compacted {
-    fn compact(
-        engine: TriaxialEngine,
-        params: TriaxialParams,
-        progress: &mut dyn FnMut(f64),
-    ) -> Result<(Self, CompactionSummary), Box<dyn std::error::Error>> {
-        Ok(match engine {
-            TriaxialEngine::Dem => {
-                let mut s = DemSpecimen::generate(params)?;
-                let sum = compact_dem(&mut s, 2_000_000, progress)?;
-                (Self::Dem(Box::new(s)), sum)
-            }
-            TriaxialEngine::Rapier => {
-                let mut s = Specimen::generate(params)?;
-                let sum = compact(&mut s, 2_000_000, progress)?;
-                (Self::Rapier(Box::new(s)), sum)
-            }
-        })
-    }
+/// Set by the Ctrl-C handler: the run checkpoints and stops at the next step boundary.
+static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
-    fn shear(
-        &self,
-        creep: bool,
-        progress: &mut dyn FnMut(f64),
-    ) -> Result<ShearRun, Box<dyn std::error::Error>> {
-        Ok(match self {
-            Self::Dem(s) => shear_dem(s, creep, progress)?,
-            Self::Rapier(s) => shear(s, creep, progress)?,
-        })
-    }
+/// Installs the Ctrl-C handler once per process.
+fn catch_ctrl_c() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // Without a handler (another one installed first) Ctrl-C ends the process as usual.
+        let _ = ctrlc::set_handler(|| {
+            INTERRUPTED.store(true, std::sync::atomic::Ordering::SeqCst);
+        });
+    });
 }
 
 /// The configuration a run uses: the file (or the built-in defaults), then the flags
@@ -126,14 +132,52 @@ fn params_file(cfg: &TriaxialConfig) -> Result<String, Box<dyn std::error::Error
 
 /// Runs the test.
 pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
-    let cfg = config(args)?;
+    let (cfg, resumed, dir) = match &args.resume {
+        Some(dir) => {
+            let path = dir.join(CHECKPOINT);
+            if !path.is_file() {
+                return Err(format!(
+                    "--resume {}: no {CHECKPOINT} there (a finished run removes it)",
+                    dir.display()
+                )
+                .into());
+            }
+            let run = DemRun::load(&path)?;
+            (*run.config(), Some(run), dir.clone())
+        }
+        None => (config(args)?, None, args.out.clone()),
+    };
     let (engine, params) = (cfg.engine, cfg.params);
-    create_dir(&args.out)?;
+    if engine != TriaxialEngine::Dem && (args.dump.is_some() || args.checkpoint_every.is_some()) {
+        return Err("--dump and --checkpoint-every need the dem engine".into());
+    }
+    if args.checkpoint_every == Some(0) {
+        return Err("--checkpoint-every must be at least 1 step".into());
+    }
+    create_dir(&dir)?;
     // The parameters first: a run stopped half-way can still be repeated.
-    output::write(&args.out.join("params.toml"), &params_file(&cfg)?)?;
+    output::write(&dir.join("params.toml"), &params_file(&cfg)?)?;
+    let n = params.n_per_side.pow(3);
+    let header = header(engine, &params);
+    writeln!(out, "{header}")?;
+    if args.quick {
+        writeln!(
+            out,
+            "--quick: a smoke test (inertial number above the quasi-static 1e-3), not a result"
+        )?;
+    }
+    let lines = vec![header.clone(), String::new()];
+    match engine {
+        TriaxialEngine::Dem => run_dem(args, &cfg, resumed, &dir, lines, n, out),
+        TriaxialEngine::Rapier => run_rapier(params, &dir, lines, n, out),
+    }
+}
+
+/// The header of the summary.
+fn header(engine: TriaxialEngine, params: &TriaxialParams) -> String {
     let n = params.n_per_side.pow(3);
     let m = params.material;
-    let header = format!(
+    format!(
         "Drained triaxial compression, engine {} ({}), Coulomb-Mindlin vs creep-friction\n\
          {n} spheres, radius uniform in [{:.3e}, {:.3e}] m; G = {:.3e} Pa, nu = {}, rho = {} kg/m^3, mu = {}, e = {}\n\
          confining pressure {:.3e} Pa; axial strain rate {:.4} 1/s (inertial number {:.1e}) to {} % strain; dt = {:.3e} s ({} T_R) in the compaction, {:.3e} s ({} T_R) in the shears\n\
@@ -159,59 +203,246 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
         params.shear_time_step(),
         params.shear_rayleigh_fraction,
         params.seed,
-    );
-    writeln!(out, "{header}")?;
-    if args.quick {
-        writeln!(
-            out,
-            "--quick: a smoke test (inertial number above the quasi-static 1e-3), not a result"
-        )?;
-    }
+    )
+}
 
-    let t0 = Instant::now();
-    let c0 = cpu_seconds();
-    let pb = bar(1000, "isotropic compaction");
-    let (specimen, summary) = Compacted::compact(engine, params, &mut |f| {
-        pb.set_position((f * 1000.0) as u64)
-    })?;
-    pb.finish();
-    let t_compact = t0.elapsed().as_secs_f64();
-    let cpu_compact = cpu_since(c0);
-    let mut lines = vec![header.clone(), String::new()];
-    lines.push(format!(
-        "Compaction (frictionless): {} steps in {t_compact:.1} s ({:.3e} particle-steps/s; CPU {}{}); solid fraction {:.4}, coordination {:.2}; p from walls {:.4e} Pa, from contacts {:.4e} Pa ({:+.2} %)",
+/// The line of the compaction's summary.
+fn compaction_line(summary: &CompactionSummary, secs: f64, cpu: Option<f64>, n: usize) -> String {
+    format!(
+        "Compaction (frictionless): {} steps in {secs:.1} s ({:.3e} particle-steps/s; CPU {}{}); solid fraction {:.4}, coordination {:.2}; p from walls {:.4e} Pa, from contacts {:.4e} Pa ({:+.2} %)",
         summary.steps,
-        n as f64 * summary.steps as f64 / t_compact,
-        cpu_text(cpu_compact),
+        n as f64 * summary.steps as f64 / secs,
+        cpu_text(cpu),
         rebuilds_text(summary.rebuilds),
         summary.solid_fraction,
         summary.coordination,
         summary.p_walls,
         summary.p_contacts,
         (summary.p_contacts / summary.p_walls - 1.0) * 100.0
+    )
+}
+
+/// The test on the Rapier compliant regime (no snapshots, no checkpoints).
+fn run_rapier(
+    params: TriaxialParams,
+    dir: &Path,
+    mut lines: Vec<String>,
+    n: usize,
+    out: &mut dyn Write,
+) -> Res {
+    let t0 = Instant::now();
+    let c0 = cpu_seconds();
+    let pb = bar(1000, "isotropic compaction");
+    let mut s = Specimen::generate(params)?;
+    let summary = compact(&mut s, 2_000_000, &mut |f| {
+        pb.set_position((f * 1000.0) as u64)
+    })?;
+    pb.finish();
+    lines.push(compaction_line(
+        &summary,
+        t0.elapsed().as_secs_f64(),
+        cpu_since(c0),
+        n,
     ));
     writeln!(out, "{}", lines.last().unwrap_or(&String::new()))?;
-
     let mut runs: Vec<(ShearRun, f64)> = Vec::new();
     let mut cpus: Vec<Option<f64>> = Vec::new();
     for creep in [false, true] {
-        let label = if creep {
-            "shear, creep-friction"
-        } else {
-            "shear, Coulomb-Mindlin"
-        };
-        let pb = bar(1000, label);
+        let pb = bar(1000, shear_label(creep));
         let t = Instant::now();
         let c = cpu_seconds();
-        let run = specimen.shear(creep, &mut |f| pb.set_position((f * 1000.0) as u64))?;
+        let run = shear(&s, creep, &mut |f| pb.set_position((f * 1000.0) as u64))?;
         pb.finish();
         let secs = t.elapsed().as_secs_f64();
         cpus.push(cpu_since(c));
-        let name = if creep { "creep" } else { "coulomb" };
-        write_csv(&args.out.join(format!("triaxial_{name}.csv")), &run.rows)?;
+        write_csv(&dir.join(csv_name(creep)), &run.rows)?;
         runs.push((run, secs));
     }
+    report(dir, lines, &runs, &cpus, n, out)
+}
 
+fn shear_label(creep: bool) -> &'static str {
+    if creep {
+        "shear, creep-friction"
+    } else {
+        "shear, Coulomb-Mindlin"
+    }
+}
+
+fn csv_name(creep: bool) -> &'static str {
+    if creep {
+        "triaxial_creep.csv"
+    } else {
+        "triaxial_coulomb.csv"
+    }
+}
+
+/// The test on creep-dem as one resumable run ([`DemRun`]): snapshots, checkpoints, Ctrl-C.
+fn run_dem(
+    args: &TriaxialArgs,
+    cfg: &TriaxialConfig,
+    resumed: Option<DemRun>,
+    dir: &Path,
+    mut lines: Vec<String>,
+    n: usize,
+    out: &mut dyn Write,
+) -> Res {
+    let resuming = resumed.is_some();
+    let mut run = match resumed {
+        Some(run) => {
+            writeln!(
+                out,
+                "resuming from {} in the {} at step {}",
+                dir.join(CHECKPOINT).display(),
+                run.phase().map_or("finished run", |p| p.name()),
+                run.engine_steps()
+            )?;
+            run
+        }
+        None => DemRun::new(*cfg, 2_000_000)?,
+    };
+    catch_ctrl_c();
+    let checkpoint = dir.join(CHECKPOINT);
+    // Shared by the boundary (every snapshot) and the phase's end (its last state).
+    let snaps: std::cell::RefCell<Option<(Phase, Snapshots)>> = std::cell::RefCell::new(None);
+    let dump_dir = args.dump.clone();
+    let dump_every = args.dump_every;
+    let every = args.checkpoint_every;
+    let stop_at = match &args.stop_at {
+        None => None,
+        Some(text) => {
+            let parsed = text.split_once(':').and_then(|(phase, n)| {
+                let phase = [
+                    Phase::Compaction,
+                    Phase::Shear { creep: false },
+                    Phase::Shear { creep: true },
+                ]
+                .into_iter()
+                .find(|p| p.name() == phase)?;
+                Some((phase, n.parse::<u64>().ok()?))
+            });
+            Some(parsed.ok_or_else(|| {
+                format!("--stop-at {text}: expected PHASE:STEP, PHASE one of compaction, shear_coulomb, shear_creep")
+            })?)
+        }
+    };
+    let mut bars: Option<(Phase, indicatif::ProgressBar)> = None;
+    let mut progress = |phase: Phase, f: f64| {
+        if bars.as_ref().map(|b| b.0) != Some(phase) {
+            if let Some((_, pb)) = bars.take() {
+                pb.finish();
+            }
+            let label = match phase {
+                Phase::Compaction => "isotropic compaction",
+                Phase::Shear { creep } => shear_label(creep),
+            };
+            bars = Some((phase, bar(1000, label)));
+        }
+        if let Some((_, pb)) = &bars {
+            pb.set_position((f * 1000.0) as u64);
+        }
+    };
+    let mut boundary = |phase: Phase, dem: &Dem<Exact>| -> Result<Boundary, RunError> {
+        if let Some(root) = &dump_dir {
+            let mut snaps = snaps.borrow_mut();
+            if snaps.as_ref().map(|s| s.0) != Some(phase) {
+                let s = Snapshots::new(root.join(phase.name()), dump_every)
+                    .and_then(|s| if resuming { s.adopt_existing() } else { Ok(s) })
+                    .map_err(|e| SceneError::Parameter(format!("--dump: {e}")))?;
+                *snaps = Some((phase, s));
+            }
+            if let Some((_, s)) = snaps.as_mut() {
+                s.maybe_write(dem)
+                    .map_err(|e| SceneError::Parameter(format!("--dump: {e}")))?;
+            }
+        }
+        let steps = dem.steps();
+        if INTERRUPTED.load(std::sync::atomic::Ordering::SeqCst)
+            || stop_at.is_some_and(|(p, s)| p == phase && steps >= s)
+        {
+            return Ok(Boundary::Stop);
+        }
+        Ok(match every {
+            Some(k) if steps > 0 && steps.is_multiple_of(k) => Boundary::Checkpoint,
+            _ => Boundary::Continue,
+        })
+    };
+    let mut phase_done = |phase: Phase, dem: &Dem<Exact>, run: &DemRun| -> Result<(), RunError> {
+        if let Some((p, s)) = snaps.borrow_mut().as_mut()
+            && *p == phase
+            && s.written().last() != Some(dem.steps())
+        {
+            s.write(dem)
+                .map_err(|e| SceneError::Parameter(format!("--dump: {e}")))?;
+        }
+        if let Phase::Shear { creep } = phase
+            && let Some(r) = run.shears().last()
+        {
+            write_csv(&dir.join(csv_name(creep)), &r.rows)
+                .map_err(|e| SceneError::Parameter(e.to_string()))?;
+        }
+        Ok(())
+    };
+    let t0 = Instant::now();
+    let mut clock = || {
+        [
+            t0.elapsed().as_secs_f64(),
+            cpu_seconds().unwrap_or(f64::NAN),
+        ]
+    };
+    let outcome = run.run(&mut RunHooks {
+        progress: &mut progress,
+        boundary: &mut boundary,
+        phase_done: &mut phase_done,
+        clock: &mut clock,
+        checkpoint: Some(&checkpoint),
+    })?;
+    if let Some((_, pb)) = bars.take() {
+        pb.finish();
+    }
+    if let Outcome::Stopped { phase, steps } = outcome {
+        return Err(format!(
+            "stopped in the {} at step {steps}; the checkpoint is {}: `creep triaxial --resume {}` continues the run",
+            phase.name(),
+            checkpoint.display(),
+            dir.display()
+        )
+        .into());
+    }
+    let secs = run.seconds;
+    let cpu = |k: usize| Some(secs[k][1]).filter(|c| c.is_finite());
+    let summary = run
+        .compaction()
+        .ok_or("the run finished without a compaction")?;
+    lines.push(compaction_line(summary, secs[0][0], cpu(0), n));
+    writeln!(out, "{}", lines.last().unwrap_or(&String::new()))?;
+    let runs: Vec<(ShearRun, f64)> = run
+        .shears()
+        .iter()
+        .enumerate()
+        .map(|(k, r)| (r.clone(), secs[k + 1][0]))
+        .collect();
+    let cpus = vec![cpu(1), cpu(2)];
+    report(dir, lines, &runs, &cpus, n, out)?;
+    if checkpoint.is_file() {
+        std::fs::remove_file(&checkpoint)
+            .map_err(|e| format!("removing {}: {e}", checkpoint.display()))?;
+    }
+    Ok(())
+}
+
+/// The shears' table, SUMMARY.md and the plots.
+fn report(
+    dir: &Path,
+    mut lines: Vec<String>,
+    runs: &[(ShearRun, f64)],
+    cpus: &[Option<f64>],
+    n: usize,
+    out: &mut dyn Write,
+) -> Res {
+    if runs.len() != 2 || cpus.len() != 2 {
+        return Err("the report needs both shears".into());
+    }
     let sums: Vec<ShearSummary> = runs.iter().map(|(r, _)| r.summary()).collect();
     lines.push(String::new());
     lines.push("| | Coulomb-Mindlin | creep-friction |".into());
@@ -281,12 +512,12 @@ pub fn run(args: &TriaxialArgs, out: &mut dyn Write) -> Res {
     for l in &lines[lines.len() - 17..] {
         writeln!(out, "{l}")?;
     }
-    output::write(&args.out.join("SUMMARY.md"), &(lines.join("\n") + "\n"))?;
-    plots(&args.out, &runs)?;
+    output::write(&dir.join("SUMMARY.md"), &(lines.join("\n") + "\n"))?;
+    plots(dir, runs)?;
     writeln!(
         out,
         "wrote {}/{{triaxial_coulomb.csv, triaxial_creep.csv, SUMMARY.md, params.toml, triaxial_q_over_p.*, triaxial_volumetric.*, triaxial_contacts.*}}",
-        args.out.display()
+        dir.display()
     )?;
     Ok(())
 }
@@ -419,6 +650,11 @@ mod tests {
             config,
             engine: engine.map(String::from),
             shear_rayleigh_fraction: None,
+            dump: None,
+            dump_every: 1000,
+            checkpoint_every: None,
+            resume: None,
+            stop_at: None,
         }
     }
 

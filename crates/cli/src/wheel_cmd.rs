@@ -4,8 +4,9 @@
 //! settled once and the wheel landed once per model (`creep_bed::wheel`).
 
 use creep_dem::Cheap;
+use creep_dem::dump::Snapshots;
 use creep_law::CreepModel;
-use creep_scenes::bed::{Drive, Progress, WheelOnSand, WheelRow, WheelSteady, sweep};
+use creep_scenes::bed::{Drive, Progress, WheelOnSand, WheelRow, WheelSteady, settle, sweep};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -63,6 +64,16 @@ pub struct WheelArgs {
     /// Rounds of `--cost`.
     #[arg(long, default_value_t = 5)]
     rounds: usize,
+    /// Write snapshots of the grains into DIR, one subdirectory per drive (e.g.
+    /// `creep_slip0.2`): LAMMPS-style text dumps of the particles and contacts (OVITO,
+    /// ParaView) and VTK .vtp files with .pvd series (ParaView). The drives then run one after
+    /// another (`--jobs` is ignored); the results are the same.
+    #[arg(long, value_name = "DIR")]
+    dump: Option<PathBuf>,
+    /// DEM steps between two snapshots (with --dump; one per interval, checked after each game
+    /// step); the drive's last state is written too.
+    #[arg(long, value_name = "N", default_value_t = 1000, requires = "dump")]
+    dump_every: u64,
 }
 
 /// A bad argument of the command.
@@ -116,7 +127,7 @@ pub fn run(a: &WheelArgs, out: &mut dyn Write) -> Res {
         Contact::Both => vec![Some(CreepModel::Kuhn), None],
     };
     let clock = std::time::Instant::now();
-    let drives = sweep::<Cheap>(&s, &a.slip, &models, a.jobs, |p| match p {
+    let report = |p: Progress<'_>| match p {
         Progress::Settled(n, steps, surface) => eprintln!(
             "# settled {n} grains in {steps} DEM steps ({:.0} s); surface at {surface:.4e} m",
             clock.elapsed().as_secs_f64()
@@ -137,7 +148,11 @@ pub fn run(a: &WheelArgs, out: &mut dyn Write) -> Res {
             d.drift[2],
             d.seconds
         ),
-    })?;
+    };
+    let drives = match &a.dump {
+        None => sweep::<Cheap>(&s, &a.slip, &models, a.jobs, report)?,
+        Some(root) => sweep_with_dumps(&s, &a.slip, &models, root, a.dump_every, report)?,
+    };
 
     let single = drives.len() == 1;
     if single {
@@ -158,6 +173,48 @@ pub fn run(a: &WheelArgs, out: &mut dyn Write) -> Res {
         write_out(dir, &drives, single)?;
     }
     Ok(())
+}
+
+/// [`sweep`] one drive after another with snapshots of the bed's grains: the bed settled
+/// once, the wheel landed once per model, then each drive from a clone of the landed state
+/// (`Landed::drive`'s steps, so the same results as the sweep).
+fn sweep_with_dumps(
+    s: &WheelOnSand,
+    slips: &[f64],
+    models: &[Option<CreepModel>],
+    root: &Path,
+    every: u64,
+    report: impl Fn(Progress<'_>),
+) -> Result<Vec<Drive>, Box<dyn std::error::Error>> {
+    let settled = settle::<Cheap>(s)?;
+    report(Progress::Settled(
+        settled.grains(),
+        settled.settle_steps,
+        settled.surface,
+    ));
+    let mut out = Vec::new();
+    for &model in models {
+        let landed = settled.land(model)?;
+        report(Progress::Landed(landed.weight));
+        for &slip in slips {
+            let name = format!("{}_slip{slip}", label(model.is_some()));
+            let mut snaps = Snapshots::new(root.join(name), every)?;
+            let mut d = landed.start(slip)?;
+            snaps.maybe_write(d.bed().dem())?;
+            let mut rows = Vec::with_capacity(s.drive_steps);
+            for _ in 0..s.drive_steps {
+                rows.push(d.step()?);
+                snaps.maybe_write(d.bed().dem())?;
+            }
+            if snaps.written().last() != Some(d.bed().dem().steps()) {
+                snaps.write(d.bed().dem())?;
+            }
+            let steady = d.finish()?;
+            report(Progress::Drove(&steady));
+            out.push(Drive { steady, rows });
+        }
+    }
+    Ok(out)
 }
 
 const STEADY_HEADER: [&str; 14] = [
@@ -294,4 +351,52 @@ fn write_out(dir: &Path, drives: &[Drive], single: bool) -> Res {
         &|s| s.sinkage / s.radius,
     )?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The drives with snapshots give the sweep's results, bit for bit, and write a series of
+    /// dumps per drive that read back with every grain.
+    #[test]
+    fn drives_with_dumps_are_the_sweeps() {
+        let mut s = WheelOnSand::with_grains(2000).unwrap();
+        s.settle_steps = 300;
+        s.sink_steps = 3;
+        s.drive_steps = 6;
+        let models = [Some(CreepModel::Kuhn)];
+        let slips = [0.2];
+        let plain = sweep::<Cheap>(&s, &slips, &models, 1, |_| {}).unwrap();
+        let dir = std::env::temp_dir().join(format!("creep-wheel-dump-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let dumped = sweep_with_dumps(&s, &slips, &models, &dir, 50, |_| {}).unwrap();
+        assert_eq!(plain.len(), 1);
+        assert_eq!(plain[0].rows, dumped[0].rows);
+        let (a, b) = (&plain[0].steady, &dumped[0].steady);
+        assert_eq!(
+            (a.sinkage, a.drawbar_pull, a.torque, a.travel),
+            (b.sinkage, b.drawbar_pull, b.torque, b.travel)
+        );
+        let drive = dir.join("creep_slip0.2");
+        let mut dumps: Vec<_> = std::fs::read_dir(&drive)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| {
+                let name = p.file_name().unwrap().to_string_lossy().to_string();
+                name.starts_with("particles.") && name.ends_with(".dump")
+            })
+            .collect();
+        dumps.sort();
+        // 6 game steps of 20 DEM steps, one snapshot per 50 steps, the start and the end.
+        assert!(dumps.len() >= 3, "{dumps:?}");
+        let text = std::fs::read_to_string(dumps.last().unwrap()).unwrap();
+        let frames = creep_dem::dump::read_dump(&text).unwrap();
+        let mut ids = frames[0].column("id").unwrap();
+        ids.sort_by(f64::total_cmp);
+        let n = ids.len();
+        assert!(n >= 2000, "{n} grains");
+        assert!(ids.iter().enumerate().all(|(k, &id)| id == (k + 1) as f64));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

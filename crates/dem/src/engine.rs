@@ -1,7 +1,7 @@
 //! The engine's constructor (validation, arrays, first list and forces) and its accessors.
 
 use creep_law::Vec3;
-use creep_law::pair::TangentialLaw;
+use creep_law::pair::{ContactHistory, TangentialLaw};
 
 use crate::{Dem, DemConfig, DemCounts, DemEnergy, DemError, MaterialTable, Particle, Wall, grid};
 
@@ -297,5 +297,188 @@ impl<T: TangentialLaw> Dem<T> {
     /// The particle id at each position of the engine's order.
     pub fn ids(&self) -> &[u32] {
         &self.id
+    }
+    /// Angular velocities in the engine's order [rad/s].
+    pub fn angular_velocities(&self) -> &[Vec3] {
+        &self.w
+    }
+    /// Forces of the last evaluation in the engine's order \[N\].
+    pub fn particle_forces(&self) -> &[Vec3] {
+        &self.f
+    }
+    /// Position of particle `id` in the engine's order.
+    pub fn index_of(&self, id: usize) -> usize {
+        self.index[id] as usize
+    }
+}
+
+/// Checkpoints (`checkpoint`): the state out and back in. The lists are not stored: they are
+/// rebuilt from the positions of the last rebuild (module `checkpoint`), so only the histories
+/// are read from them, keyed by particle ids.
+impl<T: TangentialLaw> Dem<T> {
+    /// The state, with every non-virgin history keyed by ids.
+    pub(crate) fn raw_state(&self) -> crate::checkpoint::RawState<T> {
+        let mut pairs = Vec::new();
+        for i in 0..self.len() {
+            for k in self.nl_start[i] as usize..self.nl_start[i + 1] as usize {
+                if !self.nl_h[k].is_virgin() {
+                    let (a, b) = (self.id[i], self.id[self.nl_j[k] as usize]);
+                    pairs.push((a.min(b), a.max(b), self.nl_h[k]));
+                }
+            }
+        }
+        let wall_pairs = (0..self.wl_i.len())
+            .filter(|&e| !self.wl_h[e].is_virgin())
+            .map(|e| (self.wl_k[e], self.id[self.wl_i[e] as usize], self.wl_h[e]))
+            .collect();
+        crate::checkpoint::RawState {
+            id: self.id.clone(),
+            mat: self.mat.clone(),
+            r: self.r.clone(),
+            mass: self.mass.clone(),
+            inv_m: self.inv_m.clone(),
+            inv_i: self.inv_i.clone(),
+            x: self.x.clone(),
+            v: self.v.clone(),
+            w: self.w.clone(),
+            f: self.f.clone(),
+            t: self.t.clone(),
+            x_build: self.x_build.clone(),
+            walls: self.walls.clone(),
+            wall_build: self.wall_build.clone(),
+            wall_force: self.wall_force.clone(),
+            pairs,
+            wall_pairs,
+            energy: self.energy,
+            counts: self.counts,
+            time: self.time,
+            steps: self.steps,
+        }
+    }
+
+    /// The engine of a [`Dem::raw_state`]: the lists rebuilt at the positions of the last
+    /// rebuild (the particles are in that rebuild's cell order, which the stable sort keeps:
+    /// checked), the histories put back by ids, then the current state.
+    pub(crate) fn from_raw_state(
+        cfg: DemConfig,
+        table: MaterialTable,
+        s: crate::checkpoint::RawState<T>,
+    ) -> Result<Self, DemError> {
+        let n = s.id.len();
+        let bad = |why: &'static str| DemError::Parameter {
+            name: "checkpoint",
+            value: n as f64,
+            why,
+        };
+        let lens = [
+            s.mat.len(),
+            s.r.len(),
+            s.mass.len(),
+            s.inv_m.len(),
+            s.inv_i.len(),
+        ];
+        let vlens = [
+            s.x.len(),
+            s.v.len(),
+            s.w.len(),
+            s.f.len(),
+            s.t.len(),
+            s.x_build.len(),
+        ];
+        let nw = s.walls.len();
+        if lens.iter().chain(&vlens).any(|&l| l != n)
+            || s.wall_build.len() != nw
+            || s.wall_force.len() != nw
+        {
+            return Err(bad("arrays of different lengths"));
+        }
+        // The constructor checks the settings, materials and walls, and sizes everything.
+        let particles: Vec<Particle> = (0..n)
+            .map(|i| Particle {
+                position: s.x_build[i],
+                velocity: s.v[i],
+                angular_velocity: s.w[i],
+                radius: s.r[i],
+                material: s.mat[i] as usize,
+            })
+            .collect();
+        let build_walls: Vec<Wall> = s
+            .walls
+            .iter()
+            .zip(&s.wall_build)
+            .map(|(w, &p)| Wall { point: p, ..*w })
+            .collect();
+        let mut dem = Self::new(cfg, table, &particles, &build_walls)?;
+        let mut index = vec![u32::MAX; n];
+        for (i, &id) in s.id.iter().enumerate() {
+            match index.get_mut(id as usize) {
+                Some(slot) if *slot == u32::MAX => *slot = i as u32,
+                _ => return Err(bad("particle ids are not 0..n, each once")),
+            }
+        }
+        // The engine's order and arrays, with an old list holding the histories by ids.
+        dem.x = s.x_build.clone();
+        dem.x_build.clone_from(&s.x_build);
+        dem.id = s.id;
+        dem.index = index;
+        dem.mat = s.mat;
+        dem.r = s.r;
+        dem.mass = s.mass;
+        dem.inv_m = s.inv_m;
+        dem.inv_i = s.inv_i;
+        let mut rows: Vec<Vec<(u32, ContactHistory<T>)>> = vec![Vec::new(); n];
+        for (a, b, h) in s.pairs {
+            let (ia, ib) = (dem.index.get(a as usize), dem.index.get(b as usize));
+            let (Some(&ia), Some(&ib)) = (ia, ib) else {
+                return Err(bad("a contact names a particle that is not there"));
+            };
+            rows[ia as usize].push((ib, h));
+        }
+        dem.nl_start = vec![0];
+        dem.nl_j.clear();
+        dem.nl_h.clear();
+        for row in rows {
+            for (j, h) in row {
+                dem.nl_j.push(j);
+                dem.nl_h.push(h);
+            }
+            dem.nl_start.push(dem.nl_j.len() as u32);
+        }
+        dem.wl_k.clear();
+        dem.wl_i.clear();
+        dem.wl_h.clear();
+        for (k, id, h) in s.wall_pairs {
+            match dem.index.get(id as usize) {
+                Some(&i) if (k as usize) < nw => {
+                    dem.wl_k.push(k);
+                    dem.wl_i.push(i);
+                    dem.wl_h.push(h);
+                }
+                _ => {
+                    return Err(bad(
+                        "a wall contact names a wall or particle that is not there",
+                    ));
+                }
+            }
+        }
+        let order = dem.id.clone();
+        dem.rebuild();
+        if dem.id != order {
+            return Err(bad(
+                "the particles are not in the cell order of their last rebuild",
+            ));
+        }
+        dem.x = s.x;
+        dem.v = s.v;
+        dem.w = s.w;
+        dem.f = s.f;
+        dem.t = s.t;
+        dem.walls = s.walls;
+        dem.wall_force = s.wall_force;
+        dem.energy = s.energy;
+        dem.counts = s.counts;
+        dem.time = s.time;
+        dem.steps = s.steps;
+        Ok(dem)
     }
 }

@@ -37,7 +37,9 @@
 // Loops index several per-particle arrays at once (structure of arrays) on purpose.
 #![allow(clippy::needless_range_loop)]
 
+pub mod checkpoint;
 mod config;
+pub mod dump;
 mod engine;
 mod external;
 mod grid;

@@ -540,7 +540,21 @@ const CHECK_EVERY: usize = 200;
 /// Runs one pile: fill, release, settle, measure (module docs). `progress` gets the fraction
 /// of `max_time` done after each check.
 pub fn run(p: &ReposeParams, progress: &mut dyn FnMut(f64)) -> Result<ReposeRun, SceneError> {
+    run_observed(p, progress, &mut |_, _| Ok(()))
+}
+
+/// What [`run_observed`] calls with the engine (and whether the pile has settled).
+pub type ReposeObserver<'a> = dyn FnMut(&Dem<Cheap>, bool) -> Result<(), SceneError> + 'a;
+
+/// [`run`], calling `observe(engine, false)` before the first step and after every step, and
+/// `observe(engine, true)` once more with the settled pile (e.g. to write snapshots).
+pub fn run_observed(
+    p: &ReposeParams,
+    progress: &mut dyn FnMut(f64),
+    observe: &mut ReposeObserver<'_>,
+) -> Result<ReposeRun, SceneError> {
     let (mut dem, mut fixed) = build(p)?;
+    observe(&dem, false)?;
     let dt = dem.config().dt;
     // Close the gate (the column's grains fall 2 um meanwhile), fill, release: the gate
     // leaves past the end wall.
@@ -549,6 +563,7 @@ pub fn run(p: &ReposeParams, progress: &mut dyn FnMut(f64)) -> Result<ReposeRun,
     let fill_steps = (p.fill_time / dt).ceil() as usize;
     for _ in 0..fill_steps {
         dem.step_with(&mut fixed).map_err(dem_err)?;
+        observe(&dem, false)?;
     }
     move_gate(&mut dem, &mut fixed, open)?;
     let t0 = dem.time();
@@ -559,6 +574,7 @@ pub fn run(p: &ReposeParams, progress: &mut dyn FnMut(f64)) -> Result<ReposeRun,
     while dem.time() - t0 < p.max_time {
         for _ in 0..CHECK_EVERY {
             dem.step_with(&mut fixed).map_err(dem_err)?;
+            observe(&dem, false)?;
         }
         vmax = max_speed(&dem, &fixed);
         progress(((dem.time() - t0) / p.max_time).min(1.0));
@@ -572,6 +588,7 @@ pub fn run(p: &ReposeParams, progress: &mut dyn FnMut(f64)) -> Result<ReposeRun,
             calm = 0;
         }
     }
+    observe(&dem, true)?;
     let profile = surface_profile(&dem, &fixed, p)?;
     let grains = fixed.fixed.iter().filter(|f| !**f).count();
     Ok(ReposeRun {

@@ -4,6 +4,7 @@
 //! inner faces, frictionless), the same protocol ([`compact_dem`], [`shear_dem`]: the code of
 //! [`super::compact`] and [`super::shear`]) and the same measurements.
 
+use creep_dem::checkpoint::{CheckpointError, CheckpointReader, CheckpointWriter};
 use creep_dem::{ContactLoad, Dem, Exact, MaterialTable};
 use creep_law::pair::PairConstants;
 use creep_law::{CreepModel, Vec2, Vec3};
@@ -21,7 +22,7 @@ fn dem_err(e: creep_dem::DemError) -> SceneError {
 /// The material table of the test: balls (material 0) with friction `mu` and Kuhn's creep or
 /// none, walls (material 1) frictionless against the balls (Rapier's `Min` rule with the
 /// walls' 0 in the compliant regime).
-fn table(p: &TriaxialParams, mu: f64, creep: bool) -> Result<MaterialTable, SceneError> {
+pub(super) fn table(p: &TriaxialParams, mu: f64, creep: bool) -> Result<MaterialTable, SceneError> {
     let ball = p.material.with_friction(mu)?;
     let wall = p.material.with_friction(0.0)?;
     let model = creep.then_some(CreepModel::Kuhn);
@@ -84,6 +85,30 @@ impl DemSpecimen {
     /// The engine.
     pub fn engine(&self) -> &Dem<Exact> {
         &self.dem
+    }
+
+    /// Writes the specimen (engine, step count, energy reference) into a checkpoint payload.
+    pub(super) fn write_checkpoint(&self, w: &mut CheckpointWriter) {
+        self.dem.write_checkpoint(w);
+        w.usize(self.steps);
+        w.f64(self.energy0.0);
+        w.f64(self.energy0.1);
+    }
+
+    /// Reads a specimen written by [`DemSpecimen::write_checkpoint`], with the parameters and
+    /// the material table of its phase.
+    pub(super) fn read_checkpoint(
+        r: &mut CheckpointReader<'_>,
+        params: TriaxialParams,
+        table: MaterialTable,
+    ) -> Result<Self, CheckpointError> {
+        let dem = Dem::read_checkpoint(r, table, false)?;
+        Ok(Self {
+            dem,
+            params,
+            steps: r.usize()?,
+            energy0: (r.f64()?, r.f64()?),
+        })
     }
 
     /// The parameters.

@@ -49,6 +49,7 @@ mod dem;
 mod params;
 mod protocol;
 mod report;
+mod run;
 mod servo;
 mod specimen;
 mod stress;
@@ -60,5 +61,6 @@ pub use report::{
     CSV_HEADER, ShearSummary, TriaxialRow, time_compliant_steps, time_dem_steps,
     time_plain_rapier_steps,
 };
+pub use run::{Boundary, DemRun, Outcome, Phase, RUN_KIND, RunError, RunHooks};
 pub use specimen::{GENERATOR, Specimen, dem_engine, dem_engine_tiled};
 pub use stress::CREEPING;

@@ -57,20 +57,64 @@ pub(super) fn compact_on<E: Host>(
     progress: &mut dyn FnMut(f64),
     observe: &mut dyn FnMut(&E),
 ) -> Result<CompactionSummary, SceneError> {
-    let p0 = specimen.params().confining_pressure;
-    let rate = specimen.params().strain_rate();
-    let dt = specimen.params().time_step();
-    let mut settled_for = 0;
-    // The stress after a step is the next servo input (stress() is a pure function of the
-    // state), so it is measured once per step. The servo reads only the walls' entries; the
-    // contact (Love-Weber) stress matters only in steps where every wall is within 1 % of p0
-    // (otherwise the settling count restarts whatever it is), so it is measured only then: the
-    // same decisions, bit for bit, as measuring it every step, without a pass over every
-    // contact in the steps where the walls are still off (the stress of the walls' contacts is
-    // the same sum, in the same order, either way: `Host::wall_stress`).
-    let mut last = specimen.wall_stress();
-    for i in 0..max_steps {
-        let s = last;
+    let mut state = CompactLoop::start(specimen);
+    loop {
+        if let Some(sum) = state.advance(specimen, max_steps, progress, observe)? {
+            return Ok(sum);
+        }
+    }
+}
+
+/// The compaction's loop between two steps: what a run needs to continue (with the
+/// specimen), so that a stopped run resumes it exactly (`DemRun`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct CompactLoop {
+    /// Steps taken.
+    pub(super) i: usize,
+    /// Consecutive settled steps.
+    pub(super) settled_for: usize,
+    /// The stress after the last step (the servo's next input).
+    pub(super) last: Stress,
+}
+
+impl CompactLoop {
+    pub(super) fn start<E: Host>(specimen: &E) -> Self {
+        Self {
+            i: 0,
+            settled_for: 0,
+            last: specimen.wall_stress(),
+        }
+    }
+
+    /// One step of the compaction: `Some(summary)` once it has settled; an error if it has not
+    /// after `max_steps`.
+    pub(super) fn advance<E: Host>(
+        &mut self,
+        specimen: &mut E,
+        max_steps: usize,
+        progress: &mut dyn FnMut(f64),
+        observe: &mut dyn FnMut(&E),
+    ) -> Result<Option<CompactionSummary>, SceneError> {
+        let p0 = specimen.params().confining_pressure;
+        if self.i >= max_steps {
+            let p_walls = self.last.walls.iter().sum::<f64>() / 3.0;
+            return Err(SceneError::Parameter(format!(
+                "triaxial: the isotropic compaction did not settle in {max_steps} steps (mean wall stress {p_walls:.4e} Pa against p0 = {p0:.4e} Pa)"
+            )));
+        }
+        let i = self.i;
+        self.i += 1;
+        let rate = specimen.params().strain_rate();
+        let dt = specimen.params().time_step();
+        // The stress after a step is the next servo input (stress() is a pure function of the
+        // state), so it is measured once per step. The servo reads only the walls' entries; the
+        // contact (Love-Weber) stress matters only in steps where every wall is within 1 % of
+        // p0 (otherwise the settling count restarts whatever it is), so it is measured only
+        // then: the same decisions, bit for bit, as measuring it every step, without a pass
+        // over every contact in the steps where the walls are still off (the stress of the
+        // walls' contacts is the same sum, in the same order, either way:
+        // `Host::wall_stress`).
+        let s = self.last;
         let mut v = [0.0; 6];
         // Fast while nothing touches (a gas: up to 20 eps_dot), then at most 5 eps_dot.
         let cap = if s.walls.iter().all(|&w| w < 0.05 * p0) {
@@ -84,7 +128,8 @@ pub(super) fn compact_on<E: Host>(
         specimen.set_wall_speeds(v)?;
         specimen.step()?;
         observe(specimen);
-        last = specimen.wall_stress();
+        self.last = specimen.wall_stress();
+        let last = &mut self.last;
         let wall_err = last
             .each
             .iter()
@@ -93,26 +138,26 @@ pub(super) fn compact_on<E: Host>(
         let p_walls = last.walls.iter().sum::<f64>() / 3.0;
         let mut p_love = f64::NAN;
         if wall_err < 0.01 {
-            last = specimen.stress();
+            *last = specimen.stress();
             p_love = (last.love[0][0] + last.love[1][1] + last.love[2][2]) / 3.0;
         }
         let agree = (p_love / p_walls - 1.0).abs();
         // `agree` is NaN (and the comparison false) when the contact stress was not measured.
         if wall_err < 0.01 && agree < 0.01 {
-            settled_for += 1;
+            self.settled_for += 1;
         } else {
-            settled_for = 0;
+            self.settled_for = 0;
         }
-        if i % 200 == 0 {
-            let est = (p_walls / p0).clamp(0.0, 1.0) * 0.9 + 0.1 * settled_for as f64 / 200.0;
+        if i.is_multiple_of(200) {
+            let est = (p_walls / p0).clamp(0.0, 1.0) * 0.9 + 0.1 * self.settled_for as f64 / 200.0;
             progress(est);
         }
-        if settled_for >= 200 {
+        if self.settled_for >= 200 {
             specimen.set_wall_speeds([0.0; 6])?;
             progress(1.0);
             let (n, ..) = specimen.contact_shares();
-            let dims = last.dims;
-            return Ok(CompactionSummary {
+            let dims = self.last.dims;
+            return Ok(Some(CompactionSummary {
                 steps: i + 1,
                 solid_fraction: specimen.solids() / (dims[0] * dims[1] * dims[2]),
                 p_walls,
@@ -120,13 +165,10 @@ pub(super) fn compact_on<E: Host>(
                 max_wall_error: wall_err,
                 coordination: 2.0 * n as f64 / specimen.len() as f64,
                 rebuilds: specimen.rebuilds(),
-            });
+            }));
         }
+        Ok(None)
     }
-    let p_walls = last.walls.iter().sum::<f64>() / 3.0;
-    Err(SceneError::Parameter(format!(
-        "triaxial: the isotropic compaction did not settle in {max_steps} steps (mean wall stress {p_walls:.4e} Pa against p0 = {p0:.4e} Pa)"
-    )))
 }
 
 /// The record of one shear.
@@ -178,48 +220,99 @@ pub(super) fn shear_on<E: Host>(
     progress: &mut dyn FnMut(f64),
     observe: &mut dyn FnMut(&E, Option<&TriaxialRow>),
 ) -> Result<ShearRun, SceneError> {
-    // A copy with the balls' friction on (the walls stay frictionless) and creep on or off.
-    let mut s = specimen.shear_copy(creep)?;
-    let params = *s.params();
-    let p0 = params.confining_pressure;
-    let rate = params.strain_rate();
-    let dt = params.shear_time_step();
-    // The lateral servo's gain is per `servo_time`, not per step (its stress lag would grow
-    // with the step: `TriaxialParams::servo_time`).
-    let servo_time = params.servo_time();
-    // One step at rest, so that the fresh regime has found its contacts.
-    s.set_wall_speeds([0.0; 6])?;
-    s.step()?;
-    let s0 = s.stress();
-    let h0 = s0.dims[1];
-    let v0 = s0.dims[0] * s0.dims[1] * s0.dims[2];
-    let solids = s.solids();
-    let total_steps = (params.axial_strain / (rate * dt)).ceil() as usize;
-    let record_every = (total_steps as f64
-        / (params.axial_strain * 100.0 * params.rows_per_percent as f64))
-        .max(1.0) as usize;
-    let mut rows = Vec::new();
-    let mut mismatch = 0f64;
-    s.reset_energy();
-    for i in 0..=total_steps {
+    let (mut s, mut state) = ShearLoop::start(specimen, creep)?;
+    while !state.advance(&mut s, progress, observe)? {}
+    Ok(state.finish(&s, specimen))
+}
+
+/// The shear's loop between two steps: what a run needs to continue (with the sheared
+/// copy), so that a stopped run resumes it exactly (`DemRun`).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct ShearLoop {
+    pub(super) creep: bool,
+    /// Iteration (steps of the shear after the first one at rest).
+    pub(super) i: usize,
+    /// Height and volume of the box after the first step at rest.
+    pub(super) h0: f64,
+    pub(super) v0: f64,
+    /// Volume of the balls.
+    pub(super) solids: f64,
+    pub(super) total_steps: usize,
+    pub(super) record_every: usize,
+    pub(super) rows: Vec<TriaxialRow>,
+    pub(super) mismatch: f64,
+}
+
+impl ShearLoop {
+    /// The copy of the compacted `specimen` to shear, after its first step at rest, and the
+    /// loop's start.
+    pub(super) fn start<E: Host>(specimen: &E, creep: bool) -> Result<(E, Self), SceneError> {
+        // A copy with the balls' friction on (the walls stay frictionless) and creep on or off.
+        let mut s = specimen.shear_copy(creep)?;
+        let params = *s.params();
+        let rate = params.strain_rate();
+        let dt = params.shear_time_step();
+        // One step at rest, so that the fresh regime has found its contacts.
+        s.set_wall_speeds([0.0; 6])?;
+        s.step()?;
+        let s0 = s.stress();
+        let h0 = s0.dims[1];
+        let v0 = s0.dims[0] * s0.dims[1] * s0.dims[2];
+        let solids = s.solids();
+        let total_steps = (params.axial_strain / (rate * dt)).ceil() as usize;
+        let record_every = (total_steps as f64
+            / (params.axial_strain * 100.0 * params.rows_per_percent as f64))
+            .max(1.0) as usize;
+        s.reset_energy();
+        Ok((
+            s,
+            Self {
+                creep,
+                i: 0,
+                h0,
+                v0,
+                solids,
+                total_steps,
+                record_every,
+                rows: Vec::new(),
+                mismatch: 0.0,
+            },
+        ))
+    }
+
+    /// One iteration of the shear (a row when due, then a step): `true` when the shear is
+    /// over (no step taken then).
+    pub(super) fn advance<E: Host>(
+        &mut self,
+        s: &mut E,
+        progress: &mut dyn FnMut(f64),
+        observe: &mut dyn FnMut(&E, Option<&TriaxialRow>),
+    ) -> Result<bool, SceneError> {
+        let params = *s.params();
+        let p0 = params.confining_pressure;
+        let rate = params.strain_rate();
+        // The lateral servo's gain is per `servo_time`, not per step (its stress lag would grow
+        // with the step: `TriaxialParams::servo_time`).
+        let servo_time = params.servo_time();
+        let (i, h0) = (self.i, self.h0);
         let st = s.wall_stress();
         let eps_a = (h0 - st.dims[1]) / h0;
-        let last = i == total_steps || eps_a >= params.axial_strain;
-        if i % record_every == 0 || last {
-            let row = row(&s, &s.stress(), eps_a, v0, solids);
+        let last = i == self.total_steps || eps_a >= params.axial_strain;
+        if i.is_multiple_of(self.record_every) || last {
+            let row = row(s, &s.stress(), eps_a, self.v0, self.solids);
             if eps_a > 0.01 {
                 let dp = (row.p_contacts / row.p - 1.0).abs();
                 let dq = ((row.q_contacts - row.q) / row.p).abs();
-                mismatch = mismatch.max(dp).max(dq);
+                self.mismatch = self.mismatch.max(dp).max(dq);
             }
-            rows.push(row);
-            progress(i as f64 / total_steps as f64);
-            observe(&s, rows.last());
+            self.rows.push(row);
+            progress(i as f64 / self.total_steps as f64);
+            observe(s, self.rows.last());
         } else {
-            observe(&s, None);
+            observe(s, None);
         }
         if last {
-            break;
+            return Ok(true);
         }
         let mut v = [0.0; 6];
         for (k, vk) in v.iter_mut().enumerate() {
@@ -231,21 +324,27 @@ pub(super) fn shear_on<E: Host>(
         }
         s.set_wall_speeds(v)?;
         s.step()?;
+        self.i += 1;
+        Ok(false)
     }
-    let (creep_dissipation, slip_dissipation) = s.dissipation();
-    let rebuilds = s
-        .rebuilds()
-        .zip(specimen.rebuilds())
-        .map(|(a, b)| a.saturating_sub(b));
-    Ok(ShearRun {
-        creep,
-        steps: s.steps() - specimen.steps(),
-        rows,
-        max_stress_mismatch: mismatch,
-        creep_dissipation,
-        slip_dissipation,
-        rebuilds,
-    })
+
+    /// The record of the finished shear of the copy `s` of `specimen`.
+    pub(super) fn finish<E: Host>(self, s: &E, specimen: &E) -> ShearRun {
+        let (creep_dissipation, slip_dissipation) = s.dissipation();
+        let rebuilds = s
+            .rebuilds()
+            .zip(specimen.rebuilds())
+            .map(|(a, b)| a.saturating_sub(b));
+        ShearRun {
+            creep: self.creep,
+            steps: s.steps() - specimen.steps(),
+            rows: self.rows,
+            max_stress_mismatch: self.mismatch,
+            creep_dissipation,
+            slip_dissipation,
+            rebuilds,
+        }
+    }
 }
 
 /// What the protocol needs of an engine: the Rapier compliant regime ([`Specimen`]) or
