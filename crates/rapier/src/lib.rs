@@ -32,6 +32,7 @@ mod pipeline;
 mod registry;
 mod rigid;
 mod rolling;
+mod shape;
 mod store;
 mod wheel;
 mod wheel_hook;
@@ -48,6 +49,7 @@ pub use registry::{
 pub use rigid::{
     CreepHooks, CreepSettings, StepCounts, check_parameters, configure_parameters, solver_tangents,
 };
+pub use shape::{FlatShape, SUPPORTED_SHAPES, SupportedShape, supported_shape};
 pub use store::{ContactKey, ContactRecord, ContactStore, KeyHasher};
 pub use world::{CreepWorld, clone_physics};
 

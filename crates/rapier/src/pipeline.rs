@@ -206,9 +206,11 @@ impl CreepPipeline {
             .retain(|handle, _| colliders.contains(handle));
     }
 
-    /// Refuses a registered collider whose friction coefficient is NaN, infinite or negative.
+    /// Refuses a registered collider whose friction coefficient is NaN, infinite or negative,
+    /// or whose material is invalid (a wheel's crown radius).
     fn check_friction(&self, colliders: &ColliderSet) -> Result<(), PluginError> {
         for (&handle, mat) in self.hooks.registry().iter() {
+            mat.validate()?;
             if mat.fidelity == Fidelity::Compliant {
                 continue;
             }

@@ -113,7 +113,6 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use creep_law::{Surface, Vec3};
-use rapier3d::parry::shape::TypedShape;
 use rapier3d::prelude::*;
 
 use crate::ball_hook::{BallManifold, ball_manifold};
@@ -122,7 +121,7 @@ use crate::creep3d::LawCache;
 use crate::error::PluginError;
 use crate::gap::rotation_gap_correction;
 use crate::pair_cache::PairCache;
-use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
+use crate::registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
 use crate::rolling::apply_rolling_impulse;
 use crate::store::{ContactKey, ContactRecord, ContactStore};
 use crate::wheel::Crowns;
@@ -267,7 +266,7 @@ struct Shard {
     counts: StepCounts,
     /// The 3-D creep laws by contact shape (crate::creep3d; the wheel path's).
     laws: LawCache,
-    /// The wheels' crown radii (crate::wheel), the same in every shard.
+    /// The wheels' axle tracks and elliptic Hertz cache (crate::wheel).
     crowns: Crowns,
     /// The per-pair constants (crate::pair_cache).
     pairs: PairCache,
@@ -372,19 +371,25 @@ impl CreepHooks {
         &self.settings
     }
 
-    /// Gives a cylinder collider (a wheel) a crown radius `crown` \[m\] (finite, > 0), or
-    /// none (`None`: a line contact, Carter's law). A crowned wheel's contact is Hertz's ellipse
-    /// with the curvature sums `1/R` and `1/crown` (module `wheel` of this crate's sources;
-    /// README "Wheels"). A bad radius is [`PluginError::Setting`].
+    /// Gives a registered cylinder collider (a wheel) a crown radius `crown` \[m\] (finite
+    /// and positive), or none (`None`: a line contact, Carter's law): sets its material's
+    /// [`crate::CreepMaterial::crown`] (as [`crate::CreepMaterial::with_crown`] does before
+    /// registration). A crowned wheel's contact is Hertz's ellipse with the curvature sums
+    /// `1/R` and `1/crown` (crate module `wheel`). A bad radius is [`PluginError::Setting`], an
+    /// unregistered collider [`PluginError::NotRegistered`].
     pub fn set_wheel_crown(
         &mut self,
         collider: ColliderHandle,
         crown: Option<f64>,
     ) -> Result<(), PluginError> {
-        for shard in self.shards.iter_mut() {
-            let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
-            shard.crowns.set(collider, crown)?;
-        }
+        let Some(m) = self.registry.get_mut(collider) else {
+            return Err(PluginError::NotRegistered {
+                collider: crate::registry::handle_name(collider),
+            });
+        };
+        let candidate = CreepMaterial { crown, ..*m };
+        candidate.validate()?;
+        *m = candidate;
         Ok(())
     }
 
@@ -781,14 +786,13 @@ pub fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
     (t1, d.cross(t1))
 }
 
-/// The surfaces a collider presents to the rigid hook, from one typed-shape call: the contact
-/// law's ([`crate::rigid_surface_of`]) and the rotation-gap correction's (the same, and a
-/// cylinder as a sphere of its radius: a wheel turning about its axle).
+/// The surfaces a collider presents to the rigid hook, from one typed-shape call
+/// ([`crate::supported_shape`]): the contact law's ([`crate::SupportedShape::rigid_surface`])
+/// and the rotation-gap correction's (the same, and a wheel as a sphere of its radius: it turns
+/// about its axle).
 fn shape_surfaces(co: &Collider) -> (Option<Surface>, Option<Surface>) {
-    let law = crate::registry::rigid_surface_of(co);
-    let gap = law.or_else(|| match co.shape().as_typed_shape() {
-        TypedShape::Cylinder(c) => Some(Surface::Sphere(f64::from(c.radius))),
-        _ => None,
-    });
-    (law, gap)
+    match crate::shape::supported_shape(co) {
+        Some(shape) => (shape.rigid_surface(), Some(shape.gap_surface())),
+        None => (None, None),
+    }
 }
