@@ -208,10 +208,7 @@ impl CompliantRegime {
             rayleigh_time_step: f64::INFINITY,
             ..CompliantCounts::default()
         };
-        if !registry
-            .iter()
-            .any(|(_, m)| m.fidelity == Fidelity::Compliant)
-        {
+        if registry.compliant_len() == 0 {
             self.contacts.clear();
             self.energy.normal_elastic = 0.0;
             self.energy.tangential_elastic = 0.0;

@@ -126,7 +126,13 @@ impl CreepPipeline {
     /// One step, with creep-friction: prepares both regimes, runs `PhysicsPipeline::step`
     /// with the rigid hooks, finishes both regimes. Returns what the rigid hooks did.
     pub fn step(&mut self, s: RapierStep<'_>) -> Result<StepCounts, PluginError> {
-        self.prepare_host_step(s.params, s.bodies, s.colliders, s.narrow_phase)?;
+        self.prepare(
+            s.params,
+            Some(&*s.islands),
+            s.bodies,
+            s.colliders,
+            s.narrow_phase,
+        )?;
         s.pipeline.step(
             s.gravity,
             s.params,
@@ -159,7 +165,9 @@ impl CreepPipeline {
     /// before the step (module docs, 1-3), with the step's parameters (`params.dt` the step's
     /// time step). On error nothing is prepared and the host's step leaves every contact to
     /// Rapier (the error says why); call [`CreepPipeline::finish_host_step`] after the host's
-    /// step only if this returned `Ok`.
+    /// step only if this returned `Ok`. Visits every registered collider every step; a host
+    /// with Rapier's island manager at hand uses
+    /// [`CreepPipeline::prepare_host_step_with_islands`] instead.
     pub fn prepare_host_step(
         &mut self,
         params: &IntegrationParameters,
@@ -167,12 +175,38 @@ impl CreepPipeline {
         colliders: &mut ColliderSet,
         narrow_phase: &NarrowPhase,
     ) -> Result<(), PluginError> {
-        self.forget_removed(colliders);
+        self.prepare(params, None, bodies, colliders, narrow_phase)
+    }
+
+    /// [`CreepPipeline::prepare_host_step`] with the host's island manager (bevy_rapier3d's
+    /// `RapierContextSimulation::islands`): on most steps the preparation then visits only the
+    /// colliders of awake bodies, as [`CreepPipeline::step`] does, so that a settled world
+    /// whose bodies sleep costs about what it costs plain Rapier.
+    pub fn prepare_host_step_with_islands(
+        &mut self,
+        params: &IntegrationParameters,
+        islands: &IslandManager,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+        narrow_phase: &NarrowPhase,
+    ) -> Result<(), PluginError> {
+        self.prepare(params, Some(islands), bodies, colliders, narrow_phase)
+    }
+
+    fn prepare(
+        &mut self,
+        params: &IntegrationParameters,
+        islands: Option<&IslandManager>,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+        narrow_phase: &NarrowPhase,
+    ) -> Result<(), PluginError> {
+        self.hooks.select_colliders(islands, bodies, colliders);
         self.check_friction(colliders)?;
         self.hooks.begin_step(params)?;
         self.hooks.lift_rotation_cap(bodies, colliders);
         self.hooks.update_activation(bodies, colliders);
-        self.hooks.scan_unregistered(narrow_phase);
+        self.hooks.scan_unregistered(narrow_phase, colliders.len());
         if let Err(e) = self.compliant.begin_step(
             self.hooks.registry(),
             params,
@@ -209,18 +243,13 @@ impl CreepPipeline {
         self.hooks.abandon_step();
     }
 
-    /// Forgets the materials of colliders that are no longer in `colliders` (removed through
-    /// Rapier's own API). No allocation.
-    fn forget_removed(&mut self, colliders: &ColliderSet) {
-        self.hooks
-            .registry_mut()
-            .retain(|handle, _| colliders.contains(handle));
-    }
-
     /// Refuses a registered collider whose friction coefficient is NaN, infinite or negative,
     /// or whose material is invalid (a wheel's crown radius).
     fn check_friction(&self, colliders: &ColliderSet) -> Result<(), PluginError> {
-        for (&handle, mat) in self.hooks.registry().iter() {
+        for &handle in self.hooks.selected() {
+            let Some(mat) = self.hooks.registry().get(handle) else {
+                continue;
+            };
             mat.validate()?;
             if mat.fidelity == Fidelity::Compliant {
                 continue;

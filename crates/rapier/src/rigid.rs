@@ -433,7 +433,21 @@ pub struct CreepHooks {
     max_linvel: f64,
     /// Steps until the next scan of the contact pairs for unregistered colliders.
     scan_countdown: u32,
+    /// The registered colliders the step's preparation visits ([`CreepHooks::select_colliders`]).
+    selected: Vec<ColliderHandle>,
+    /// Steps until the next preparation that visits every registered collider.
+    full_countdown: u32,
+    /// Whether the registry may have changed since the last full visit (`registry_mut`).
+    registry_dirty: bool,
+    /// Colliders in the world at the last full visit.
+    last_collider_count: usize,
 }
+
+/// Steps between two preparations that visit every registered collider (the others visit the
+/// colliders of awake bodies only, [`CreepHooks::select_colliders`]): what only such a visit
+/// finds is a registered collider of a fixed body whose friction was made invalid since, which
+/// the hook also refuses as soon as a moving registered body touches it.
+const FULL_PASS_STEPS: u32 = 600;
 
 /// Steps between two scans of the narrow phase's contact pairs for unregistered colliders
 /// touching registered ones ([`CreepHooks::scan_unregistered`]; a pair whose hook runs is seen
@@ -463,6 +477,10 @@ impl CreepHooks {
             quarantined: (Vec::new(), Vec::new()),
             max_linvel: f64::MAX,
             scan_countdown: 0,
+            selected: Vec::new(),
+            full_countdown: 0,
+            registry_dirty: true,
+            last_collider_count: 0,
         })
     }
 
@@ -472,7 +490,60 @@ impl CreepHooks {
     }
     /// The material registry, to add or remove colliders.
     pub fn registry_mut(&mut self) -> &mut MaterialRegistry {
+        self.registry_dirty = true;
         &mut self.registry
+    }
+
+    /// Chooses the registered colliders the step's preparation visits (friction check, spin
+    /// cap, hook activation), so that a settled world whose bodies sleep costs no more than in
+    /// plain Rapier: the colliders of the bodies `islands` has awake (a sleeping body's flags
+    /// stay as they were when it fell asleep, when it was below the activation speed), and
+    /// every registered collider (after forgetting those Rapier no longer has) on the first
+    /// step, after any change through [`CreepHooks::registry_mut`], when the number of
+    /// colliders changed, every [`FULL_PASS_STEPS`] steps, or without `islands`.
+    pub(crate) fn select_colliders(
+        &mut self,
+        islands: Option<&IslandManager>,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) {
+        let mut selected = std::mem::take(&mut self.selected);
+        selected.clear();
+        let full = match islands {
+            None => true,
+            Some(_) => {
+                self.registry_dirty
+                    || self.full_countdown == 0
+                    || colliders.len() != self.last_collider_count
+            }
+        };
+        match islands {
+            Some(islands) if !full => {
+                self.full_countdown -= 1;
+                for b in islands.active_bodies() {
+                    if let Some(rb) = bodies.get(b) {
+                        selected.extend(
+                            rb.colliders()
+                                .iter()
+                                .filter(|&&c| self.registry.get(c).is_some()),
+                        );
+                    }
+                }
+            }
+            _ => {
+                self.full_countdown = FULL_PASS_STEPS - 1;
+                self.registry_dirty = false;
+                self.last_collider_count = colliders.len();
+                self.registry.retain(|handle, _| colliders.contains(handle));
+                selected.extend(self.registry.iter().map(|(h, _)| *h));
+            }
+        }
+        self.selected = selected;
+    }
+
+    /// The registered colliders selected for this step ([`CreepHooks::select_colliders`]).
+    pub(crate) fn selected(&self) -> &[ColliderHandle] {
+        &self.selected
     }
     /// The settings.
     pub fn settings(&self) -> &CreepSettings {
@@ -552,7 +623,10 @@ impl CreepHooks {
             });
         }
         let check_gap = self.substeps > 1 && !self.warned_gap;
-        for (&handle, mat) in self.registry.iter() {
+        for &handle in &self.selected {
+            let Some(mat) = self.registry.get(handle) else {
+                continue;
+            };
             // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
             // re-process it (a large cost if done for every collider every step).
             let Some(co) = colliders.get(handle) else {
@@ -694,9 +768,14 @@ impl CreepHooks {
     /// warns once about each unregistered collider in contact with a registered one. The hook
     /// sees such pairs only while the registered collider's hook is on; this scan also finds
     /// them against a resting or fixed registered collider (a floor), at the cost of one pass
-    /// over the contact pairs every few steps.
-    pub(crate) fn scan_unregistered(&mut self, narrow_phase: &NarrowPhase) {
-        if !self.settings.warn_unregistered || self.registry.is_empty() {
+    /// over the contact pairs every few steps while some collider (of `colliders` in the
+    /// world) is not registered.
+    pub(crate) fn scan_unregistered(&mut self, narrow_phase: &NarrowPhase, colliders: usize) {
+        // Nothing to find when every collider is registered (or none is).
+        if !self.settings.warn_unregistered
+            || self.registry.is_empty()
+            || colliders <= self.registry.len()
+        {
             return;
         }
         if self.scan_countdown > 0 {
@@ -754,7 +833,10 @@ impl CreepHooks {
         if !self.settings.lift_rotation_cap || self.substeps != 1 {
             return;
         }
-        for (&handle, mat) in self.registry.iter() {
+        for &handle in &self.selected {
+            let Some(mat) = self.registry.get(handle) else {
+                continue;
+            };
             if mat.fidelity == Fidelity::Compliant {
                 continue;
             }
