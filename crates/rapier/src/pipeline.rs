@@ -1,18 +1,26 @@
 //! The step owner: [`CreepPipeline`] runs one Rapier step with creep-friction, doing in the
 //! right order what the two regimes need around Rapier's own `PhysicsPipeline::step`:
 //!
-//! 1. check the integration parameters, prepare the rigid hooks (time step, substeps, counts,
-//!    contact generation), forget the materials of colliders Rapier no longer has, refuse a
-//!    NaN or negative collider friction, lift Rapier's angular speed cap on registered balls;
-//! 2. switch each registered collider's hook on or off ([`crate::CreepSettings::activation_speed`]);
+//! 1. choose the registered colliders to visit (those of awake bodies; all of them on the
+//!    first step, after a registry change, when colliders were added or removed, and every
+//!    few hundred steps, forgetting the materials of colliders Rapier no longer has), refuse
+//!    their NaN or negative friction and invalid materials, check the integration parameters,
+//!    prepare the rigid hooks (time step, substeps, counts, contact generation), lift Rapier's
+//!    angular speed cap on registered balls (one substep);
+//! 2. switch each visited collider's hook on or off ([`crate::CreepSettings::activation_speed`]),
+//!    and note what deserves a [`crate::CreepWarning`] (a fast ball or wheel with substeps, no
+//!    registered collider, an unregistered collider touching a registered one);
 //! 3. the compliant regime's forces (pairs of `Fidelity::Compliant` colliders);
-//! 4. Rapier's step, with the rigid hooks;
-//! 5. the compliant regime restores the user forces; the rigid hooks apply the contact-torque
-//!    rolling impulses and sweep the records of contacts that ended.
+//! 4. Rapier's step, with the rigid hooks (which also refuse a NaN or negative friction on a
+//!    registered collider's unregistered partner);
+//! 5. what Rapier quarantined; the compliant regime restores the user forces; the rigid hooks
+//!    apply the contact-torque rolling impulses (without waking a body) and sweep the records
+//!    of contacts that ended.
 //!
 //! A user's own loop calls [`CreepPipeline::step`] (the arguments of `PhysicsPipeline::step`,
 //! in a [`RapierStep`]) or [`CreepPipeline::step_world`]. A host that runs Rapier's step itself
-//! (bevy_rapier3d) calls [`CreepPipeline::prepare_host_step`] before and
+//! (bevy_rapier3d) calls [`CreepPipeline::prepare_host_step_with_islands`] (or
+//! [`CreepPipeline::prepare_host_step`]) before, [`CreepPipeline::report_quarantine`] and
 //! [`CreepPipeline::finish_host_step`] after it; misuse is a typed error: finishing an
 //! unprepared step ([`PluginError::StepNotPrepared`]), preparing twice
 //! ([`PluginError::StepAlreadyPrepared`]), or a Rapier step that used the hooks without the

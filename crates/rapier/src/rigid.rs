@@ -14,7 +14,7 @@
 //! step (total impulses of the step divided by `dt`), and the contact radius from Hertz. Below
 //! the Coulomb limit the implicit friction solve enforces that slip; at the limit it slides.
 //!
-//! # Three-dimensional creep (crate module `creep3d`, issue #17)
+//! # Three-dimensional creep (crate module `creep3d`)
 //! The slip target is built in Kalker's rolling frame (`x = -v_roll/|v_roll|`, `y = n × x`):
 //! along `x` the configured law `F_ss` as above, across it Kalker's `C22` (the force direction
 //! of Kalker's simplified theory: the creepage for a force `Q` is `F_ss(|Q|/(mu P)) (u_x,
@@ -45,19 +45,23 @@
 //! # Rolling at game steps: the spin cap and the rotation gap
 //! Rapier 0.36 caps every body's spin at 45 degrees per step (for CCD), so a 0.1 m ball rolling
 //! faster than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides and loses most
-//! of its energy within seconds; with one solver substep the pipeline lifts the cap on bodies of
-//! registered balls ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change
-//! its swept volume; with more substeps the cap stays, see the setting).
+//! of its energy within seconds; with one solver substep (the default,
+//! [`SolverPreset::Rolling`]) the pipeline lifts the cap on bodies of registered balls
+//! ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change its swept volume;
+//! with more substeps the cap stays, see the setting).
 //! Rapier also tracks each solver contact's point as a point fixed in its body, so within a step
 //! the point of a rolling sphere turns with it, away from the lowest point: the solver reads a
 //! growing gap `R (1 - cos(omega t))` and lets the sphere sink, then pushes it back (energy is
 //! lost). The hook corrects the contact's `dist` and the rate at which the tracked point moves
 //! along the normal ([`CreepSettings::anchor_drift_correction`], on by default, every
 //! registered pair, Coulomb fidelity included; the `gap` module has the formulas): exact with
-//! one solver substep (`num_solver_iterations = 1`: a free 0.1 m ball then keeps its energy to
-//! 1e-5 and its height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the
-//! substeps otherwise (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without,
-//! -0.33 mm with it; it can lift a fast ball by millimetres and add energy, see `gap`).
+//! one solver substep (`num_solver_iterations = 1`, the default of [`configure_parameters`]
+//! and [`crate::CreepWorld::new`]: a free 0.1 m ball then keeps its energy to 1e-5 and its
+//! height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the substeps otherwise
+//! (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without, -0.33 mm with it; it can
+//! lift a fast ball by millimetres and add energy, see `gap`). With substeps kept
+//! ([`SolverPreset::Rapier`]) a registered ball or wheel that turns more than
+//! [`crate::ROTATION_GAP_TURN`] in a step gets a [`crate::CreepWarning::RotationGap`].
 //!
 //! # What remains of the engine's own error
 //! Plain Rapier shows a spurious slip of a rolling contact (from positions, `(dx - R dtheta) /
@@ -75,30 +79,16 @@
 //! target (even rounding noise) into a saturated friction force there; give such bodies their
 //! rotations (the friction-drive scene locks translations only).
 //!
-//! # Cost where things move (issue #14 item 3)
-//! Profile of `creep bench pile --moving --n 1000 --steps 150 --only auto|creep` (1,000 glass
-//! balls poured into a box, one plugin copy interleaved with plain Rapier; `perf record
-//! --call-graph dwarf`, samples split by world, in units of one plain step; machine load
-//! 11-17 on 2 cores, so a few percent of noise), before this round (commit 349bfe1) -> after:
-//!
-//! | part | Auto | creep everywhere | plain Rapier |
-//! |---|---|---|---|
-//! | whole step | 1.67 -> 1.57 | 2.16 -> 1.98 | 1 |
-//! | the hook (`modify_solver_contacts`) | 0.28 -> 0.27 | 0.56 -> 0.48 | - |
-//! | contact updates (`process_pair`, hook included) | 0.89 -> 0.84 | 1.41 -> 1.25 | 0.45-0.47 |
-//! | solver-graph upkeep of non-recycled pairs | 0.14 -> 0.14 | 0.14 -> 0.14 | 0.00-0.01 |
-//! | solver | 0.36 -> 0.32 | 0.33 -> 0.32 | 0.31-0.34 |
-//!
-//! Inside the hook before: the lock 24 %, the record's hash lookup 13 %,
-//! `PairMaterial::with_rule` per manifold 6 %, shape downcasts 7 %, the rotation-gap
-//! correction 5 %, the implicit solve 9 %, `Steady3d::loads` 4 %. After: the pair constants and
-//! the downcasts are gone (crate::pair_cache, one typed-shape call), and what remains is the
-//! lock (19-25 %: a locked instruction pair per manifold, which also waits for the memory
-//! traffic Rapier left in flight), the record lookup (15-17 %) and the law (solve, creepage,
-//! loads: ~25 %). Most of the cost is not the hook's: a pair with any active hook flag is never
-//! recycled (docs/RAPIER_CONTACT_RECYCLING.md), so creep everywhere pays a full contact update
-//! and the solver-graph upkeep of every pair every step (~0.9 plain steps here); creep within
-//! 1.5x of plain Rapier needs a Rapier hook on recycled pairs.
+//! # Cost
+//! Where things move, most of the plugin's cost is not the hook's: a pair with any active hook
+//! flag is never recycled by Rapier (docs/RAPIER_CONTACT_RECYCLING.md), so a pair that creeps
+//! pays a full contact update and the solver-graph upkeep every step. Inside the hook the
+//! per-pair constants are cached (crate::pair_cache) and each collider's shape is read once
+//! (one typed-shape call); what remains is the shard's lock, the record's lookup and the law.
+//! `creep bench pile --moving` measures it. Where things rest the hooks go off below
+//! [`CreepSettings::activation_speed`] and Rapier's recycling returns; bodies sleep as in plain
+//! Rapier, and the step's preparation visits only the colliders of awake bodies
+//! (`creep bench pile --settled`).
 //!
 //! The per-contact records live in shards keyed by the collider pair (one without feature
 //! `parallel`, 64 with it): a hook call locks only its pair's shard, never a global lock, and
@@ -358,7 +348,7 @@ struct Shard {
 /// different pairs on several threads at once; each call locks only the shard of its collider
 /// pair, never a global lock, so calls on different shards never wait for each other (two
 /// given calls meet on one shard with probability 1/64). Without it there is one thread and one
-/// shard: one uncontended lock per manifold, and the records in one map as before.
+/// shard: one uncontended lock per manifold, and the records in one map.
 const SHARDS: usize = if cfg!(feature = "parallel") { 64 } else { 1 };
 
 /// The shard of a collider pair (a multiplicative hash of the two indices; the pair's order
