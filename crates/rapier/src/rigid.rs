@@ -266,7 +266,8 @@ impl CreepSettings {
 /// What the plugin did in the last step.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct StepCounts {
-    /// Contacts with a collider the registry does not know: left to Coulomb.
+    /// Contacts with a collider the registry does not know: left to Coulomb (each such
+    /// collider touching a registered one is also named once in [`StepCounts::warnings`]).
     pub coulomb_unregistered: usize,
     /// Contacts with a shape the rigid regime does not model (not a ball, cuboid, half-space,
     /// triangle mesh, heightfield or convex polyhedron, nor a cylinder on one of the flat
@@ -287,7 +288,9 @@ pub struct StepCounts {
     pub creep_power: f64,
     /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
     pub max_loop_gain: f64,
-    /// Registered colliders whose hook was on for this step (set by [`crate::CreepPipeline`]).
+    /// Registered colliders whose hook was on for this step, among those the step visited (the
+    /// colliders of awake bodies; every registered collider on a full visit; set by
+    /// [`crate::CreepPipeline`]).
     pub hooks_on: usize,
     /// Contacts of pairs whose two colliders are below the activation speed, in the one step
     /// before their hooks go off: left as plain Rapier contacts (their targets cleared, so that
