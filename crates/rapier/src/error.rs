@@ -87,6 +87,14 @@ pub enum PluginError {
         /// Value given.
         value: f64,
     },
+    /// A call that needs a registered collider was given one the registry does not know.
+    #[error(
+        "collider {collider} is not registered (MaterialRegistry::insert or CreepWorld::insert with a material)"
+    )]
+    NotRegistered {
+        /// The collider (`{index}v{generation}`).
+        collider: String,
+    },
     /// A material or contact-law parameter was refused by creep-law.
     #[error(transparent)]
     Law(#[from] LawError),

@@ -3,7 +3,6 @@
 //! and Bevy.
 
 use creep_law::{Material, Surface};
-use rapier3d::parry::shape::TypedShape;
 use rapier3d::prelude::{Collider, ColliderHandle};
 
 /// The fidelity a collider (or pair) asks for.
@@ -51,6 +50,12 @@ pub struct CreepMaterial {
     pub fidelity: Fidelity,
     /// Contact-torque rolling resistance; a pair uses the first collider's that is not `None`.
     pub rolling: RollingResistance,
+    /// A wheel's crown radius \[m\] (finite, > 0; read for cylinder colliders only, crate
+    /// [`crate::SupportedShape::Wheel`]): the radius of the tread's profile across the wheel,
+    /// giving Hertz's elliptic contact with the curvature sums `1/R` and `1/crown` and spin
+    /// creep. `None` (default): a flat tread, Carter's line contact. A bad radius is refused by
+    /// the step ([`crate::PluginError::Setting`]).
+    pub crown: Option<f64>,
 }
 
 impl CreepMaterial {
@@ -60,12 +65,29 @@ impl CreepMaterial {
             material,
             fidelity: Fidelity::Auto,
             rolling: RollingResistance::None,
+            crown: None,
         }
     }
     /// This material with another fidelity.
     pub fn with_fidelity(mut self, fidelity: Fidelity) -> Self {
         self.fidelity = fidelity;
         self
+    }
+    /// This material with a wheel's crown radius \[m\] ([`CreepMaterial::crown`]).
+    pub fn with_crown(mut self, crown: f64) -> Self {
+        self.crown = Some(crown);
+        self
+    }
+    /// Refuses a crown radius that is not finite and > 0.
+    pub fn validate(&self) -> Result<(), crate::PluginError> {
+        match self.crown {
+            Some(rc) if !(rc.is_finite() && rc > 0.0) => Err(crate::PluginError::Setting {
+                name: "CreepMaterial::crown",
+                value: rc,
+                why: "a wheel's crown radius must be finite and > 0 [m]",
+            }),
+            _ => Ok(()),
+        }
     }
     /// This material with a contact-torque rolling model.
     pub fn with_rolling(mut self, model: creep_law::rolling_torque::RollingModel) -> Self {
@@ -81,6 +103,9 @@ impl CreepMaterial {
 pub struct MaterialRegistry {
     slots: Vec<Option<(ColliderHandle, CreepMaterial)>>,
     len: usize,
+    /// Registered colliders with `Fidelity::Compliant` (the compliant regime runs only with
+    /// some; kept so that a step need not scan the registry to know).
+    compliant: usize,
 }
 
 impl MaterialRegistry {
@@ -95,18 +120,29 @@ impl MaterialRegistry {
         if i >= self.slots.len() {
             self.slots.resize(i + 1, None);
         }
-        if self.slots[i].replace((collider, material)).is_none() {
-            self.len += 1;
+        match self.slots[i].replace((collider, material)) {
+            None => self.len += 1,
+            Some((_, old)) => self.compliant -= usize::from(old.fidelity == Fidelity::Compliant),
         }
+        self.compliant += usize::from(material.fidelity == Fidelity::Compliant);
     }
     /// Forgets a collider (call when removing it; unknown colliders fall back to Coulomb).
     pub fn remove(&mut self, collider: ColliderHandle) -> Option<CreepMaterial> {
         let slot = self.slots.get_mut(collider.into_raw_parts().0 as usize)?;
         if slot.is_some_and(|(h, _)| h == collider) {
             self.len -= 1;
-            slot.take().map(|(_, m)| m)
+            let m = slot.take().map(|(_, m)| m);
+            self.compliant -= usize::from(m.is_some_and(|m| m.fidelity == Fidelity::Compliant));
+            m
         } else {
             None
+        }
+    }
+    /// The material of a collider, if registered, to change anything but its fidelity.
+    pub(crate) fn get_mut(&mut self, collider: ColliderHandle) -> Option<&mut CreepMaterial> {
+        match self.slots.get_mut(collider.into_raw_parts().0 as usize) {
+            Some(Some((h, m))) if *h == collider => Some(m),
+            _ => None,
         }
     }
     /// The material of a collider, if registered.
@@ -130,16 +166,29 @@ impl MaterialRegistry {
     /// Keeps only the colliders for which `keep` is true (no allocation).
     pub fn retain(&mut self, mut keep: impl FnMut(ColliderHandle, &CreepMaterial) -> bool) {
         for slot in &mut self.slots {
-            if slot.is_some_and(|(h, m)| !keep(h, &m)) {
+            if let Some((h, m)) = *slot
+                && !keep(h, &m)
+            {
                 *slot = None;
                 self.len -= 1;
+                self.compliant -= usize::from(m.fidelity == Fidelity::Compliant);
             }
         }
+    }
+    /// Number of registered colliders with `Fidelity::Compliant`.
+    pub fn compliant_len(&self) -> usize {
+        self.compliant
     }
     /// Whether no collider is registered.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
+}
+
+/// A collider handle as `{index}v{generation}` (errors and warnings).
+pub(crate) fn handle_name(collider: ColliderHandle) -> String {
+    let (i, g) = collider.into_raw_parts();
+    format!("{i}v{g}")
 }
 
 /// Refuses a friction coefficient that is NaN, infinite or negative.
@@ -150,47 +199,25 @@ pub(crate) fn check_friction(
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
-        let (i, g) = collider.into_raw_parts();
         Err(crate::PluginError::Friction {
-            collider: format!("{i}v{g}"),
+            collider: handle_name(collider),
             value: f64::from(value),
         })
     }
 }
 
-/// The contact surface a collider presents: a ball is a sphere, a cuboid or half-space a plane
-/// (its faces); other shapes are not supported by the Hertz contact of creep-law (`None`: the
-/// plugin falls back to Coulomb for them).
+/// The contact surface a collider presents to the compliant regime (a ball a sphere, a cuboid
+/// or half-space a plane), or `None`: [`crate::supported_shape`]'s
+/// [`crate::SupportedShape::compliant_surface`].
 pub fn surface_of(collider: &Collider) -> Option<Surface> {
-    let shape = collider.shape();
-    if let Some(ball) = shape.as_ball() {
-        return Some(Surface::Sphere(f64::from(ball.radius)));
-    }
-    if shape.as_cuboid().is_some() || shape.as_halfspace().is_some() {
-        return Some(Surface::Plane);
-    }
-    None
+    crate::shape::supported_shape(collider).and_then(|s| s.compliant_surface())
 }
 
-/// The contact surface a collider presents to the rigid regime: a ball is a sphere; a cuboid,
-/// half-space, triangle mesh, heightfield or convex polyhedron is flat at the contact (infinite
-/// radius at the face, the face's normal: Rapier's contact normal), so that a ball on any game
-/// terrain creeps. A contact with a mesh's edge or vertex is treated as a face contact (the
-/// Hertz radius is the ball's). Other shapes are `None`. A cylinder is `None` here too, but the
-/// rigid hook does not leave it to Coulomb: a cylinder on a flat collider (`None` against
-/// [`Surface::Plane`]) is a wheel, with Carter's line-contact law or, for a crown radius set with
-/// `CreepHooks::set_wheel_crown`, Hertz's ellipse (the crate's `wheel` module). Capsules, cones,
-/// compounds and a cylinder against anything but a flat collider are left to Coulomb.
+/// The contact surface a collider presents to the rigid regime's Hertz contact (a ball a
+/// sphere; a cuboid, half-space, triangle mesh, heightfield or convex polyhedron a plane), or
+/// `None` (a cylinder, whose wheel contact is its own, or an unsupported shape):
+/// [`crate::supported_shape`]'s [`crate::SupportedShape::rigid_surface`]. To ask whether
+/// the plugin models a collider at all (wheels included), use [`crate::supported_shape`].
 pub fn rigid_surface_of(collider: &Collider) -> Option<Surface> {
-    // One virtual call (the typed shape), not one downcast per candidate shape: the hook asks
-    // this for both colliders of every manifold.
-    match collider.shape().as_typed_shape() {
-        TypedShape::Ball(ball) => Some(Surface::Sphere(f64::from(ball.radius))),
-        TypedShape::Cuboid(_)
-        | TypedShape::HalfSpace(_)
-        | TypedShape::TriMesh(_)
-        | TypedShape::HeightField(_)
-        | TypedShape::ConvexPolyhedron(_) => Some(Surface::Plane),
-        _ => None,
-    }
+    crate::shape::supported_shape(collider).and_then(|s| s.rigid_surface())
 }

@@ -14,7 +14,7 @@
 //! step (total impulses of the step divided by `dt`), and the contact radius from Hertz. Below
 //! the Coulomb limit the implicit friction solve enforces that slip; at the limit it slides.
 //!
-//! # Three-dimensional creep (crate module `creep3d`, issue #17)
+//! # Three-dimensional creep (crate module `creep3d`)
 //! The slip target is built in Kalker's rolling frame (`x = -v_roll/|v_roll|`, `y = n × x`):
 //! along `x` the configured law `F_ss` as above, across it Kalker's `C22` (the force direction
 //! of Kalker's simplified theory: the creepage for a force `Q` is `F_ss(|Q|/(mu P)) (u_x,
@@ -45,19 +45,23 @@
 //! # Rolling at game steps: the spin cap and the rotation gap
 //! Rapier 0.36 caps every body's spin at 45 degrees per step (for CCD), so a 0.1 m ball rolling
 //! faster than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides and loses most
-//! of its energy within seconds; with one solver substep the pipeline lifts the cap on bodies of
-//! registered balls ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change
-//! its swept volume; with more substeps the cap stays, see the setting).
+//! of its energy within seconds; with one solver substep (the default,
+//! [`SolverPreset::Rolling`]) the pipeline lifts the cap on bodies of registered balls
+//! ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change its swept volume;
+//! with more substeps the cap stays, see the setting).
 //! Rapier also tracks each solver contact's point as a point fixed in its body, so within a step
 //! the point of a rolling sphere turns with it, away from the lowest point: the solver reads a
 //! growing gap `R (1 - cos(omega t))` and lets the sphere sink, then pushes it back (energy is
 //! lost). The hook corrects the contact's `dist` and the rate at which the tracked point moves
 //! along the normal ([`CreepSettings::anchor_drift_correction`], on by default, every
 //! registered pair, Coulomb fidelity included; the `gap` module has the formulas): exact with
-//! one solver substep (`num_solver_iterations = 1`: a free 0.1 m ball then keeps its energy to
-//! 1e-5 and its height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the
-//! substeps otherwise (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without,
-//! -0.33 mm with it; it can lift a fast ball by millimetres and add energy, see `gap`).
+//! one solver substep (`num_solver_iterations = 1`, the default of [`configure_parameters`]
+//! and [`crate::CreepWorld::new`]: a free 0.1 m ball then keeps its energy to 1e-5 and its
+//! height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the substeps otherwise
+//! (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without, -0.33 mm with it; it can
+//! lift a fast ball by millimetres and add energy, see `gap`). With substeps kept
+//! ([`SolverPreset::Rapier`]) a registered ball or wheel that turns more than
+//! [`crate::ROTATION_GAP_TURN`] in a step gets a [`crate::CreepWarning::RotationGap`].
 //!
 //! # What remains of the engine's own error
 //! Plain Rapier shows a spurious slip of a rolling contact (from positions, `(dx - R dtheta) /
@@ -75,30 +79,16 @@
 //! target (even rounding noise) into a saturated friction force there; give such bodies their
 //! rotations (the friction-drive scene locks translations only).
 //!
-//! # Cost where things move (issue #14 item 3)
-//! Profile of `creep bench pile --moving --n 1000 --steps 150 --only auto|creep` (1,000 glass
-//! balls poured into a box, one plugin copy interleaved with plain Rapier; `perf record
-//! --call-graph dwarf`, samples split by world, in units of one plain step; machine load
-//! 11-17 on 2 cores, so a few percent of noise), before this round (commit 349bfe1) -> after:
-//!
-//! | part | Auto | creep everywhere | plain Rapier |
-//! |---|---|---|---|
-//! | whole step | 1.67 -> 1.57 | 2.16 -> 1.98 | 1 |
-//! | the hook (`modify_solver_contacts`) | 0.28 -> 0.27 | 0.56 -> 0.48 | - |
-//! | contact updates (`process_pair`, hook included) | 0.89 -> 0.84 | 1.41 -> 1.25 | 0.45-0.47 |
-//! | solver-graph upkeep of non-recycled pairs | 0.14 -> 0.14 | 0.14 -> 0.14 | 0.00-0.01 |
-//! | solver | 0.36 -> 0.32 | 0.33 -> 0.32 | 0.31-0.34 |
-//!
-//! Inside the hook before: the lock 24 %, the record's hash lookup 13 %,
-//! `PairMaterial::with_rule` per manifold 6 %, shape downcasts 7 %, the rotation-gap
-//! correction 5 %, the implicit solve 9 %, `Steady3d::loads` 4 %. After: the pair constants and
-//! the downcasts are gone (crate::pair_cache, one typed-shape call), and what remains is the
-//! lock (19-25 %: a locked instruction pair per manifold, which also waits for the memory
-//! traffic Rapier left in flight), the record lookup (15-17 %) and the law (solve, creepage,
-//! loads: ~25 %). Most of the cost is not the hook's: a pair with any active hook flag is never
-//! recycled (docs/RAPIER_CONTACT_RECYCLING.md), so creep everywhere pays a full contact update
-//! and the solver-graph upkeep of every pair every step (~0.9 plain steps here); creep within
-//! 1.5x of plain Rapier needs a Rapier hook on recycled pairs.
+//! # Cost
+//! Where things move, most of the plugin's cost is not the hook's: a pair with any active hook
+//! flag is never recycled by Rapier (docs/RAPIER_CONTACT_RECYCLING.md), so a pair that creeps
+//! pays a full contact update and the solver-graph upkeep every step. Inside the hook the
+//! per-pair constants are cached (crate::pair_cache) and each collider's shape is read once
+//! (one typed-shape call); what remains is the shard's lock, the record's lookup and the law.
+//! `creep bench pile --moving` measures it. Where things rest the hooks go off below
+//! [`CreepSettings::activation_speed`] and Rapier's recycling returns; bodies sleep as in plain
+//! Rapier, and the step's preparation visits only the colliders of awake bodies
+//! (`creep bench pile --settled`).
 //!
 //! The per-contact records live in shards keyed by the collider pair (one without feature
 //! `parallel`, 64 with it): a hook call locks only its pair's shard, never a global lock, and
@@ -113,7 +103,6 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use creep_law::{Surface, Vec3};
-use rapier3d::parry::shape::TypedShape;
 use rapier3d::prelude::*;
 
 use crate::ball_hook::{BallManifold, ball_manifold};
@@ -122,9 +111,10 @@ use crate::creep3d::LawCache;
 use crate::error::PluginError;
 use crate::gap::rotation_gap_correction;
 use crate::pair_cache::PairCache;
-use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
+use crate::registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
 use crate::rolling::apply_rolling_impulse;
 use crate::store::{ContactKey, ContactRecord, ContactStore};
+use crate::warning::{CreepWarning, ROTATION_GAP_TURN, WarnedSet};
 use crate::wheel::Crowns;
 use crate::wheel_hook::{WheelCtx, wheel_manifold};
 
@@ -142,10 +132,59 @@ pub fn check_parameters(params: &IntegrationParameters) -> Result<(), PluginErro
     Ok(())
 }
 
-/// Sets `params` to what the plugin needs (`FrictionModel::Coulomb`, no clustering).
+/// Sets `params` to what the plugin needs and what rolling balls and wheels need at game steps:
+/// [`configure_parameters_for`] with [`SolverPreset::Rolling`] (the default of
+/// [`crate::CreepWorld::new`]).
 pub fn configure_parameters(params: &mut IntegrationParameters) {
+    configure_parameters_for(params, SolverPreset::Rolling);
+}
+
+/// Sets `params` to what the plugin requires (checked by [`check_parameters`]):
+/// `FrictionModel::Coulomb` (the hook reads each contact point's friction impulse, which Rapier
+/// writes only then) and `contact_clustering = false` (clustered manifolds hide the per-point
+/// impulses); and, with [`SolverPreset::Rolling`], the solver of rolling bodies:
+/// `num_solver_iterations = 1` (one substep: the rotation-gap correction is exact and the
+/// pipeline lifts Rapier's spin cap on registered balls, crate module `gap`) and
+/// `num_internal_pgs_iterations =` [`ROLLING_PGS_ITERATIONS`]. [`SolverPreset::Rapier`] leaves
+/// the solver's iterations as they are.
+pub fn configure_parameters_for(params: &mut IntegrationParameters, preset: SolverPreset) {
     params.friction_model = FrictionModel::Coulomb;
     params.contact_clustering = false;
+    if preset == SolverPreset::Rolling {
+        params.num_solver_iterations = 1;
+        params.num_internal_pgs_iterations = ROLLING_PGS_ITERATIONS;
+    }
+}
+
+/// Gauss-Seidel iterations per substep of [`SolverPreset::Rolling`]: with one substep, the
+/// solves that Rapier's four substeps would have spent (about the same cost), and what a wheel
+/// on a revolute joint needs: at 1/60 s a driven rubber wheel on its joint follows Carter's
+/// law within 2 % of `mu P` up to 0.9 `mu P` with 4 (and with 16), while with 1 its joint and
+/// contact do not converge together and at 0.9 `mu P` it slides (10 % of `mu P` off;
+/// creep-scenes' `wheel_from_the_recipe_follows_carter`). Vehicles whose joints and several
+/// contacts couple may want more (creep-scenes' robot uses 16).
+pub const ROLLING_PGS_ITERATIONS: usize = 4;
+
+/// The solver parameters [`configure_parameters_for`] (and [`crate::CreepWorld::new`], from
+/// [`CreepSettings::solver`]) choose beyond what the plugin requires.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SolverPreset {
+    /// What rolling balls and wheels need at game steps (default): one solver substep
+    /// (`num_solver_iterations = 1`) with [`ROLLING_PGS_ITERATIONS`] Gauss-Seidel iterations.
+    /// Rapier reads a rolling body's contact at each substep as a point fixed in the body
+    /// (its rotation gap, crate module `gap`); the plugin's correction is exact with one
+    /// substep only, and only then does the pipeline lift Rapier's spin cap (45 degrees a
+    /// step) on registered balls. Measured: a 0.1 m steel ball launched rolling at 5 m/s at
+    /// 1/60 s keeps 0.99997 of its energy over 10 s and its height within 0.1 mm; with
+    /// Rapier's four substeps it floats 2.2 mm and loses 17 % in the first second.
+    #[default]
+    Rolling,
+    /// Leave the solver's iterations as they are (Rapier's defaults in a fresh world: four
+    /// substeps, one Gauss-Seidel iteration), for scenes that need substeps more than rolling
+    /// accuracy (tall stacks, long joint chains, stiff mass ratios). A registered ball or wheel
+    /// that then rolls fast enough for the rotation gap to matter gets a
+    /// [`crate::CreepWarning::RotationGap`].
+    Rapier,
 }
 
 /// Plugin-wide settings.
@@ -175,6 +214,13 @@ pub struct CreepSettings {
     /// rotation-gap correction is exact; default true). Without it a 0.1 m ball rolling faster
     /// than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides.
     pub lift_rotation_cap: bool,
+    /// The solver parameters [`crate::CreepWorld::new`] sets ([`configure_parameters_for`]):
+    /// [`SolverPreset::Rolling`] (default: one substep) or [`SolverPreset::Rapier`] (Rapier's
+    /// own).
+    pub solver: SolverPreset,
+    /// Warn once per collider ([`crate::CreepWarning::Unregistered`]) when an unregistered
+    /// collider touches a registered one (default true; false: no such warning).
+    pub warn_unregistered: bool,
 }
 
 impl Default for CreepSettings {
@@ -185,11 +231,18 @@ impl Default for CreepSettings {
             activation_speed: 1e-2,
             creep_model: creep_law::CreepModel::Kuhn,
             lift_rotation_cap: true,
+            solver: SolverPreset::Rolling,
+            warn_unregistered: true,
         }
     }
 }
 
 impl CreepSettings {
+    /// These settings with Rapier's own solver parameters ([`SolverPreset::Rapier`]).
+    pub fn with_rapier_solver(mut self) -> Self {
+        self.solver = SolverPreset::Rapier;
+        self
+    }
     /// Validates the settings.
     pub fn validate(&self) -> Result<(), PluginError> {
         if !(self.auto_tolerance >= 0.0 && self.auto_tolerance.is_finite()) {
@@ -211,9 +264,10 @@ impl CreepSettings {
 }
 
 /// What the plugin did in the last step.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct StepCounts {
-    /// Contacts with a collider the registry does not know: left to Coulomb.
+    /// Contacts with a collider the registry does not know: left to Coulomb (each such
+    /// collider touching a registered one is also named once in [`StepCounts::warnings`]).
     pub coulomb_unregistered: usize,
     /// Contacts with a shape the rigid regime does not model (not a ball, cuboid, half-space,
     /// triangle mesh, heightfield or convex polyhedron, nor a cylinder on one of the flat
@@ -234,12 +288,25 @@ pub struct StepCounts {
     pub creep_power: f64,
     /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
     pub max_loop_gain: f64,
-    /// Registered colliders whose hook was on for this step (set by [`crate::CreepPipeline`]).
+    /// Registered colliders whose hook was on for this step, among those the step visited (the
+    /// colliders of awake bodies; every registered collider on a full visit; set by
+    /// [`crate::CreepPipeline`]).
     pub hooks_on: usize,
     /// Contacts of pairs whose two colliders are below the activation speed, in the one step
     /// before their hooks go off: left as plain Rapier contacts (their targets cleared, so that
     /// Rapier's contact recycling does not keep a stale creep target).
     pub quiet: usize,
+    /// What the plugin reports once, first seen in this step ([`crate::CreepWarning`]: a fast
+    /// ball or wheel with substeps, an unregistered collider touching a registered one, no
+    /// registered collider, a quarantined body). Print them with `Display`.
+    pub warnings: Vec<CreepWarning>,
+    /// Bodies Rapier quarantined in this step (their state went non-finite; rapier3d's
+    /// `PhysicsPipeline::quarantine`): disabled. Filled by [`crate::CreepPipeline::step`]; a
+    /// host that runs Rapier's step itself passes Rapier's report to
+    /// [`crate::CreepPipeline::report_quarantine`].
+    pub quarantined_bodies: Vec<RigidBodyHandle>,
+    /// Colliders Rapier quarantined in this step (non-finite geometry): disabled.
+    pub quarantined_colliders: Vec<ColliderHandle>,
 }
 
 impl StepCounts {
@@ -265,9 +332,16 @@ impl StepCounts {
 struct Shard {
     store: ContactStore,
     counts: StepCounts,
+    /// Unregistered colliders seen touching a registered one (and the registered one), not
+    /// yet reported by this shard.
+    unregistered: Vec<(ColliderHandle, ColliderHandle)>,
+    /// The unregistered colliders this shard has reported.
+    unregistered_seen: WarnedSet,
+    /// A collider of a pair the hook saw with a NaN, infinite or negative friction.
+    bad_friction: Option<(ColliderHandle, f32)>,
     /// The 3-D creep laws by contact shape (crate::creep3d; the wheel path's).
     laws: LawCache,
-    /// The wheels' crown radii (crate::wheel), the same in every shard.
+    /// The wheels' axle tracks and elliptic Hertz cache (crate::wheel).
     crowns: Crowns,
     /// The per-pair constants (crate::pair_cache).
     pairs: PairCache,
@@ -277,7 +351,7 @@ struct Shard {
 /// different pairs on several threads at once; each call locks only the shard of its collider
 /// pair, never a global lock, so calls on different shards never wait for each other (two
 /// given calls meet on one shard with probability 1/64). Without it there is one thread and one
-/// shard: one uncontended lock per manifold, and the records in one map as before.
+/// shard: one uncontended lock per manifold, and the records in one map.
 const SHARDS: usize = if cfg!(feature = "parallel") { 64 } else { 1 };
 
 /// The shard of a collider pair (a multiplicative hash of the two indices; the pair's order
@@ -338,7 +412,40 @@ pub struct CreepHooks {
     /// applied in key order so that the bodies' sums do not depend on the threads).
     #[cfg(feature = "parallel")]
     moments: Vec<(ContactKey, ContactRecord)>,
+    /// The warnings of this step (`StepCounts::warnings`).
+    warnings: Vec<CreepWarning>,
+    /// Colliders warned about as unregistered.
+    warned_unregistered: WarnedSet,
+    /// Whether the rotation-gap warning was given.
+    warned_gap: bool,
+    /// Whether the nothing-registered warning was given.
+    warned_nothing: bool,
+    /// What Rapier quarantined in this step.
+    quarantined: (Vec<RigidBodyHandle>, Vec<ColliderHandle>),
+    /// Rapier's linear speed cap of the step \[m/s\] (`max_linear_velocity`).
+    max_linvel: f64,
+    /// Steps until the next scan of the contact pairs for unregistered colliders.
+    scan_countdown: u32,
+    /// The registered colliders the step's preparation visits ([`CreepHooks::select_colliders`]).
+    selected: Vec<ColliderHandle>,
+    /// Steps until the next preparation that visits every registered collider.
+    full_countdown: u32,
+    /// Whether the registry may have changed since the last full visit (`registry_mut`).
+    registry_dirty: bool,
+    /// Colliders in the world at the last full visit.
+    last_collider_count: usize,
 }
+
+/// Steps between two preparations that visit every registered collider (the others visit the
+/// colliders of awake bodies only, [`CreepHooks::select_colliders`]): what only such a visit
+/// finds is a registered collider of a fixed body whose friction was made invalid since, which
+/// the hook also refuses as soon as a moving registered body touches it.
+const FULL_PASS_STEPS: u32 = 600;
+
+/// Steps between two scans of the narrow phase's contact pairs for unregistered colliders
+/// touching registered ones ([`CreepHooks::scan_unregistered`]; a pair whose hook runs is seen
+/// at once).
+const UNREGISTERED_SCAN_STEPS: u32 = 32;
 
 impl CreepHooks {
     /// Hooks with the given materials and settings.
@@ -356,6 +463,17 @@ impl CreepHooks {
             hooks_on: 0,
             #[cfg(feature = "parallel")]
             moments: Vec::new(),
+            warnings: Vec::new(),
+            warned_unregistered: WarnedSet::default(),
+            warned_gap: false,
+            warned_nothing: false,
+            quarantined: (Vec::new(), Vec::new()),
+            max_linvel: f64::MAX,
+            scan_countdown: 0,
+            selected: Vec::new(),
+            full_countdown: 0,
+            registry_dirty: true,
+            last_collider_count: 0,
         })
     }
 
@@ -365,26 +483,85 @@ impl CreepHooks {
     }
     /// The material registry, to add or remove colliders.
     pub fn registry_mut(&mut self) -> &mut MaterialRegistry {
+        self.registry_dirty = true;
         &mut self.registry
+    }
+
+    /// Chooses the registered colliders the step's preparation visits (friction check, spin
+    /// cap, hook activation), so that a settled world whose bodies sleep costs no more than in
+    /// plain Rapier: the colliders of the bodies `islands` has awake (a sleeping body's flags
+    /// stay as they were when it fell asleep, when it was below the activation speed), and
+    /// every registered collider (after forgetting those Rapier no longer has) on the first
+    /// step, after any change through [`CreepHooks::registry_mut`], when the number of
+    /// colliders changed, every [`FULL_PASS_STEPS`] steps, or without `islands`.
+    pub(crate) fn select_colliders(
+        &mut self,
+        islands: Option<&IslandManager>,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) {
+        let mut selected = std::mem::take(&mut self.selected);
+        selected.clear();
+        let full = match islands {
+            None => true,
+            Some(_) => {
+                self.registry_dirty
+                    || self.full_countdown == 0
+                    || colliders.len() != self.last_collider_count
+            }
+        };
+        match islands {
+            Some(islands) if !full => {
+                self.full_countdown -= 1;
+                for b in islands.active_bodies() {
+                    if let Some(rb) = bodies.get(b) {
+                        selected.extend(
+                            rb.colliders()
+                                .iter()
+                                .filter(|&&c| self.registry.get(c).is_some()),
+                        );
+                    }
+                }
+            }
+            _ => {
+                self.full_countdown = FULL_PASS_STEPS - 1;
+                self.registry_dirty = false;
+                self.last_collider_count = colliders.len();
+                self.registry.retain(|handle, _| colliders.contains(handle));
+                selected.extend(self.registry.iter().map(|(h, _)| *h));
+            }
+        }
+        self.selected = selected;
+    }
+
+    /// The registered colliders selected for this step ([`CreepHooks::select_colliders`]).
+    pub(crate) fn selected(&self) -> &[ColliderHandle] {
+        &self.selected
     }
     /// The settings.
     pub fn settings(&self) -> &CreepSettings {
         &self.settings
     }
 
-    /// Gives a cylinder collider (a wheel) a crown radius `crown` \[m\] (finite, > 0), or
-    /// none (`None`: a line contact, Carter's law). A crowned wheel's contact is Hertz's ellipse
-    /// with the curvature sums `1/R` and `1/crown` (module `wheel` of this crate's sources;
-    /// README "Wheels"). A bad radius is [`PluginError::Setting`].
+    /// Gives a registered cylinder collider (a wheel) a crown radius `crown` \[m\] (finite
+    /// and positive), or none (`None`: a line contact, Carter's law): sets its material's
+    /// [`crate::CreepMaterial::crown`] (as [`crate::CreepMaterial::with_crown`] does before
+    /// registration). A crowned wheel's contact is Hertz's ellipse with the curvature sums
+    /// `1/R` and `1/crown` (crate module `wheel`). A bad radius is [`PluginError::Setting`], an
+    /// unregistered collider [`PluginError::NotRegistered`].
     pub fn set_wheel_crown(
         &mut self,
         collider: ColliderHandle,
         crown: Option<f64>,
     ) -> Result<(), PluginError> {
-        for shard in self.shards.iter_mut() {
-            let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
-            shard.crowns.set(collider, crown)?;
-        }
+        let Some(m) = self.registry.get_mut(collider) else {
+            return Err(PluginError::NotRegistered {
+                collider: crate::registry::handle_name(collider),
+            });
+        };
+        let candidate = CreepMaterial { crown, ..*m };
+        candidate.validate()?;
+        *m = candidate;
         Ok(())
     }
 
@@ -403,6 +580,10 @@ impl CreepHooks {
         self.dt = f64::from(params.dt);
         self.substeps = params.num_solver_iterations.max(1);
         self.prediction = f64::from(params.prediction_distance());
+        self.max_linvel = f64::from(params.max_linear_velocity());
+        self.warnings.clear();
+        self.quarantined.0.clear();
+        self.quarantined.1.clear();
         for shard in self.shards.iter_mut() {
             let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
             shard.store.begin_step();
@@ -428,12 +609,47 @@ impl CreepHooks {
     ) -> usize {
         let v_act = self.settings.activation_speed;
         let mut on_count = 0;
-        for (&handle, mat) in self.registry.iter() {
+        if self.registry.is_empty() && !colliders.is_empty() && !self.warned_nothing {
+            self.warned_nothing = true;
+            self.warnings.push(CreepWarning::NothingRegistered {
+                colliders: colliders.len(),
+            });
+        }
+        let check_gap = self.substeps > 1 && !self.warned_gap;
+        for &handle in &self.selected {
+            let Some(mat) = self.registry.get(handle) else {
+                continue;
+            };
             // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
             // re-process it (a large cost if done for every collider every step).
             let Some(co) = colliders.get(handle) else {
                 continue;
             };
+            if check_gap && !self.warned_gap {
+                // With substeps, a ball or wheel turning fast reads Rapier's rotation gap
+                // (crate module `gap`): say so once, naming the setting.
+                let radius = match crate::shape::supported_shape(co) {
+                    Some(crate::SupportedShape::Ball { radius })
+                    | Some(crate::SupportedShape::Wheel { radius, .. }) => Some(radius),
+                    _ => None,
+                };
+                if let Some(radius) = radius
+                    && let Some(rb) = co.parent().and_then(|h| bodies.get(h))
+                    && rb.is_dynamic()
+                {
+                    let w = f64::from(rb.angvel().length());
+                    let turn = w * self.dt;
+                    if turn > ROTATION_GAP_TURN {
+                        self.warned_gap = true;
+                        self.warnings.push(CreepWarning::RotationGap {
+                            collider: handle,
+                            rim_speed: w * radius,
+                            turn,
+                            substeps: self.substeps,
+                        });
+                    }
+                }
+            }
             if mat.fidelity == Fidelity::Compliant {
                 // Out of Rapier's contact solve altogether (no solver contacts, no hook), so its
                 // pairs keep Rapier's contact recycling: the compliant regime needs only the
@@ -484,6 +700,18 @@ impl CreepHooks {
         if !std::mem::take(&mut self.prepared) {
             return Err(PluginError::StepNotPrepared);
         }
+        // The shards' reports: unregistered colliders (once each), a bad friction.
+        let mut bad_friction = None;
+        for shard in self.shards.iter_mut() {
+            let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
+            bad_friction = bad_friction.or(shard.bad_friction.take());
+            for (collider, touching) in shard.unregistered.drain(..) {
+                if self.warned_unregistered.insert(collider) {
+                    self.warnings
+                        .push(CreepWarning::Unregistered { collider, touching });
+                }
+            }
+        }
         let dt = self.dt;
         let has_moment =
             |rec: &ContactRecord| rec.torque != Vec3::ZERO || rec.spin_torque != Vec3::ZERO;
@@ -523,7 +751,56 @@ impl CreepHooks {
                 live
             });
         }
-        Ok(())
+        match bad_friction {
+            Some((collider, value)) => crate::registry::check_friction(collider, value),
+            None => Ok(()),
+        }
+    }
+
+    /// Every [`UNREGISTERED_SCAN_STEPS`] steps (with [`CreepSettings::warn_unregistered`]):
+    /// warns once about each unregistered collider in contact with a registered one. The hook
+    /// sees such pairs only while the registered collider's hook is on; this scan also finds
+    /// them against a resting or fixed registered collider (a floor), at the cost of one pass
+    /// over the contact pairs every few steps while some collider (of `colliders` in the
+    /// world) is not registered.
+    pub(crate) fn scan_unregistered(&mut self, narrow_phase: &NarrowPhase, colliders: usize) {
+        // Nothing to find when every collider is registered (or none is).
+        if !self.settings.warn_unregistered
+            || self.registry.is_empty()
+            || colliders <= self.registry.len()
+        {
+            return;
+        }
+        if self.scan_countdown > 0 {
+            self.scan_countdown -= 1;
+            return;
+        }
+        self.scan_countdown = UNREGISTERED_SCAN_STEPS - 1;
+        for pair in narrow_phase.contact_pairs() {
+            let (c1, c2) = (pair.collider1, pair.collider2);
+            let (known, stranger) = match (self.registry.get(c1), self.registry.get(c2)) {
+                (Some(_), None) => (c1, c2),
+                (None, Some(_)) => (c2, c1),
+                _ => continue,
+            };
+            if pair.has_any_active_contact() && self.warned_unregistered.insert(stranger) {
+                self.warnings.push(CreepWarning::Unregistered {
+                    collider: stranger,
+                    touching: known,
+                });
+            }
+        }
+    }
+
+    /// Records what Rapier quarantined in the step (rapier3d's `PhysicsPipeline::quarantine`):
+    /// in [`StepCounts::quarantined_bodies`] and `quarantined_colliders`, each body also as a
+    /// [`CreepWarning::Quarantined`].
+    pub(crate) fn report_quarantine(&mut self, q: &rapier3d::pipeline::Quarantine) {
+        for &body in q.bodies() {
+            self.quarantined.0.push(body);
+            self.warnings.push(CreepWarning::Quarantined { body });
+        }
+        self.quarantined.1.extend_from_slice(q.colliders());
     }
 
     /// Whether a step is prepared and not yet finished.
@@ -549,7 +826,10 @@ impl CreepHooks {
         if !self.settings.lift_rotation_cap || self.substeps != 1 {
             return;
         }
-        for (&handle, mat) in self.registry.iter() {
+        for &handle in &self.selected {
+            let Some(mat) = self.registry.get(handle) else {
+                continue;
+            };
             if mat.fidelity == Fidelity::Compliant {
                 continue;
             }
@@ -560,12 +840,21 @@ impl CreepHooks {
                 continue;
             }
             let Some(parent) = co.parent() else { continue };
-            if bodies
-                .get(parent)
-                .is_some_and(|rb| rb.is_dynamic() && !rb.is_fast_rotation_allowed())
+            let Some(rb) = bodies.get(parent).filter(|rb| rb.is_dynamic()) else {
+                continue;
+            };
+            // Rapier caps every body's linear speed (`max_linear_velocity`, 400 m/s per length
+            // unit) but no lifted spin: a ball at that cap keeps the spin cap too, so that its
+            // rim speed `|omega| R` never runs past the linear cap (friction spins a lifted
+            // ball only towards `|v|/R`).
+            let radius = f64::from(co.shape().as_ball().map_or(0.0, |b| b.radius));
+            let cap = 0.99 * self.max_linvel;
+            let lift = f64::from(rb.linvel().length()) < cap
+                && f64::from(rb.angvel().length()) * radius < cap;
+            if rb.is_fast_rotation_allowed() != lift
                 && let Some(rb) = bodies.get_mut(parent)
             {
-                rb.set_allow_fast_rotation(true);
+                rb.set_allow_fast_rotation(lift);
             }
         }
     }
@@ -577,6 +866,9 @@ impl CreepHooks {
     pub fn counts(&self) -> StepCounts {
         let mut c = StepCounts {
             hooks_on: self.hooks_on,
+            warnings: self.warnings.clone(),
+            quarantined_bodies: self.quarantined.0.clone(),
+            quarantined_colliders: self.quarantined.1.clone(),
             ..StepCounts::default()
         };
         for shard in self.shards.iter() {
@@ -650,9 +942,35 @@ impl PhysicsHooks for CreepHooks {
             laws,
             crowns,
             pairs,
+            unregistered,
+            unregistered_seen,
+            bad_friction,
         } = &mut *shard;
+        let (co1, co2) = (colliders.get(c1), colliders.get(c2));
+        // Both colliders' friction (a registered collider's is checked before the step, its
+        // partner's only here): the step returns PluginError::Friction, and the pair is
+        // solved without friction meanwhile so that no NaN reaches the bodies.
+        for (handle, co) in [(c1, co1), (c2, co2)] {
+            if let Some(co) = co
+                && !(co.friction().is_finite() && co.friction() >= 0.0)
+            {
+                *bad_friction = Some((handle, co.friction()));
+                *rigid.friction = 0.0;
+                return;
+            }
+        }
         let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
             counts.coulomb_unregistered += n_contacts;
+            if self.settings.warn_unregistered {
+                let (stranger, known) = if self.registry.get(c1).is_some() {
+                    (c2, c1)
+                } else {
+                    (c1, c2)
+                };
+                if self.registry.get(known).is_some() && unregistered_seen.insert(stranger) {
+                    unregistered.push((stranger, known));
+                }
+            }
             return;
         };
         // --- Compliant regime (crate::compliant applies this pair's forces itself). ---
@@ -661,7 +979,6 @@ impl PhysicsHooks for CreepHooks {
             return;
         }
         // --- end compliant ---
-        let (co1, co2) = (colliders.get(c1), colliders.get(c2));
         if quiet_collider(co1) && quiet_collider(co2) {
             // Both below the activation speed: plain Rapier contacts (as with the hook off),
             // rebuilt clean before Rapier starts recycling them.
@@ -781,14 +1098,13 @@ pub fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
     (t1, d.cross(t1))
 }
 
-/// The surfaces a collider presents to the rigid hook, from one typed-shape call: the contact
-/// law's ([`crate::rigid_surface_of`]) and the rotation-gap correction's (the same, and a
-/// cylinder as a sphere of its radius: a wheel turning about its axle).
+/// The surfaces a collider presents to the rigid hook, from one typed-shape call
+/// ([`crate::supported_shape`]): the contact law's ([`crate::SupportedShape::rigid_surface`])
+/// and the rotation-gap correction's (the same, and a wheel as a sphere of its radius: it turns
+/// about its axle).
 fn shape_surfaces(co: &Collider) -> (Option<Surface>, Option<Surface>) {
-    let law = crate::registry::rigid_surface_of(co);
-    let gap = law.or_else(|| match co.shape().as_typed_shape() {
-        TypedShape::Cylinder(c) => Some(Surface::Sphere(f64::from(c.radius))),
-        _ => None,
-    });
-    (law, gap)
+    match crate::shape::supported_shape(co) {
+        Some(shape) => (shape.rigid_surface(), Some(shape.gap_surface())),
+        None => (None, None),
+    }
 }

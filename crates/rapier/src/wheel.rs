@@ -1,4 +1,4 @@
-//! Wheels in the rigid regime (issue #17, part 3): a cylinder collider rolling on its round face
+//! Wheels in the rigid regime: a cylinder collider rolling on its round face
 //! on a flat collider (cuboid, half-space, mesh, heightfield, convex polyhedron) gets the creep
 //! law of its contact, longitudinal and lateral, through the implicit solve of crate module
 //! `creep3d`.
@@ -11,7 +11,8 @@
 //! speed is `V = |v_roll . x|` (Kuhn & Bagi's `v_roll` at the contact centre, the mean of the
 //! manifold's solver contacts), so a wheel at slip angle `alpha` has `eta = tan(alpha)`.
 //!
-//! * **Crowned wheel** (a crown radius `R_c` given with [`crate::CreepHooks::set_wheel_crown`]):
+//! * **Crowned wheel** (a crown radius `R_c`: [`crate::CreepMaterial::with_crown`], or
+//!   [`crate::CreepHooks::set_wheel_crown`] once registered):
 //!   Hertz's elliptic contact with the curvature sums `kx = 1/R`, `ky = 1/R_c` (Hertz 1882;
 //!   Johnson 1985, §4.2; creep-law's `elliptic`), semi-axes `a` (rolling direction) and `b`, both
 //!   `~ P^(1/3)`; the law along `x` is creep-law's fast 3-D law at zero spin (`Steady3d`, fitted
@@ -71,8 +72,6 @@
 use creep_law::elliptic::elliptic_hertz;
 use rapier3d::prelude::*;
 
-use crate::error::PluginError;
-
 /// The shape of a wheel's contact law.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum WheelContact {
@@ -113,10 +112,10 @@ struct AxleTrack {
     now: creep_law::Vec3,
 }
 
-/// Crown radii of the wheels, by collider index (no hashing).
+/// The wheels' per-collider state of the hook (by collider index, no hashing): axle tracks,
+/// elliptic Hertz at unit load, a solver-contact template.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Crowns {
-    slots: Vec<Option<(ColliderHandle, f64)>>,
     /// The wheels' axles in the last two steps, by collider index (see [`Crowns::axle_turn`]).
     axles: Vec<Option<AxleTrack>>,
     /// Elliptic Hertz at unit load by `(kx, ky, E*)`: `(a1, b1)` (a short list).
@@ -126,25 +125,6 @@ pub(crate) struct Crowns {
 }
 
 impl Crowns {
-    /// Sets (or clears) a collider's crown radius \[m\] (finite, > 0).
-    pub fn set(&mut self, collider: ColliderHandle, crown: Option<f64>) -> Result<(), PluginError> {
-        if let Some(rc) = crown
-            && !(rc.is_finite() && rc > 0.0)
-        {
-            return Err(PluginError::Setting {
-                name: "wheel crown radius",
-                value: rc,
-                why: "must be finite and > 0 [m]",
-            });
-        }
-        let i = collider.into_raw_parts().0 as usize;
-        if i >= self.slots.len() {
-            self.slots.resize(i + 1, None);
-        }
-        self.slots[i] = crown.map(|rc| (collider, rc));
-        Ok(())
-    }
-
     /// The angle \[rad\] the wheel's axle turned about `n` over the last step (from the poses
     /// of the hook calls of steps `step - 1` and `step`), or `None` if the wheel was not seen in
     /// the step before. The poses follow the solver's velocities, which a wheel's joint keeps
@@ -212,21 +192,14 @@ impl Crowns {
         Some(sc)
     }
 
-    /// The crown radius of a collider, if set.
-    pub fn get(&self, collider: ColliderHandle) -> Option<f64> {
-        match self.slots.get(collider.into_raw_parts().0 as usize) {
-            Some(Some((h, rc))) if *h == collider => Some(*rc),
-            _ => None,
-        }
-    }
-
-    /// The wheel of a cylinder collider (`None` for other shapes), with the contact modulus
-    /// `e_star` \[Pa\] of its pair for the elliptic contact.
-    pub fn wheel(&mut self, handle: ColliderHandle, co: &Collider, e_star: f64) -> Option<Wheel> {
+    /// The wheel of a cylinder collider (`None` for other shapes) of crown radius `crown`
+    /// \[m\] (its material's; `None`: line contact), with the contact modulus `e_star` \[Pa\]
+    /// of its pair for the elliptic contact.
+    pub fn wheel(&mut self, co: &Collider, crown: Option<f64>, e_star: f64) -> Option<Wheel> {
         let cyl = co.shape().as_cylinder()?;
         let radius = f64::from(cyl.radius);
         let axle = crate::convert::v3(co.rotation() * Vector::Y);
-        let contact = match self.get(handle) {
+        let contact = match crown {
             Some(rc) => {
                 let key = [1.0 / radius, 1.0 / rc, e_star];
                 let (a1, b1) = match self.hertz.iter().find(|(k, _)| *k == key) {
@@ -292,18 +265,5 @@ mod tests {
         let q = 1e-9;
         assert!((carter_creepage(q, mu_p, p, a, r) / (a * q / (2.0 * r * p)) - 1.0).abs() < 1e-8);
         assert_eq!(carter_creepage(0.5, 0.0, p, a, r), 0.0);
-    }
-
-    #[test]
-    fn crowns_are_validated_and_found() {
-        let mut c = Crowns::default();
-        let h = ColliderHandle::from_raw_parts(3, 0);
-        assert!(c.set(h, Some(-1.0)).is_err());
-        assert!(c.set(h, Some(f64::NAN)).is_err());
-        c.set(h, Some(0.2)).unwrap();
-        assert_eq!(c.get(h), Some(0.2));
-        assert_eq!(c.get(ColliderHandle::from_raw_parts(3, 1)), None);
-        c.set(h, None).unwrap();
-        assert_eq!(c.get(h), None);
     }
 }

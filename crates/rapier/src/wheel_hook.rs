@@ -75,7 +75,8 @@ pub(crate) fn wheel_manifold(
         counts.coulomb_unsupported += n_contacts;
         return true;
     };
-    let Some(wheel) = crowns.wheel(wc, co, pair.e_star) else {
+    let crown = if side == 0 { m1.crown } else { m2.crown };
+    let Some(wheel) = crowns.wheel(co, crown, pair.e_star) else {
         return false;
     };
     crowns.keep_template(rigid.solver_contacts.first());

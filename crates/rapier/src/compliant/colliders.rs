@@ -7,8 +7,10 @@ use rapier3d::prelude::*;
 use super::geometry::{self, Frame, Touch};
 use crate::hooks::v3;
 
+/// The compliant surface of a collider ([`crate::supported_shape`]: balls, cuboids and
+/// half-spaces), or `None`.
 pub(super) fn surface(co: &Collider) -> Option<Surface> {
-    crate::registry::surface_of(co)
+    crate::shape::supported_shape(co).and_then(|s| s.compliant_surface())
 }
 
 /// Centre of a collider in f64 \[m\].
