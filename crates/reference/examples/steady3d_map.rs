@@ -6,8 +6,10 @@
 //! * `converge`: the grid convergence at a few points (grids 16, 24, 32, 48 and the
 //!   extrapolations), and a check of the symmetries the table relies on;
 //! * `grade [--table FILE] [--out DIR]`: grades `Steady3d::new` on every signed point of the
-//!   table: worst errors per `(a/b, nu)` (markdown, stdout), the per-point CSV
-//!   `DIR/steady3d_map_errors.csv` and PNG plots `DIR/steady3d_map_<pair>.png` of the error
+//!   table and on the off-grid validation table: worst errors per `(a/b, nu)` (markdown,
+//!   stdout), the per-point CSVs `DIR/steady3d_map_errors.csv` and
+//!   `DIR/steady3d_map_validation_errors.csv`, the law far in full slip against the full-slip
+//!   quadrature, and PNG plots `DIR/steady3d_map_<pair>.png` of the error
 //!   against each pair of creepages (default `DIR`: `target/steady3d_map`).
 //!
 //! `cargo run --release -p creep-reference --example steady3d_map -- bem > crates/reference/data/steady3d_map.csv`
@@ -89,16 +91,12 @@ fn validation() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!("{MAP_HEADER}");
     let all = Instant::now();
-    for k in 0..VALIDATION_CASES.len() {
+    for (k, case) in VALIDATION_CASES.iter().enumerate() {
         let t = Instant::now();
         for p in solve_validation(k)? {
             println!("{}", map_csv_line(&p));
         }
-        eprintln!(
-            "{:?}: {:.1} s",
-            VALIDATION_CASES[k],
-            t.elapsed().as_secs_f64()
-        );
+        eprintln!("{:?}: {:.1} s", case, t.elapsed().as_secs_f64());
     }
     eprintln!("total {:.1} s", all.elapsed().as_secs_f64());
     Ok(())
@@ -283,6 +281,31 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let val = grade_steady3d_as_is(&validation_table()?)?;
+    let mut vcsv = String::from(
+        "ab,nu,xi_n,eta_n,phi_n,fx_bem,fy_bem,mz_bem,fx_law,fy_law,mz_law,err_fx,err_fy,err_mz_c,err_mz_a\n",
+    );
+    for e in &val {
+        let p = &e.point;
+        vcsv.push_str(&format!(
+            "{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
+            p.ab,
+            p.nu,
+            p.creepage[0],
+            p.creepage[1],
+            p.creepage[2],
+            p.load[0],
+            p.load[1],
+            p.load[2],
+            e.law[0],
+            e.law[1],
+            e.law[2],
+            e.fx,
+            e.fy,
+            e.mz_c,
+            e.mz_a
+        ));
+    }
+    std::fs::write(out.join("steady3d_map_validation_errors.csv"), vcsv)?;
     if !val.is_empty() {
         println!(
             "\nOff-grid validation table ({} points), worst per case, per cent:\n",
