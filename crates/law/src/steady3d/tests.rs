@@ -366,7 +366,13 @@ fn documented_translation(
     let (mut fx, mut fy, st) = if tm > 0.0 {
         let k = (t.kx * tx * tx + t.ky * ty * ty) / (tm * tm);
         let st = sat(tm / w, k);
-        let b = t.beta * st.powi(4);
+        // The turn: beta s^4 in partial slip, 1 - (1 - beta)/x^2 beyond, x = |t|/k.
+        let x = tm / w / k;
+        let b = if x > 1.0 {
+            1.0 - (1.0 - t.beta) / (x * x)
+        } else {
+            t.beta * st.powi(4)
+        };
         let dx = tx * (1.0 - b + b * c.c22 / c.c11);
         let d = dx.hypot(ty);
         (st * dx / d, st * ty / d, st)
