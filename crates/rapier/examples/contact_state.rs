@@ -41,7 +41,6 @@ fn forces(world: &CreepWorld, c1: ColliderHandle, c2: ColliderHandle) -> (f64, f
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut world = CreepWorld::new(DT as f32, CreepSettings::default())?;
-    world.physics.integration_parameters.num_solver_iterations = 1;
     world.physics.gravity = 9.81 * Vector::new(THETA.sin() as f32, -THETA.cos() as f32, 0.0);
     let steel = CreepMaterial::new(Material::steel()).with_fidelity(Fidelity::Creep);
     let slope = RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0));

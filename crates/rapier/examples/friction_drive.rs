@@ -26,7 +26,6 @@ fn run(torque: f64, fidelity: Fidelity) -> Result<(f64, f64, f64), PluginError> 
     let steel = Material::steel();
     let mu = steel.friction() as f32;
     let mut world = CreepWorld::new(DT as f32, CreepSettings::default())?;
-    world.physics.integration_parameters.num_solver_iterations = 1;
     let mat = CreepMaterial::new(steel).with_fidelity(fidelity);
     let r = R as f32;
     let input =

@@ -34,7 +34,6 @@ fn run(fidelity: Fidelity) -> Result<Run, PluginError> {
     let steel = Material::steel().with_friction(0.5)?;
     let mu = steel.friction() as f32;
     let mut world = CreepWorld::new(DT as f32, CreepSettings::default())?;
-    world.physics.integration_parameters.num_solver_iterations = 1; // one substep (see rolling_ball)
     world.physics.gravity = Vector::new((G * THETA.sin()) as f32, (-G * THETA.cos()) as f32, 0.0);
     let mat = CreepMaterial::new(steel).with_fidelity(fidelity);
     let ground = RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0));

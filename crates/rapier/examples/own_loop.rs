@@ -3,7 +3,9 @@
 //! What `CreepWorld` does for you, done by hand:
 //!
 //! 1. `configure_parameters` sets the integration parameters the plugin needs (Coulomb friction
-//!    model, no contact clustering); a step with others is a typed error;
+//!    model, no contact clustering; a step with others is a typed error) and the solver that
+//!    rolling needs (one substep, four Gauss-Seidel iterations; `configure_parameters_for` with
+//!    `SolverPreset::Rapier` keeps Rapier's);
 //! 2. each collider that should creep is registered with its `CreepMaterial`; its mass comes
 //!    from the collider's density, so give it the material's density;
 //! 3. `CreepPipeline::step` takes what `PhysicsPipeline::step` takes, but the hooks.
@@ -12,7 +14,7 @@
 //!
 //! `cargo run --release -p creep-rapier --example own_loop`
 
-use creep_rapier::{configure_parameters, prelude::*};
+use creep_rapier::prelude::*;
 use rapier3d::prelude::*;
 
 fn main() -> Result<(), PluginError> {
@@ -23,7 +25,6 @@ fn main() -> Result<(), PluginError> {
         ..Default::default()
     };
     configure_parameters(&mut params);
-    params.num_solver_iterations = 1; // one substep (see the rolling_ball example)
     let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
     let (mut islands, mut broad_phase, mut narrow_phase) = (
         IslandManager::new(),

@@ -6,10 +6,12 @@
 //!   degrees per step, so the ball (which needs 95 degrees per step) slides and loses energy;
 //! * the plugin at four substeps: the spin cap stays and the rotation-gap correction is a mean
 //!   over the substeps, so the ball hops and sinks by millimetres;
-//! * the plugin at **one** substep (`num_solver_iterations = 1`): the correction is exact and
-//!   the cap is lifted for registered balls (`CreepSettings::lift_rotation_cap`).
+//! * the plugin at **one** substep (`num_solver_iterations = 1`, the default of `CreepWorld::new`
+//!   and `configure_parameters`): the correction is exact and the cap is lifted for registered
+//!   balls (`CreepSettings::lift_rotation_cap`).
 //!
-//! Use one solver substep for balls at game steps.
+//! The four-substep runs opt out of the default with `CreepSettings::with_rapier_solver()`; the
+//! plugin then warns once that the ball rolls too fast for Rapier's substeps.
 //!
 //! `cargo run --release -p creep-rapier --example rolling_ball`
 
@@ -28,7 +30,12 @@ fn world(
     y: f32,
     v: f32,
 ) -> Result<(CreepWorld, RigidBodyHandle), PluginError> {
-    let mut world = CreepWorld::new(DT, CreepSettings::default())?;
+    // The plugin's default is one solver substep; Rapier's own four are the named opt-out.
+    let settings = match substeps {
+        1 => CreepSettings::default(),
+        _ => CreepSettings::default().with_rapier_solver(),
+    };
+    let mut world = CreepWorld::new(DT, settings)?;
     world.physics.integration_parameters.num_solver_iterations = substeps;
     let steel = Material::steel();
     let mat = plugin.then(|| CreepMaterial::new(steel).with_fidelity(Fidelity::Creep));
@@ -50,7 +57,9 @@ fn world(
 
 fn step(world: &mut CreepWorld, plugin: bool) -> Result<(), PluginError> {
     if plugin {
-        world.step()?;
+        for warning in world.step()?.warnings {
+            println!("  the plugin warns: {warning}"); // each warning is given once
+        }
     } else {
         world.physics.step(); // Rapier alone, no hooks
     }
