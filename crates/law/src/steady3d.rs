@@ -119,23 +119,17 @@
 //! `mu P c`:
 //!
 //! * rows `a/b = 0.2, 0.5, 1` (the nodes): pure cases within 1.7 % / 0.8 %, combined creepage
-//!   within 5.0 % / 3.7 % (issue #17's targets met);
+//!   within 5.0 % / 3.7 %;
 //! * between them (`a/b = 0.27, 0.35, 0.7, 0.85` at `nu = 0.125, 0.375`): translation within
-//!   0.8 %, the lateral force of pure spin within 4.7 % (13 % with the former interpolation of
-//!   the constants), the spin moment 1.7 %, combined creepage within 4.7 % / 3.7 % (5.4 % /
-//!   3.7 % with two translations blended): **the 2 % target for pure spin is not met between
-//!   rows** (blending two rows whose spin force peaks at different spins leaves a few per
+//!   0.8 %, the lateral force of pure spin within 4.7 %, the spin moment 1.7 %, combined
+//!   creepage within 4.7 % / 3.7 %: pure spin is not within 2 % between rows (blending two rows whose spin force peaks at different spins leaves a few per
 //!   cent; more rows would reduce it);
 //! * rows `a/b = 2, 5` (`a > b`): translation within 0.5 %, but the law's form fits the spin
 //!   there poorly: pure spin force 1.7-2.8 % at a/b = 2 and 5.0-8.9 % at a/b = 5, combined
 //!   force 5.8-9.1 % and 18-24 %, moments up to 15 %; between them (`a/b = 1.4, 3`) spin force
-//!   up to 19 %, combined 18 % (14.8 % at `a/b = 1.4`, where two translations blended gave
-//!   14.5 %; 17.7 % at `a/b = 3`, where they gave 22.4 %); below the table (`phi_n = 0.025-0.075`) the spin force within
-//!   3.1 %. The constants of `a/b = 2, 5` were refitted with boundary-element points below
-//!   the table and from the previous `nu` node (before: spin force 12 % and combined 35 % at
-//!   a/b = 2, nu = 0.5; the spin force 18 % off at a/b = 5, nu = 0.5 below the table). Before
-//!   these rows (the constants of `b/a` were used) spin loads were off by up to 84 % and
-//!   combined forces by up to 93 %.
+//!   up to 19 %, combined 18 % (14.8 % at `a/b = 1.4`, 17.7 % at `a/b = 3`); below the table
+//!   (`phi_n = 0.025-0.075`) the spin force within 3.1 %. The constants of `a/b = 2, 5` are
+//!   fitted with boundary-element points below the table and from the previous `nu` node.
 //!
 //! **Over the whole creepage space the law is far off.** Graded on creep-reference's error map
 //! (module `steady3d_map`: every sign combination of the three creepages from full slip to

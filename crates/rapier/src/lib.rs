@@ -7,7 +7,7 @@
 //! [`CreepHooks`] for the physics of the rigid regime, the stability argument and the settings
 //! it requires, and [`CreepPipeline`] for the step (one call does both regimes in order).
 //!
-//! Three lines with the stepping helper:
+//! Three lines with [`CreepWorld`], the world that steps itself:
 //! ```
 //! use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld};
 //! use rapier3d::prelude::*;

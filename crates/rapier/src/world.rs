@@ -1,4 +1,4 @@
-//! A headless stepping helper: a Rapier `PhysicsWorld` and its [`CreepPipeline`], stepped
+//! Headless stepping in one value: a Rapier `PhysicsWorld` and its [`CreepPipeline`], stepped
 //! together. Rapier stays fully visible (`world.physics` is the plain `PhysicsWorld`); a user
 //! with their own loop uses a [`CreepPipeline`] directly. The pipeline's fields (`hooks`,
 //! `compliant`) read through a `CreepWorld` (`world.hooks.counts()`).
