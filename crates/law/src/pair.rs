@@ -41,12 +41,14 @@
 //!
 //! [`rolling_torque`]: crate::rolling_torque
 
+mod block;
 mod constants;
 pub mod damping;
 mod history;
 mod kernel;
 mod tiers;
 
+pub use block::{LANES, SphereForces, SpherePair, block_supports, cheap_sphere_block};
 pub use constants::{ContactGeometry, PairBody, PairConstants};
 pub use damping::{MIN_RESTITUTION, damping_coefficient};
 pub use history::ContactHistory;
