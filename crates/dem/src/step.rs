@@ -1,8 +1,8 @@
 //! One velocity-Verlet step and the force loops (serial; the parallel one is in `par`).
 
 use creep_law::pair::{
-    ContactGeometry, ContactHistory, LANES, PairBody, SphereForces, SpherePair, TangentialLaw,
-    block_supports, pair_force, release,
+    ContactGeometry, ContactHistory, LANES, PairBody, SphereForces, SphereLanes, SpherePair,
+    TangentialLaw, block_supports, pair_force, release,
 };
 use creep_law::{Surface, Vec3};
 
@@ -176,7 +176,7 @@ impl<T: TangentialLaw> Dem<T> {
     fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
-        let mut outs: Vec<PairOut> = Vec::with_capacity(if T::HAS_BLOCK { 2 * WINDOW } else { 0 });
+        let mut outs = WindowOut::default();
         let mut i0 = 0;
         while i0 < n {
             let i1 = (i0 + CHUNK).min(n);
@@ -193,19 +193,18 @@ impl<T: TangentialLaw> Dem<T> {
                     let base = self.nl_start[w0] as usize;
                     let end = self.nl_start[w1] as usize;
                     self.pair_outputs(w0, w1, &mut hist[base..end], dt, &mut outs);
-                    for o in &outs {
-                        match o {
-                            PairOut::Touching(p, q, out) => {
-                                let (p, q) = (*p as usize, *q as usize);
-                                self.f[p] += out.force_p;
-                                self.f[q] -= out.force_p;
-                                self.t[p] += out.torque_p;
-                                self.t[q] += out.torque_q;
-                                tally_block(&mut c, &mut e, out);
-                                c.contacts += 1;
-                            }
-                            PairOut::Apart(released) => e.slip += released,
+                    for (&[p, q], out) in outs.pq.iter().zip(&outs.f) {
+                        if p == APART {
+                            e.slip += out.dissipation.slip;
+                            continue;
                         }
+                        let (p, q) = (p as usize, q as usize);
+                        self.f[p] += out.force_p;
+                        self.f[q] -= out.force_p;
+                        self.t[p] += out.torque_p;
+                        self.t[q] += out.torque_q;
+                        tally_block(&mut c, &mut e, out);
+                        c.contacts += 1;
                     }
                     w0 = w1;
                 }
@@ -246,11 +245,13 @@ impl<T: TangentialLaw> Dem<T> {
         w1: usize,
         hist: &mut [ContactHistory<T>],
         dt: f64,
-        outs: &mut Vec<PairOut>,
+        outs: &mut WindowOut,
     ) {
         let base = self.nl_start[w0] as usize;
-        outs.clear();
-        outs.resize(hist.len(), PairOut::Apart(0.0));
+        outs.f.clear();
+        outs.f.resize(hist.len(), SphereForces::default());
+        outs.pq.clear();
+        outs.pq.resize(hist.len(), [APART, 0]);
         let mut pend = Pending::default();
         for i in w0..w1 {
             let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
@@ -277,18 +278,21 @@ impl<T: TangentialLaw> Dem<T> {
                         let l = pend.len;
                         pend.constants = ci;
                         pend.entry[l] = (o as u32, i as u32, j as u32, p as u32, q as u32);
-                        pend.pairs[l] = SpherePair {
-                            xp,
-                            xq: xp + dpq,
-                            rp: self.r[p],
-                            rq: self.r[q],
-                            vp: self.v[p],
-                            vq: self.v[q],
-                            wp: self.w[p],
-                            wq: self.w[q],
-                            mp: self.mass[p],
-                            mq: self.mass[q],
-                        };
+                        pend.pairs.set(
+                            l,
+                            &SpherePair {
+                                xp,
+                                xq: xp + dpq,
+                                rp: self.r[p],
+                                rq: self.r[q],
+                                vp: self.v[p],
+                                vq: self.v[q],
+                                wp: self.w[p],
+                                wq: self.w[q],
+                                mp: self.mass[p],
+                                mq: self.mass[q],
+                            },
+                        );
                         pend.len += 1;
                         if pend.len == LANES {
                             self.flush(&mut pend, hist, dt, outs);
@@ -296,7 +300,7 @@ impl<T: TangentialLaw> Dem<T> {
                         continue;
                     }
                 }
-                outs[o] = self.pair_out(i, j, &mut hist[o], dt);
+                self.pair_out(i, j, &mut hist[o], dt, o, outs);
             }
         }
         if pend.len > 0 {
@@ -312,52 +316,61 @@ impl<T: TangentialLaw> Dem<T> {
         pend: &mut Pending,
         hist: &mut [ContactHistory<T>],
         dt: f64,
-        outs: &mut [PairOut],
+        outs: &mut WindowOut,
     ) {
         let n = pend.len;
         for l in n..LANES {
-            pend.pairs[l] = pend.pairs[0];
+            pend.pairs.copy_lane(0, l);
         }
         let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }].0 as usize);
-        let mut res = [SphereForces::default(); LANES];
         let mask = T::sphere_block(
             &self.table.pairs[pend.constants],
             &pend.pairs,
             hist,
+            &mut outs.f,
             idx,
             n,
             dt,
-            &mut res,
         );
         for l in 0..n {
             let (o, i, j, p, q) = pend.entry[l];
             let o = o as usize;
             if mask >> l & 1 == 1 {
-                outs[o] = PairOut::Touching(p, q, res[l]);
+                outs.pq[o] = [p, q];
             } else {
-                outs[o] = self.pair_out(i as usize, j as usize, &mut hist[o], dt);
+                self.pair_out(i as usize, j as usize, &mut hist[o], dt, o, outs);
             }
         }
         pend.len = 0;
     }
 
-    /// [`Dem::pair`] as a [`PairOut`].
+    /// [`Dem::pair`] into window entry `o` of `outs`.
     #[inline]
-    fn pair_out(&self, i: usize, j: usize, h: &mut ContactHistory<T>, dt: f64) -> PairOut {
+    fn pair_out(
+        &self,
+        i: usize,
+        j: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+        o: usize,
+        outs: &mut WindowOut,
+    ) {
         match self.pair(i, j, h, dt) {
-            Ok((p, q, out)) => PairOut::Touching(
-                p as u32,
-                q as u32,
-                SphereForces {
+            Ok((p, q, out)) => {
+                outs.pq[o] = [p as u32, q as u32];
+                outs.f[o] = SphereForces {
                     force_p: out.force_p,
                     torque_p: out.torque_p,
                     torque_q: out.torque_q,
                     sliding: out.sliding,
                     creep_displacement: out.creep_displacement,
                     dissipation: out.dissipation,
-                },
-            ),
-            Err(released) => PairOut::Apart(released),
+                };
+            }
+            Err(released) => {
+                outs.pq[o] = [APART, 0];
+                outs.f[o].dissipation.slip = released;
+            }
         }
     }
 
@@ -529,13 +542,17 @@ pub(crate) struct WallOut {
 /// List entries per window of [`Dem::pair_outputs`] (evaluated, then added in list order).
 pub(crate) const WINDOW: usize = 32;
 
-/// One list entry's output: a touching pair's p, q and outputs, or the energy an opening
-/// contact's history released.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum PairOut {
-    Touching(u32, u32, SphereForces),
-    Apart(f64),
+/// The outputs of a window's list entries: a touching pair's p and q and its outputs, or
+/// `[APART, 0]` and the energy an opening contact's history released (as the slip
+/// dissipation).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct WindowOut {
+    pub(crate) pq: Vec<[u32; 2]>,
+    pub(crate) f: Vec<SphereForces>,
 }
+
+/// The `p` of an entry whose pair is apart.
+pub(crate) const APART: u32 = u32::MAX;
 
 /// The lanes waiting for the block kernel: their window entry, i, j, p, q, bodies, and the
 /// index of their pair constants.
@@ -544,10 +561,10 @@ struct Pending {
     len: usize,
     constants: usize,
     entry: [(u32, u32, u32, u32, u32); LANES],
-    pairs: [SpherePair; LANES],
+    pairs: SphereLanes,
 }
 
-/// [`tally`] of a [`PairOut`]'s outputs.
+/// [`tally`] of a window entry's outputs.
 #[inline]
 pub(crate) fn tally_block(counts: &mut DemCounts, energy: &mut DemEnergy, out: &SphereForces) {
     tally_parts(

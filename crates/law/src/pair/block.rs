@@ -21,7 +21,7 @@ use crate::steady_law::SteadyLaw;
 use crate::vector::{Vec2, Vec3};
 
 /// Contacts per block.
-pub const LANES: usize = 2;
+pub const LANES: usize = 4;
 
 /// One lane's bodies: two spheres p and q (the normal points from p to q).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -46,6 +46,64 @@ pub struct SpherePair {
     pub mp: f64,
     /// Mass of q \[kg\].
     pub mq: f64,
+}
+
+/// The bodies of [`LANES`] sphere pairs, lane by lane (structure of arrays: each quantity's
+/// lanes side by side, as the block loads them).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SphereLanes {
+    xp: [[f64; LANES]; 3],
+    xq: [[f64; LANES]; 3],
+    vp: [[f64; LANES]; 3],
+    vq: [[f64; LANES]; 3],
+    wp: [[f64; LANES]; 3],
+    wq: [[f64; LANES]; 3],
+    rp: [f64; LANES],
+    rq: [f64; LANES],
+    mp: [f64; LANES],
+    mq: [f64; LANES],
+}
+
+impl SphereLanes {
+    /// Sets lane `l` (< [`LANES`]) to the pair `s`.
+    #[inline(always)]
+    pub fn set(&mut self, l: usize, s: &SpherePair) {
+        let put = |a: &mut [[f64; LANES]; 3], v: Vec3| {
+            a[0][l] = v.x;
+            a[1][l] = v.y;
+            a[2][l] = v.z;
+        };
+        put(&mut self.xp, s.xp);
+        put(&mut self.xq, s.xq);
+        put(&mut self.vp, s.vp);
+        put(&mut self.vq, s.vq);
+        put(&mut self.wp, s.wp);
+        put(&mut self.wq, s.wq);
+        self.rp[l] = s.rp;
+        self.rq[l] = s.rq;
+        self.mp[l] = s.mp;
+        self.mq[l] = s.mq;
+    }
+
+    /// Copies lane `from` into lane `to` (to fill the unused lanes of a block).
+    #[inline]
+    pub fn copy_lane(&mut self, from: usize, to: usize) {
+        for a in [
+            &mut self.xp,
+            &mut self.xq,
+            &mut self.vp,
+            &mut self.vq,
+            &mut self.wp,
+            &mut self.wq,
+        ] {
+            for c in a.iter_mut() {
+                c[to] = c[from];
+            }
+        }
+        for a in [&mut self.rp, &mut self.rq, &mut self.mp, &mut self.mq] {
+            a[to] = a[from];
+        }
+    }
 }
 
 /// What one lane of [`cheap_sphere_block`] returns: the outputs of
@@ -76,13 +134,19 @@ pub fn block_supports(c: &PairConstants) -> bool {
 #[derive(Clone, Copy)]
 struct F([f64; LANES]);
 
-/// A lane mask: all ones (true) or all zeros, as the vector compares give them.
+/// A lane mask: all ones (true) or all zeros, as the vector compares give them (held as
+/// `f64` bit patterns so that they stay in the vector registers).
 #[derive(Clone, Copy)]
-struct M([u64; LANES]);
+struct M([f64; LANES]);
 
 #[inline(always)]
-fn mask(b: bool) -> u64 {
-    (b as u64).wrapping_neg()
+fn mask(b: bool) -> f64 {
+    f64::from_bits((b as u64).wrapping_neg())
+}
+
+#[inline(always)]
+fn bits(x: f64) -> u64 {
+    x.to_bits()
 }
 
 #[derive(Clone, Copy)]
@@ -169,11 +233,13 @@ impl F {
 impl M {
     #[inline(always)]
     fn and(self, o: M) -> M {
-        M(std::array::from_fn(|l| self.0[l] & o.0[l]))
+        M(std::array::from_fn(|l| {
+            f64::from_bits(bits(self.0[l]) & bits(o.0[l]))
+        }))
     }
     #[inline(always)]
     fn sel(self, a: F, b: F) -> F {
-        lanes!(l => f64::from_bits((a.0[l].to_bits() & self.0[l]) | (b.0[l].to_bits() & !self.0[l])))
+        lanes!(l => f64::from_bits((bits(a.0[l]) & bits(self.0[l])) | (bits(b.0[l]) & !bits(self.0[l]))))
     }
     #[inline(always)]
     fn sel_v(self, a: V, b: V) -> V {
@@ -186,6 +252,14 @@ impl M {
 }
 
 impl V {
+    #[inline(always)]
+    fn load(a: &[[f64; LANES]; 3]) -> V {
+        V {
+            x: F(a[0]),
+            y: F(a[1]),
+            z: F(a[2]),
+        }
+    }
     #[inline(always)]
     fn gather(f: impl Fn(usize) -> Vec3) -> V {
         V {
@@ -218,18 +292,18 @@ impl V {
 /// (which [`block_supports`]), bodies `pairs` and histories `hist[idx[l]]` (none virgin; the
 /// first `used` lanes are contacts, the others repeat one of them and are not written), time
 /// step `dt` \[s\]: for each lane whose bit the returned mask sets, its history is updated
-/// and `out` holds the contact's outputs, the same bits as [`pair_force`](super::pair_force)
+/// and `out[idx[l]]` holds the contact's outputs, the same bits as [`pair_force`](super::pair_force)
 /// gives on that lane; the other lanes (see the module docs) are left as they were for the
 /// caller's one-contact kernel.
 #[inline(always)]
 pub fn cheap_sphere_block(
     c: &PairConstants,
-    pairs: &[SpherePair; LANES],
+    pairs: &SphereLanes,
     hist: &mut [ContactHistory<Cheap>],
+    out: &mut [SphereForces],
     idx: [usize; LANES],
     used: usize,
     dt: f64,
-    out: &mut [SphereForces; LANES],
 ) -> u32 {
     let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
     let pm = &c.material;
@@ -242,12 +316,9 @@ pub fn cheap_sphere_block(
     if c.rolling.is_some() {
         return 0;
     }
-    let xp = V::gather(|l| pairs[l].xp);
-    let xq = V::gather(|l| pairs[l].xq);
-    let rp = lanes!(l => pairs[l].rp);
-    let rq = lanes!(l => pairs[l].rq);
-    let mp = lanes!(l => pairs[l].mp);
-    let mq = lanes!(l => pairs[l].mq);
+    let xp = V::load(&pairs.xp);
+    let xq = V::load(&pairs.xq);
+    let (rp, rq, mp, mq) = (F(pairs.rp), F(pairs.rq), F(pairs.mp), F(pairs.mq));
 
     // Geometry (`ContactGeometry::sphere_sphere`).
     let d = xq - xp;
@@ -275,11 +346,11 @@ pub fn cheap_sphere_block(
     // Kuhn & Bagi's rates for two spheres (`sphere_rates_and_approach`).
     let rho_p = rp - delta * 0.5;
     let rho_q = rq - delta * 0.5;
-    let wp = V::gather(|l| pairs[l].wp);
-    let wq = V::gather(|l| pairs[l].wq);
+    let wp = V::load(&pairs.wp);
+    let wq = V::load(&pairs.wq);
     let a_w = wp.cross(n);
     let b_w = wq.cross(n);
-    let dv = V::gather(|l| pairs[l].vq) - V::gather(|l| pairs[l].vp);
+    let dv = V::load(&pairs.vq) - V::load(&pairs.vp);
     let dvn = dv.dot(n);
     let dv_t = dv - n * dvn;
     let dd = rho_p + rho_q;
@@ -314,7 +385,9 @@ pub fn cheap_sphere_block(
     let near = lanes!(l => (l2.0[l] - 1.0).abs()).lt(F::splat(1e-8));
     let len = l2.sqrt();
     ok = ok.and(M(std::array::from_fn(|l| {
-        near.0[l] | mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))
+        f64::from_bits(
+            bits(near.0[l]) | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
+        )
     })));
     let t1 = near.sel_v(t * (F::splat(1.5) - l2 * 0.5), t * (F::splat(1.0) / len));
     let t2 = n.cross(t1);
@@ -365,7 +438,7 @@ pub fn cheap_sphere_block(
         .and(ga2.gt(zero))
         .and(ga2.lt(F::splat(f64::INFINITY)));
     ok = M(std::array::from_fn(|l| {
-        ok.0[l] & (!creep_in.0[l] | kuhn.0[l])
+        f64::from_bits(bits(ok.0[l]) & (!bits(creep_in.0[l]) | bits(kuhn.0[l])))
     }));
     let roll = roll2.sqrt();
     let q_abs = q2.sqrt();
@@ -430,7 +503,7 @@ pub fn cheap_sphere_block(
     let ok = ok.0;
     let mut done = 0;
     for l in 0..used.min(LANES) {
-        if ok[l] == 0 {
+        if bits(ok[l]) == 0 {
             continue;
         }
         done |= 1 << l;
@@ -440,11 +513,11 @@ pub fn cheap_sphere_block(
         hl.t1 = t1.lane(l);
         hl.normal = n.lane(l);
         hl.overlap = delta.0[l];
-        out[l] = SphereForces {
+        out[idx[l]] = SphereForces {
             force_p: f_p.lane(l),
             torque_p: torque_p.lane(l),
             torque_q: torque_q.lane(l),
-            sliding: sliding.0[l] != 0,
+            sliding: bits(sliding.0[l]) != 0,
             creep_displacement: Vec2::new(cx.0[l], cy.0[l]),
             dissipation: PairDissipation {
                 damping: damping.0[l],

@@ -669,7 +669,7 @@ fn block_equals_the_one_contact_kernel() {
         let mu = [0.5, 0.05, 0.0, 1.0][case % 4];
         let c = constants(mu, 0.6, creep);
         assert!(block_supports(&c));
-        let mut pairs = [SpherePair::default(); LANES];
+        let mut pairs = SphereLanes::default();
         let mut hist = [ContactHistory::<Cheap>::default(); LANES];
         let mut bodies = Vec::new();
         for l in 0..LANES {
@@ -700,24 +700,27 @@ fn block_equals_the_one_contact_kernel() {
                 position: q.position + q.velocity * dt,
                 ..q
             };
-            pairs[l] = SpherePair {
-                xp: p.position,
-                xq: q.position,
-                rp,
-                rq,
-                vp: p.velocity,
-                vq: q.velocity,
-                wp: p.angular_velocity,
-                wq: q.angular_velocity,
-                mp: p.mass,
-                mq: q.mass,
-            };
+            pairs.set(
+                l,
+                &SpherePair {
+                    xp: p.position,
+                    xq: q.position,
+                    rp,
+                    rq,
+                    vp: p.velocity,
+                    vq: q.velocity,
+                    wp: p.angular_velocity,
+                    wq: q.angular_velocity,
+                    mp: p.mass,
+                    mq: q.mass,
+                },
+            );
             bodies.push((p, q, rp, rq));
         }
         let before = hist;
         let mut out = [SphereForces::default(); LANES];
         let idx = std::array::from_fn(|l| l);
-        let mask = cheap_sphere_block(&c, &pairs, &mut hist, idx, LANES, dt, &mut out);
+        let mask = cheap_sphere_block(&c, &pairs, &mut hist, &mut out, idx, LANES, dt);
         for l in 0..LANES {
             lanes += 1;
             if mask >> l & 1 == 0 {

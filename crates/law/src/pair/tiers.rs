@@ -1,7 +1,7 @@
 //! The tangential tiers: the [`TangentialLaw`] trait, [`Exact`] (Cattaneo-Mindlin memory with
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
-use super::block::{LANES, SphereForces, SpherePair, cheap_sphere_block};
+use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block};
 use super::kernel::finite;
 use super::{ContactHistory, PairConstants};
 use crate::LawError;
@@ -66,20 +66,20 @@ pub trait TangentialLaw:
     /// [`LANES`] sphere-sphere contacts at once with constants `c`, bodies `pairs`, histories
     /// `hist[idx[l]]` (none virgin; lanes from `n` on repeat one of the first and are not
     /// written) and step `dt` \[s\]: the mask of the lanes done (their histories updated, their
-    /// outputs in `out`, the same bits as [`pair_force`](super::pair_force)'s); the others are
+    /// outputs in `out[idx[l]]`, the same bits as [`pair_force`](super::pair_force)'s); the others are
     /// left for the one-contact kernel. None by default; the cheap tier's is
     /// [`cheap_sphere_block`](super::cheap_sphere_block).
     #[inline(always)]
     fn sphere_block(
         c: &PairConstants,
-        pairs: &[SpherePair; LANES],
+        pairs: &SphereLanes,
         hist: &mut [ContactHistory<Self>],
+        out: &mut [SphereForces],
         idx: [usize; LANES],
         n: usize,
         dt: f64,
-        out: &mut [SphereForces; LANES],
     ) -> u32 {
-        let _ = (c, pairs, hist, idx, n, dt, out);
+        let _ = (c, pairs, hist, out, idx, n, dt);
         0
     }
 }
@@ -272,14 +272,14 @@ impl TangentialLaw for Cheap {
     #[inline(always)]
     fn sphere_block(
         c: &PairConstants,
-        pairs: &[SpherePair; LANES],
+        pairs: &SphereLanes,
         hist: &mut [ContactHistory<Self>],
+        out: &mut [SphereForces],
         idx: [usize; LANES],
         n: usize,
         dt: f64,
-        out: &mut [SphereForces; LANES],
     ) -> u32 {
-        cheap_sphere_block(c, pairs, hist, idx, n, dt, out)
+        cheap_sphere_block(c, pairs, hist, out, idx, n, dt)
     }
 
     fn write(h: &CheapHistory, out: &mut [f64]) {
