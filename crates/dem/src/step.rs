@@ -185,11 +185,7 @@ impl<T: TangentialLaw> Dem<T> {
             if T::HAS_BLOCK {
                 let mut w0 = i0;
                 while w0 < i1 {
-                    // A window of particles holding about WINDOW entries.
-                    let mut w1 = w0 + 1;
-                    while w1 < i1 && ((self.nl_start[w1] - self.nl_start[w0]) as usize) < WINDOW {
-                        w1 += 1;
-                    }
+                    let w1 = self.window_end(w0, i1);
                     let base = self.nl_start[w0] as usize;
                     let end = self.nl_start[w1] as usize;
                     self.pair_outputs(w0, w1, &mut hist[base..end], dt, &mut outs);
@@ -231,6 +227,17 @@ impl<T: TangentialLaw> Dem<T> {
             i0 = i1;
         }
         self.nl_h = hist;
+    }
+
+    /// The end of the window of particles from `w0` (before `i1`) holding about [`WINDOW`]
+    /// list entries (at least one particle).
+    #[inline]
+    pub(crate) fn window_end(&self, w0: usize, i1: usize) -> usize {
+        let mut w1 = w0 + 1;
+        while w1 < i1 && ((self.nl_start[w1] - self.nl_start[w0]) as usize) < WINDOW {
+            w1 += 1;
+        }
+        w1
     }
 
     /// The outputs of the list entries of particles `w0..w1` (histories `hist`, from entry
