@@ -7,12 +7,15 @@
 //! lane's result is the same bits as the one-contact kernel's (IEEE 754 operations are
 //! correctly rounded lane by lane; no fused multiply-add is introduced). The branches of the
 //! one-contact kernel become masks: both sides are evaluated and each lane keeps its own
-//! (the Coulomb limit, the creep term, the spin of the basis). The cases the block does not
-//! take, a lane's rare branches (a virgin or opening contact, a normal that turned beyond 45
-//! degrees, a carried tangent of length
-//! zero, a non-finite value), leave that lane untouched and clear its bit of the
-//! returned mask: the host runs the one-contact kernel on it, so the results are the same
-//! whichever way a contact goes (test `block_equals_the_one_contact_kernel`).
+//! (the Coulomb limit, the creep term, the spin of the basis, the renormalisation of the
+//! carried tangent); the cube root of the creep term and the sine of a spin beyond 1e-3 rad
+//! per step are taken lane by lane with the one-contact kernel's functions. The cases the
+//! block does not take, a lane's rare branches (a virgin or opening contact, a normal that
+//! turned beyond 45 degrees, a carried tangent of length zero, a non-finite value), leave
+//! that lane untouched and clear its bit of the returned mask: the host runs the one-contact
+//! kernel on it, so the results are the same whichever way a contact goes (test
+//! `block_equals_the_one_contact_kernel`).
+
 
 use super::kernel::finite;
 use super::{Cheap, ContactHistory, PairConstants, PairDissipation};
