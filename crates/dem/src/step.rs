@@ -329,10 +329,7 @@ impl<T: TangentialLaw> Dem<T> {
         for l in n..LANES {
             pend.pairs.copy_lane(0, l);
         }
-        let idx = std::array::from_fn(|l| {
-            let o = pend.entry[if l < n { l } else { 0 }].0 as usize;
-            [o, o]
-        });
+        let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }].0 as usize);
         let mask = T::sphere_block(
             &self.table.pairs[pend.constants],
             &pend.pairs,

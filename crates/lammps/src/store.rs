@@ -12,14 +12,11 @@
 //! per-contact output scattered back by it. The conversion to and from the flat form (with its
 //! validation) happens in [`HistoryStore::load`] and [`HistoryStore::save`], once per
 //! neighbour-list build. The law is the same function ([`pair_force`]), called on the same
-//! values in the same order, so the results are bit-identical to [`Model::compute_at`]'s; the
-//! spring tier's list path runs sphere pairs four at a time through its block form
-//! ([`creep_law::pair::cheap_sphere_block`], the same bits lane by lane).
+//! values in the same order, so the results are bit-identical to [`Model::compute_at`]'s.
 
 use creep_law::Vec3;
 use creep_law::pair::{
-    Cheap, ContactGeometry, ContactHistory, Exact, LANES, PairBody, PairConstants, PairForces,
-    SphereForces, SphereLanes, SpherePair, TangentialLaw, block_supports, pair_force,
+    Cheap, ContactGeometry, ContactHistory, Exact, PairBody, PairForces, TangentialLaw, pair_force,
 };
 use creep_law::{LawError, Surface};
 
@@ -464,14 +461,7 @@ where
     }
 }
 
-/// [`compute_list`] for one tier (monomorphised: the kernel is inlined into this loop). A
-/// tier with a block kernel ([`TangentialLaw::HAS_BLOCK`]), with every model of the store's
-/// tier and every atom valid, collects the touching entries in windows of [`WINDOW`] and runs
-/// each window through [`run_window`] (four contacts at a time where it can) before adding
-/// the window's forces in list order: the same bits as one contact after another, since each
-/// contact's result depends on its own history only. An error met in a window is returned
-/// after the window's earlier contacts have been added, as one contact after another does;
-/// the window's later contacts have then been stepped too (the step is abandoned anyway).
+/// [`compute_list`] for one tier (monomorphised: the kernel is inlined into this loop).
 #[allow(clippy::too_many_arguments)]
 fn list_pairs<'a, T: TangentialLaw, F, L: HalfList>(
     table: &ModelTable<F>,
@@ -497,8 +487,6 @@ where
     let tiers_ok =
         (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
     let atoms_ok = atoms_valid(atoms);
-    let windowed = T::HAS_BLOCK && tiers_ok && atoms_ok;
-    let mut win = Window::<'a>::default();
     let mut counts = ListCounts::default();
     let mut e0 = 0usize;
     for &ia in list.atoms() {
@@ -506,423 +494,88 @@ where
         let i = usize::try_from(ia).map_err(|_| ModelError::ListAtom(ia))?;
         let neigh = list.neighbours(i).ok_or(ModelError::ListAtom(ia))?;
         let n = neigh.len();
-        let first = e0;
+        let (slots, swaps) = (&mut slot[e0..e0 + n], &swap[e0..e0 + n]);
         e0 += n;
         if i >= nall {
-            flush_window(
-                &mut win,
-                hist,
-                atoms,
-                acc,
-                slot,
-                dt,
-                &mut forces,
-                &mut counts,
-            )?;
             return Err(ModelError::AtomIndex {
                 index: counts.contacts,
                 atom: ia,
                 nall,
             });
         }
-        for (jj, &jraw) in neigh.iter().enumerate() {
-            let ge = first + jj;
-            let c = match list_contact(
-                table,
-                tier,
-                tiers_ok,
-                hist,
-                atoms,
-                slot,
-                swap,
-                ia,
-                jraw,
-                neighmask,
-                ge,
-                &mut counts,
-            ) {
-                Ok(Some(c)) => c,
-                Ok(None) => continue,
-                Err(e) => {
-                    flush_window(
-                        &mut win,
-                        hist,
-                        atoms,
-                        acc,
-                        slot,
-                        dt,
-                        &mut forces,
-                        &mut counts,
-                    )?;
-                    return Err(e);
-                }
-            };
-            counts.owned_contacts += usize::from(c.p < nlocal);
-            let Some(model) = c.model else { continue };
-            if windowed {
-                win.entry[win.len] = c;
-                win.len += 1;
-                if win.len == WINDOW {
-                    flush_window(
-                        &mut win,
-                        hist,
-                        atoms,
-                        acc,
-                        slot,
-                        dt,
-                        &mut forces,
-                        &mut counts,
-                    )?;
-                }
+        let xi = atoms.x[i];
+        let ri = atoms.radius[i];
+        for ((&jraw, s), &sw) in neigh.iter().zip(slots.iter_mut()).zip(swaps) {
+            let j = usize::try_from(jraw & neighmask)
+                .ok()
+                .filter(|&j| j < nall)
+                .ok_or(ModelError::AtomIndex {
+                    index: counts.contacts,
+                    atom: jraw & neighmask,
+                    nall,
+                })?;
+            let xj = atoms.x[j];
+            let (dx, dy, dz) = (xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]);
+            let rsum = ri + atoms.radius[j];
+            if dx * dx + dy * dy + dz * dz >= rsum * rsum {
+                *s = -1; // apart: the history is abandoned (its slot reclaimed at the next build)
                 continue;
             }
-            let f = step_contact(
-                c.k,
-                model,
-                atoms,
-                acc,
-                c.p,
-                c.q,
-                &mut hist[c.h],
-                dt,
-                atoms_ok,
-            )?;
+            let k = counts.contacts;
+            if *s < 0 {
+                let new = i32::try_from(hist.len()).map_err(|_| ModelError::Slot {
+                    index: k,
+                    slot: -1,
+                    len: hist.len(),
+                })?;
+                hist.push(ContactHistory::default());
+                *s = new;
+            }
+            let len = hist.len();
+            let h = usize::try_from(*s)
+                .ok()
+                .and_then(|s| hist.get_mut(s))
+                .ok_or(ModelError::Slot {
+                    index: k,
+                    slot: *s,
+                    len,
+                })?;
+            let (p, q) = if sw != 0 { (j, i) } else { (i, j) };
+            counts.contacts += 1;
+            counts.owned_contacts += usize::from(p < nlocal);
+            let kind = |a: usize| -> Result<usize, ModelError> {
+                let t = atoms.kind[a];
+                usize::try_from(t)
+                    .ok()
+                    .filter(|&t| (1..=table.ntypes).contains(&t))
+                    .ok_or(ModelError::AtomType {
+                        index: k,
+                        kind: t,
+                        ntypes: table.ntypes,
+                    })
+            };
+            let m = (table.model_of)(kind(p)? * stride + kind(q)?)
+                .ok_or(ModelError::MissingModel(k))?;
+            if !tiers_ok && m.tier() != tier {
+                return Err(ModelError::MixedTiers);
+            }
+            let f = step_contact(k, m, atoms, acc, p, q, h, dt, atoms_ok)?;
             if !f.touching {
-                slot[ge] = -1;
+                *s = -1;
                 counts.dropped += 1;
             }
             if let Some(out) = forces.as_deref_mut() {
-                out[c.k] = PairForce {
-                    p: c.ids[0],
-                    q: c.ids[1],
+                out[k] = PairForce {
+                    // p and q are below nall, which came from C as a count of i32 indices.
+                    p: if sw != 0 { jraw & neighmask } else { ia },
+                    q: if sw != 0 { ia } else { jraw & neighmask },
                     force_p: [f.force_p.x, f.force_p.y, f.force_p.z],
                 };
             }
         }
     }
-    flush_window(
-        &mut win,
-        hist,
-        atoms,
-        acc,
-        slot,
-        dt,
-        &mut forces,
-        &mut counts,
-    )?;
     counts.nslots = hist.len();
     Ok(counts)
-}
-
-/// Touching list entries per window of [`list_pairs`] (evaluated, then added in list order).
-const WINDOW: usize = 32;
-
-/// One touching entry of the list: its contact number `k` in the step, atoms `p` and `q`
-/// (and their indices as the host gave them, `ids`), its history slot `h`, its entry `ge` and
-/// its model.
-#[derive(Clone, Copy)]
-struct ListContact<'a> {
-    k: usize,
-    p: usize,
-    q: usize,
-    ids: [i32; 2],
-    h: usize,
-    ge: usize,
-    /// Always `Some` (`None` only in an empty window's unused entries).
-    model: Option<&'a Model>,
-}
-
-/// The touching entries of a window and their outputs (`touching`: false for a contact the
-/// kernel dropped).
-struct Window<'a> {
-    len: usize,
-    entry: [ListContact<'a>; WINDOW],
-    out: [SphereForces; WINDOW],
-    touching: [bool; WINDOW],
-}
-
-impl Default for Window<'_> {
-    fn default() -> Self {
-        Window {
-            len: 0,
-            entry: [ListContact {
-                k: 0,
-                p: 0,
-                q: 0,
-                ids: [0; 2],
-                h: 0,
-                ge: 0,
-                model: None,
-            }; WINDOW],
-            out: [SphereForces::default(); WINDOW],
-            touching: [false; WINDOW],
-        }
-    }
-}
-
-/// Entry `ge` of the list (neighbour `jraw` of list atom `ia`): `None` when the pair is apart
-/// (the entry's slot set to -1), else the contact, its slot taken (a new, virgin one for a new
-/// contact) and counted.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn list_contact<'a, T: TangentialLaw, F>(
-    table: &ModelTable<F>,
-    tier: Tier,
-    tiers_ok: bool,
-    hist: &mut Vec<ContactHistory<T>>,
-    atoms: &Atoms<'_>,
-    slot: &mut [i32],
-    swap: &[u8],
-    ia: i32,
-    jraw: i32,
-    neighmask: i32,
-    ge: usize,
-    counts: &mut ListCounts,
-) -> Result<Option<ListContact<'a>>, ModelError>
-where
-    F: Fn(usize) -> Option<&'a Model>,
-{
-    let nall = atoms.x.len();
-    // The caller checked that `ia` is an atom below nall.
-    let i = ia as usize;
-    let j = usize::try_from(jraw & neighmask)
-        .ok()
-        .filter(|&j| j < nall)
-        .ok_or(ModelError::AtomIndex {
-            index: counts.contacts,
-            atom: jraw & neighmask,
-            nall,
-        })?;
-    let (xi, xj) = (atoms.x[i], atoms.x[j]);
-    let (dx, dy, dz) = (xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]);
-    let rsum = atoms.radius[i] + atoms.radius[j];
-    let s = &mut slot[ge];
-    if dx * dx + dy * dy + dz * dz >= rsum * rsum {
-        *s = -1; // apart: the history is abandoned (its slot reclaimed at the next build)
-        return Ok(None);
-    }
-    let k = counts.contacts;
-    if *s < 0 {
-        let new = i32::try_from(hist.len()).map_err(|_| ModelError::Slot {
-            index: k,
-            slot: -1,
-            len: hist.len(),
-        })?;
-        hist.push(ContactHistory::default());
-        *s = new;
-    }
-    let h = usize::try_from(*s)
-        .ok()
-        .filter(|&h| h < hist.len())
-        .ok_or(ModelError::Slot {
-            index: k,
-            slot: *s,
-            len: hist.len(),
-        })?;
-    let sw = swap[ge] != 0;
-    let (p, q) = if sw { (j, i) } else { (i, j) };
-    counts.contacts += 1;
-    let kind = |a: usize| -> Result<usize, ModelError> {
-        let t = atoms.kind[a];
-        usize::try_from(t)
-            .ok()
-            .filter(|&t| (1..=table.ntypes).contains(&t))
-            .ok_or(ModelError::AtomType {
-                index: k,
-                kind: t,
-                ntypes: table.ntypes,
-            })
-    };
-    let stride = table.ntypes + 1;
-    let model =
-        (table.model_of)(kind(p)? * stride + kind(q)?).ok_or(ModelError::MissingModel(k))?;
-    if !tiers_ok && model.tier() != tier {
-        return Err(ModelError::MixedTiers);
-    }
-    let jm = jraw & neighmask;
-    Ok(Some(ListContact {
-        k,
-        p,
-        q,
-        ids: if sw { [jm, ia] } else { [ia, jm] },
-        h,
-        ge,
-        model: Some(model),
-    }))
-}
-
-/// Steps the contacts of `win` ([`run_window`]) and adds them in order as [`step_contact`]
-/// does (an error at the first contact whose force is not finite, after the earlier ones were
-/// added); empties the window.
-#[allow(clippy::too_many_arguments)]
-fn flush_window<T: TangentialLaw>(
-    win: &mut Window<'_>,
-    hist: &mut [ContactHistory<T>],
-    atoms: &Atoms<'_>,
-    acc: &mut Accumulators<'_>,
-    slot: &mut [i32],
-    dt: f64,
-    forces: &mut Option<&mut [PairForce]>,
-    counts: &mut ListCounts,
-) -> Result<(), ModelError> {
-    let n = win.len;
-    if n == 0 {
-        return Ok(());
-    }
-    win.len = 0;
-    run_window(win, n, hist, atoms, dt);
-    let nlocal = acc.force.len();
-    for o in 0..n {
-        let c = win.entry[o];
-        let f = &win.out[o];
-        if !all_finite(&[f.force_p, f.torque_p, f.torque_q]) {
-            return Err(ModelError::History {
-                index: c.k,
-                source: LawError::OutOfRange {
-                    name: "contact force (NaN or infinite history)",
-                    value: f.force_p.x,
-                    range: "finite",
-                },
-            });
-        }
-        if c.p < nlocal {
-            add(&mut acc.force[c.p], f.force_p);
-            add(&mut acc.torque[c.p], f.torque_p);
-        }
-        if c.q < nlocal {
-            add(&mut acc.force[c.q], -f.force_p);
-            add(&mut acc.torque[c.q], f.torque_q);
-        }
-        if !win.touching[o] {
-            slot[c.ge] = -1;
-            counts.dropped += 1;
-        }
-        if let Some(out) = forces.as_deref_mut() {
-            out[c.k] = PairForce {
-                p: c.ids[0],
-                q: c.ids[1],
-                force_p: [f.force_p.x, f.force_p.y, f.force_p.z],
-            };
-        }
-    }
-    Ok(())
-}
-
-/// The outputs of the first `n` contacts of `win` (atoms valid): touching contacts whose
-/// history is not virgin and whose constants the block kernel takes go [`LANES`] at a time
-/// (consecutive ones with the same constants) to [`TangentialLaw::sphere_block`], the rest
-/// and the lanes it leaves to the one-contact kernel ([`kernel_contact`]).
-#[inline(always)]
-fn run_window<T: TangentialLaw>(
-    win: &mut Window<'_>,
-    n: usize,
-    hist: &mut [ContactHistory<T>],
-    atoms: &Atoms<'_>,
-    dt: f64,
-) {
-    let mut lanes = SphereLanes::default();
-    let mut pend = [0usize; LANES];
-    let mut len = 0;
-    let mut constants: Option<&PairConstants> = None;
-    for o in 0..n {
-        let c = win.entry[o];
-        let Some(model) = c.model else { continue };
-        let pc = model.constants();
-        if hist[c.h].is_virgin() || !block_supports(pc) {
-            one_contact(win, o, hist, atoms, dt);
-            continue;
-        }
-        if let Some(prev) = constants
-            && len > 0
-            && !std::ptr::eq(prev, pc)
-        {
-            run_block(win, &mut lanes, &pend, len, prev, hist, atoms, dt);
-            len = 0;
-        }
-        constants = Some(pc);
-        let body = |a: usize| (v3(atoms.x[a]), v3(atoms.v[a]), v3(atoms.omega[a]));
-        let ((xp, vp, wp), (xq, vq, wq)) = (body(c.p), body(c.q));
-        lanes.set(
-            len,
-            &SpherePair {
-                xp,
-                xq,
-                rp: atoms.radius[c.p],
-                rq: atoms.radius[c.q],
-                vp,
-                vq,
-                wp,
-                wq,
-                mp: atoms.mass[c.p],
-                mq: atoms.mass[c.q],
-            },
-        );
-        pend[len] = o;
-        len += 1;
-        if len == LANES {
-            run_block(win, &mut lanes, &pend, len, pc, hist, atoms, dt);
-            len = 0;
-        }
-    }
-    if let Some(pc) = constants
-        && len > 0
-    {
-        run_block(win, &mut lanes, &pend, len, pc, hist, atoms, dt);
-    }
-}
-
-/// The block kernel on the `n` pending contacts `pend` of `win` (the unused lanes repeat the
-/// first, their results dropped), the lanes it leaves through the one-contact kernel.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn run_block<T: TangentialLaw>(
-    win: &mut Window<'_>,
-    lanes: &mut SphereLanes,
-    pend: &[usize; LANES],
-    n: usize,
-    pc: &PairConstants,
-    hist: &mut [ContactHistory<T>],
-    atoms: &Atoms<'_>,
-    dt: f64,
-) {
-    for l in n..LANES {
-        lanes.copy_lane(0, l);
-    }
-    let idx = std::array::from_fn(|l| {
-        let o = pend[if l < n { l } else { 0 }];
-        [win.entry[o].h, o]
-    });
-    let mask = T::sphere_block(pc, lanes, hist, &mut win.out, idx, n, dt);
-    for (l, &o) in pend[..n].iter().enumerate() {
-        if mask >> l & 1 == 1 {
-            win.touching[o] = true;
-        } else {
-            one_contact(win, o, hist, atoms, dt);
-        }
-    }
-}
-
-/// The one-contact kernel on contact `o` of `win` ([`kernel_contact`]) into its outputs.
-#[inline(always)]
-fn one_contact<T: TangentialLaw>(
-    win: &mut Window<'_>,
-    o: usize,
-    hist: &mut [ContactHistory<T>],
-    atoms: &Atoms<'_>,
-    dt: f64,
-) {
-    let c = win.entry[o];
-    let Some(model) = c.model else { return };
-    let f = kernel_contact(model, atoms, c.p, c.q, &mut hist[c.h], dt);
-    win.out[o] = SphereForces {
-        force_p: f.force_p,
-        torque_p: f.torque_p,
-        torque_q: f.torque_q,
-        sliding: f.sliding,
-        creep_displacement: f.creep_displacement,
-        dissipation: f.dissipation,
-    };
-    win.touching[o] = f.touching;
 }
 
 /// One contact of [`compute_pairs`] / [`compute_list`] (`k`: its index in the step, for the
@@ -949,8 +602,8 @@ fn step_contact<T: TangentialLaw>(
         surface: Surface::Sphere(atoms.radius[a]),
         mass: atoms.mass[a],
     };
+    let (bp, bq) = (body(p), body(q));
     if !atoms_ok {
-        let (bp, bq) = (body(p), body(q));
         check(k, atoms.radius[p], atoms.mass[p])?;
         check(k, atoms.radius[q], atoms.mass[q])?;
         let finite = |b: &PairBody| {
@@ -960,7 +613,19 @@ fn step_contact<T: TangentialLaw>(
             return Err(ModelError::AtomState { index: k });
         }
     }
-    let f = kernel_contact(m, atoms, p, q, h, dt);
+    let f = match ContactGeometry::sphere_sphere(
+        bp.position,
+        atoms.radius[p],
+        bq.position,
+        atoms.radius[q],
+    ) {
+        Some(g) => pair_force(m.constants(), &bp, &bq, &g, h, dt),
+        None => {
+            // Coincident centres: no normal; the contact is dropped (as Model::step).
+            *h = ContactHistory::default();
+            Default::default()
+        }
+    };
     if !all_finite(&[f.force_p, f.torque_p, f.torque_q]) {
         return Err(ModelError::History {
             index: k,
@@ -981,36 +646,6 @@ fn step_contact<T: TangentialLaw>(
         add(&mut acc.torque[q], f.torque_q);
     }
     Ok(f)
-}
-
-/// The kernel on atoms `p` and `q` (valid) with model `m` and history `h`: [`pair_force`], or
-/// for coincident centres a dropped contact (`touching == false`, its history reset).
-#[inline(always)]
-fn kernel_contact<T: TangentialLaw>(
-    m: &Model,
-    atoms: &Atoms<'_>,
-    p: usize,
-    q: usize,
-    h: &mut ContactHistory<T>,
-    dt: f64,
-) -> PairForces {
-    let body = |a: usize| PairBody {
-        position: v3(atoms.x[a]),
-        velocity: v3(atoms.v[a]),
-        angular_velocity: v3(atoms.omega[a]),
-        surface: Surface::Sphere(atoms.radius[a]),
-        mass: atoms.mass[a],
-    };
-    let (bp, bq) = (body(p), body(q));
-    match ContactGeometry::sphere_sphere(bp.position, atoms.radius[p], bq.position, atoms.radius[q])
-    {
-        Some(g) => pair_force(m.constants(), &bp, &bq, &g, h, dt),
-        None => {
-            // Coincident centres: no normal; the contact is dropped (as Model::step).
-            *h = ContactHistory::default();
-            Default::default()
-        }
-    }
 }
 
 /// The atom arrays all of one length, the accumulators of one length and no longer.

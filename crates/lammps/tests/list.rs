@@ -326,10 +326,9 @@ fn list_path_is_bitwise_the_pairs_path_spring() {
     list_equals_pairs(CREEP_LAMMPS_TIER_SPRING);
 }
 
-/// Without rolling resistance the spring tier's list path runs its contacts four at a time
-/// through the block kernel: still the pairs path's bits.
+/// The spring tier without rolling resistance (the pair style's default).
 #[test]
-fn list_path_is_bitwise_the_pairs_path_spring_block() {
+fn list_path_is_bitwise_the_pairs_path_spring_no_rolling() {
     list_equals_pairs_with(CREEP_LAMMPS_TIER_SPRING, CREEP_LAMMPS_ROLLING_NONE);
 }
 

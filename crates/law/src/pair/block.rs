@@ -16,6 +16,7 @@
 //! kernel on it, so the results are the same whichever way a contact goes (test
 //! `block_equals_the_one_contact_kernel`).
 
+
 use super::kernel::finite;
 use super::{Cheap, ContactHistory, PairConstants, PairDissipation};
 use crate::kalker;
@@ -291,11 +292,10 @@ impl V {
 }
 
 /// The cheap tier's step on [`LANES`] sphere-sphere contacts with the same constants `c`
-/// (which [`block_supports`]), bodies `pairs` and histories `hist[idx[l][0]]` (none virgin;
-/// the first `used` lanes are contacts, the others repeat one of them and are not written),
-/// time step `dt` \[s\]: for each lane whose bit the returned mask sets, its history is
-/// updated and `out[idx[l][1]]` holds the contact's outputs (a host whose histories are
-/// scattered, e.g. in slots, gives its outputs their own index), the same bits as [`pair_force`](super::pair_force)
+/// (which [`block_supports`]), bodies `pairs` and histories `hist[idx[l]]` (none virgin; the
+/// first `used` lanes are contacts, the others repeat one of them and are not written), time
+/// step `dt` \[s\]: for each lane whose bit the returned mask sets, its history is updated
+/// and `out[idx[l]]` holds the contact's outputs, the same bits as [`pair_force`](super::pair_force)
 /// gives on that lane; the other lanes (see the module docs) are left as they were for the
 /// caller's one-contact kernel.
 #[inline(always)]
@@ -304,11 +304,11 @@ pub fn cheap_sphere_block(
     pairs: &SphereLanes,
     hist: &mut [ContactHistory<Cheap>],
     out: &mut [SphereForces],
-    idx: [[usize; 2]; LANES],
+    idx: [usize; LANES],
     used: usize,
     dt: f64,
 ) -> u32 {
-    let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l][0]]);
+    let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
     let pm = &c.material;
     let creep_on = c.creep.is_some();
     let c11 = match c.steady {
@@ -510,13 +510,13 @@ pub fn cheap_sphere_block(
             continue;
         }
         done |= 1 << l;
-        let hl = &mut hist[idx[l][0]];
+        let hl = &mut hist[idx[l]];
         hl.tangential.q = Vec2::new(q_x.0[l], q_y.0[l]);
         hl.tangential.k = k.0[l];
         hl.t1 = t1.lane(l);
         hl.normal = n.lane(l);
         hl.overlap = delta.0[l];
-        out[idx[l][1]] = SphereForces {
+        out[idx[l]] = SphereForces {
             force_p: f_p.lane(l),
             torque_p: torque_p.lane(l),
             torque_q: torque_q.lane(l),

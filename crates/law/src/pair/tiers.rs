@@ -64,9 +64,9 @@ pub trait TangentialLaw:
     const HAS_BLOCK: bool = false;
 
     /// [`LANES`] sphere-sphere contacts at once with constants `c`, bodies `pairs`, histories
-    /// `hist[idx[l][0]]` (none virgin; lanes from `n` on repeat one of the first and are not
+    /// `hist[idx[l]]` (none virgin; lanes from `n` on repeat one of the first and are not
     /// written) and step `dt` \[s\]: the mask of the lanes done (their histories updated, their
-    /// outputs in `out[idx[l][1]]`, the same bits as [`pair_force`](super::pair_force)'s); the others are
+    /// outputs in `out[idx[l]]`, the same bits as [`pair_force`](super::pair_force)'s); the others are
     /// left for the one-contact kernel. None by default; the cheap tier's is
     /// [`cheap_sphere_block`](super::cheap_sphere_block).
     #[inline(always)]
@@ -75,7 +75,7 @@ pub trait TangentialLaw:
         pairs: &SphereLanes,
         hist: &mut [ContactHistory<Self>],
         out: &mut [SphereForces],
-        idx: [[usize; 2]; LANES],
+        idx: [usize; LANES],
         n: usize,
         dt: f64,
     ) -> u32 {
@@ -275,7 +275,7 @@ impl TangentialLaw for Cheap {
         pairs: &SphereLanes,
         hist: &mut [ContactHistory<Self>],
         out: &mut [SphereForces],
-        idx: [[usize; 2]; LANES],
+        idx: [usize; LANES],
         n: usize,
         dt: f64,
     ) -> u32 {
