@@ -16,7 +16,6 @@
 //! kernel on it, so the results are the same whichever way a contact goes (test
 //! `block_equals_the_one_contact_kernel`).
 
-
 use super::kernel::finite;
 use super::{Cheap, ContactHistory, PairConstants, PairDissipation};
 use crate::kalker;
