@@ -75,6 +75,12 @@ impl MaterialTable {
     /// The constants of the pair `(i, j)`.
     #[inline]
     pub fn pair(&self, i: usize, j: usize) -> &PairConstants {
-        &self.pairs[i * self.materials.len() + j]
+        &self.pairs[self.pair_index(i, j)]
+    }
+
+    /// Where the constants of the pair `(i, j)` are in `pairs`.
+    #[inline]
+    pub(crate) fn pair_index(&self, i: usize, j: usize) -> usize {
+        i * self.materials.len() + j
     }
 }

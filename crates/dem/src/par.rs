@@ -20,10 +20,10 @@
 
 use crate::grid::Stencil;
 use crate::neighbour::{Carry, half_neighbours_of};
-use crate::step::{CHUNK, WallOut, add_partial, tally_wall, weight};
+use crate::step::{APART, CHUNK, WallOut, WindowOut, add_partial, tally_block, tally_wall, weight};
 use crate::{Dem, DemCounts, DemEnergy, DemError, ExternalForces, tally};
 use creep_law::Vec3;
-use creep_law::pair::{ContactHistory, PairForces, TangentialLaw};
+use creep_law::pair::{ContactHistory, PairForces, SphereForces, TangentialLaw};
 use rayon::prelude::*;
 
 /// One task of the contact loop.
@@ -230,6 +230,36 @@ impl<T: TangentialLaw> Dem<T> {
                     let mut e = DemEnergy::default();
                     let base = this.nl_start[i0] as usize;
                     let i1 = (i0 + CHUNK).min(n);
+                    if T::HAS_BLOCK {
+                        // The serial loop's windows (block kernel), the outputs to entries.
+                        let mut outs = WindowOut::default();
+                        let mut w0 = i0;
+                        while w0 < i1 {
+                            let w1 = this.window_end(w0, i1);
+                            let (a, b) = (
+                                this.nl_start[w0] as usize - base,
+                                this.nl_start[w1] as usize - base,
+                            );
+                            this.pair_outputs(w0, w1, &mut h[a..b], dt, &mut outs);
+                            for i in w0..w1 {
+                                for k in this.nl_start[i] as usize..this.nl_start[i + 1] as usize {
+                                    let w = k - base - a;
+                                    let [p, _] = outs.pq[w];
+                                    let f = &outs.f[w];
+                                    o[k - base] = if p == APART {
+                                        e.slip += f.dissipation.slip;
+                                        Entry::default()
+                                    } else {
+                                        tally_block(&mut c, &mut e, f);
+                                        c.contacts += 1;
+                                        entry_block(p as usize == i, f)
+                                    };
+                                }
+                            }
+                            w0 = w1;
+                        }
+                        return Some((c, e));
+                    }
                     for i in i0..i1 {
                         for k in this.nl_start[i] as usize..this.nl_start[i + 1] as usize {
                             let j = this.nl_j[k] as usize;
@@ -434,6 +464,24 @@ impl<T: TangentialLaw> Dem<T> {
 /// The entry of a pair whose owner is p (`owner_is_p`) or q.
 #[inline]
 fn entry(owner_is_p: bool, f: &PairForces) -> Entry {
+    if owner_is_p {
+        Entry {
+            force_i: f.force_p,
+            torque_i: f.torque_p,
+            torque_j: f.torque_q,
+        }
+    } else {
+        Entry {
+            force_i: -f.force_p,
+            torque_i: f.torque_q,
+            torque_j: f.torque_p,
+        }
+    }
+}
+
+/// [`entry`] of a window entry's outputs.
+#[inline]
+fn entry_block(owner_is_p: bool, f: &SphereForces) -> Entry {
     if owner_is_p {
         Entry {
             force_i: f.force_p,

@@ -1,7 +1,8 @@
 //! One velocity-Verlet step and the force loops (serial; the parallel one is in `par`).
 
 use creep_law::pair::{
-    ContactGeometry, ContactHistory, PairBody, TangentialLaw, pair_force, release,
+    ContactGeometry, ContactHistory, LANES, PairBody, SphereForces, SphereLanes, SpherePair,
+    TangentialLaw, block_supports, pair_force, release,
 };
 use creep_law::{Surface, Vec3};
 
@@ -170,29 +171,55 @@ impl<T: TangentialLaw> Dem<T> {
     /// entries' contributions in list order (whether it owns the entry or is its partner), and
     /// the energies and counts are summed per block of [`CHUNK`] particles, then block by
     /// block: the parallel loop (`par`) sums in exactly these orders, so both give the same
-    /// bits.
+    /// bits. A tier with a block kernel ([`TangentialLaw::HAS_BLOCK`]) evaluates a window of
+    /// entries first ([`Dem::pair_outputs`]), then adds them in list order.
     fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
+        let mut outs = WindowOut::default();
         let mut i0 = 0;
         while i0 < n {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
-            for i in i0..i1 {
-                let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
-                for k in a..b {
-                    let j = self.nl_j[k] as usize;
-                    match self.pair(i, j, &mut hist[k], dt) {
-                        Ok((p, q, out)) => {
-                            self.f[p] += out.force_p;
-                            self.f[q] -= out.force_p;
-                            self.t[p] += out.torque_p;
-                            self.t[q] += out.torque_q;
-                            tally(&mut c, &mut e, &out);
-                            c.contacts += 1;
+            if T::HAS_BLOCK {
+                let mut w0 = i0;
+                while w0 < i1 {
+                    let w1 = self.window_end(w0, i1);
+                    let base = self.nl_start[w0] as usize;
+                    let end = self.nl_start[w1] as usize;
+                    self.pair_outputs(w0, w1, &mut hist[base..end], dt, &mut outs);
+                    for (&[p, q], out) in outs.pq.iter().zip(&outs.f) {
+                        if p == APART {
+                            e.slip += out.dissipation.slip;
+                            continue;
                         }
-                        Err(released) => e.slip += released,
+                        let (p, q) = (p as usize, q as usize);
+                        self.f[p] += out.force_p;
+                        self.f[q] -= out.force_p;
+                        self.t[p] += out.torque_p;
+                        self.t[q] += out.torque_q;
+                        tally_block(&mut c, &mut e, out);
+                        c.contacts += 1;
+                    }
+                    w0 = w1;
+                }
+            } else {
+                for i in i0..i1 {
+                    let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
+                    for k in a..b {
+                        let j = self.nl_j[k] as usize;
+                        match self.pair(i, j, &mut hist[k], dt) {
+                            Ok((p, q, out)) => {
+                                self.f[p] += out.force_p;
+                                self.f[q] -= out.force_p;
+                                self.t[p] += out.torque_p;
+                                self.t[q] += out.torque_q;
+                                tally(&mut c, &mut e, &out);
+                                c.contacts += 1;
+                            }
+                            Err(released) => e.slip += released,
+                        }
                     }
                 }
             }
@@ -200,6 +227,158 @@ impl<T: TangentialLaw> Dem<T> {
             i0 = i1;
         }
         self.nl_h = hist;
+    }
+
+    /// The end of the window of particles from `w0` (before `i1`) holding about [`WINDOW`]
+    /// list entries (at least one particle).
+    #[inline]
+    pub(crate) fn window_end(&self, w0: usize, i1: usize) -> usize {
+        let mut w1 = w0 + 1;
+        while w1 < i1 && ((self.nl_start[w1] - self.nl_start[w0]) as usize) < WINDOW {
+            w1 += 1;
+        }
+        w1
+    }
+
+    /// The outputs of the list entries of particles `w0..w1` (histories `hist`, from entry
+    /// `nl_start[w0]` on) into `outs`, in list order: touching sphere pairs with constants the
+    /// block kernel takes and a history that is not virgin go [`LANES`] at a time to
+    /// [`TangentialLaw::sphere_block`], the rest (and the lanes the block leaves) to the
+    /// one-contact kernel ([`Dem::pair`]); each entry's output depends on its own history only,
+    /// so the results are the one-contact kernel's, entry for entry.
+    pub(crate) fn pair_outputs(
+        &self,
+        w0: usize,
+        w1: usize,
+        hist: &mut [ContactHistory<T>],
+        dt: f64,
+        outs: &mut WindowOut,
+    ) {
+        let base = self.nl_start[w0] as usize;
+        outs.f.clear();
+        outs.f.resize(hist.len(), SphereForces::default());
+        outs.pq.clear();
+        outs.pq.resize(hist.len(), [APART, 0]);
+        let mut pend = Pending::default();
+        for i in w0..w1 {
+            let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
+            for k in a..b {
+                let j = self.nl_j[k] as usize;
+                let o = k - base;
+                let d = self.grid.min_image(self.x[j] - self.x[i]);
+                let rs = self.r[i] + self.r[j];
+                let h = &mut hist[o];
+                if d.dot(d) < rs * rs && !h.is_virgin() {
+                    let (p, q, dpq) = if self.id[i] < self.id[j] {
+                        (i, j, d)
+                    } else {
+                        (j, i, -d)
+                    };
+                    let ci = self
+                        .table
+                        .pair_index(self.mat[p] as usize, self.mat[q] as usize);
+                    if block_supports(&self.table.pairs[ci]) {
+                        if pend.len > 0 && pend.constants != ci {
+                            self.flush(&mut pend, hist, dt, outs);
+                        }
+                        let xp = self.x[p];
+                        let l = pend.len;
+                        pend.constants = ci;
+                        pend.entry[l] = (o as u32, i as u32, j as u32, p as u32, q as u32);
+                        pend.pairs.set(
+                            l,
+                            &SpherePair {
+                                xp,
+                                xq: xp + dpq,
+                                rp: self.r[p],
+                                rq: self.r[q],
+                                vp: self.v[p],
+                                vq: self.v[q],
+                                wp: self.w[p],
+                                wq: self.w[q],
+                                mp: self.mass[p],
+                                mq: self.mass[q],
+                            },
+                        );
+                        pend.len += 1;
+                        if pend.len == LANES {
+                            self.flush(&mut pend, hist, dt, outs);
+                        }
+                        continue;
+                    }
+                }
+                self.pair_out(i, j, &mut hist[o], dt, o, outs);
+            }
+        }
+        if pend.len > 0 {
+            self.flush(&mut pend, hist, dt, outs);
+        }
+    }
+
+    /// Runs the pending lanes through the block kernel (the unused lanes repeat the first,
+    /// their results dropped), the lanes it leaves through the one-contact kernel.
+    #[inline(always)]
+    fn flush(
+        &self,
+        pend: &mut Pending,
+        hist: &mut [ContactHistory<T>],
+        dt: f64,
+        outs: &mut WindowOut,
+    ) {
+        let n = pend.len;
+        for l in n..LANES {
+            pend.pairs.copy_lane(0, l);
+        }
+        let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }].0 as usize);
+        let mask = T::sphere_block(
+            &self.table.pairs[pend.constants],
+            &pend.pairs,
+            hist,
+            &mut outs.f,
+            idx,
+            n,
+            dt,
+        );
+        for l in 0..n {
+            let (o, i, j, p, q) = pend.entry[l];
+            let o = o as usize;
+            if mask >> l & 1 == 1 {
+                outs.pq[o] = [p, q];
+            } else {
+                self.pair_out(i as usize, j as usize, &mut hist[o], dt, o, outs);
+            }
+        }
+        pend.len = 0;
+    }
+
+    /// [`Dem::pair`] into window entry `o` of `outs`.
+    #[inline]
+    fn pair_out(
+        &self,
+        i: usize,
+        j: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+        o: usize,
+        outs: &mut WindowOut,
+    ) {
+        match self.pair(i, j, h, dt) {
+            Ok((p, q, out)) => {
+                outs.pq[o] = [p as u32, q as u32];
+                outs.f[o] = SphereForces {
+                    force_p: out.force_p,
+                    torque_p: out.torque_p,
+                    torque_q: out.torque_q,
+                    sliding: out.sliding,
+                    creep_displacement: out.creep_displacement,
+                    dissipation: out.dissipation,
+                };
+            }
+            Err(released) => {
+                outs.pq[o] = [APART, 0];
+                outs.f[o].dissipation.slip = released;
+            }
+        }
     }
 
     fn wall_forces(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
@@ -365,4 +544,41 @@ pub(crate) struct WallOut {
     pub(crate) dissipation: creep_law::pair::PairDissipation,
     pub(crate) sliding: bool,
     pub(crate) creeping: bool,
+}
+
+/// List entries per window of [`Dem::pair_outputs`] (evaluated, then added in list order).
+pub(crate) const WINDOW: usize = 32;
+
+/// The outputs of a window's list entries: a touching pair's p and q and its outputs, or
+/// `[APART, 0]` and the energy an opening contact's history released (as the slip
+/// dissipation).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct WindowOut {
+    pub(crate) pq: Vec<[u32; 2]>,
+    pub(crate) f: Vec<SphereForces>,
+}
+
+/// The `p` of an entry whose pair is apart.
+pub(crate) const APART: u32 = u32::MAX;
+
+/// The lanes waiting for the block kernel: their window entry, i, j, p, q, bodies, and the
+/// index of their pair constants.
+#[derive(Default)]
+struct Pending {
+    len: usize,
+    constants: usize,
+    entry: [(u32, u32, u32, u32, u32); LANES],
+    pairs: SphereLanes,
+}
+
+/// [`tally`] of a window entry's outputs.
+#[inline]
+pub(crate) fn tally_block(counts: &mut DemCounts, energy: &mut DemEnergy, out: &SphereForces) {
+    tally_parts(
+        counts,
+        energy,
+        &out.dissipation,
+        out.sliding,
+        out.creep_displacement != creep_law::Vec2::ZERO,
+    );
 }

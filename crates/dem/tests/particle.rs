@@ -556,6 +556,14 @@ fn set_skin_carries_the_histories_and_keeps_the_physics() {
 #[cfg(feature = "parallel")]
 #[test]
 fn parallel_force_loop_is_deterministic() {
+    deterministic::<Exact>();
+    // The cheap tier's serial loop runs most contacts through the block kernel
+    // (`cheap_sphere_block`), the parallel one through the one-contact kernel: the same bits.
+    deterministic::<Cheap>();
+}
+
+#[cfg(feature = "parallel")]
+fn deterministic<T: TangentialLaw>() {
     /// An external force that adds nothing but does not say so (`adds_forces` is `true`): the
     /// parallel step then sums the forces, calls it, and kicks in a separate pass.
     struct Nothing;
@@ -568,7 +576,7 @@ fn parallel_force_loop_is_deterministic() {
     let run = |parallel: bool, threads: usize, external: bool| {
         creep_dem::with_threads(threads, || {
             // 512 particles: 4 blocks of the contact loop, 2 of the parallel list build.
-            let mut d = settling::<Exact>(8, 0.2, parallel, false);
+            let mut d = settling::<T>(8, 0.2, parallel, false);
             for _ in 0..1500 {
                 if external {
                     d.step_with(&mut Nothing).unwrap();

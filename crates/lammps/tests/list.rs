@@ -9,10 +9,11 @@ mod common;
 use common::{Cluster, Store, model, xorshift};
 
 use creep_lammps::ffi::{
-    CREEP_LAMMPS_TIER_EXACT, CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms, CreepLammpsList,
-    CreepLammpsModel, creep_lammps_compute_list, creep_lammps_compute_pairs,
-    creep_lammps_history_len, creep_lammps_model_free, creep_lammps_store_len,
-    creep_lammps_store_new, creep_lammps_store_save,
+    CREEP_LAMMPS_ROLLING_EPSD, CREEP_LAMMPS_ROLLING_NONE, CREEP_LAMMPS_TIER_EXACT,
+    CREEP_LAMMPS_TIER_SPRING, CreepLammpsAtoms, CreepLammpsList, CreepLammpsModel,
+    CreepLammpsSettings, creep_lammps_compute_list, creep_lammps_compute_pairs,
+    creep_lammps_history_len, creep_lammps_model_free, creep_lammps_model_new,
+    creep_lammps_store_len, creep_lammps_store_new, creep_lammps_store_save,
 };
 use creep_lammps::{
     Accumulators, Atoms, HistoryStore, ListCounts, ListEntries, Model, ModelTable, PairForce,
@@ -158,9 +159,33 @@ fn saved(store: &Store, tier: u32) -> Vec<f64> {
     out
 }
 
+/// [`model`] with rolling resistance `rolling` (`CREEP_LAMMPS_ROLLING_*`).
+fn model_rolling(tier: u32, rolling: u32) -> *mut CreepLammpsModel {
+    let s = CreepLammpsSettings {
+        young_modulus: 69.6e6,
+        poisson_ratio: 0.2,
+        restitution: 0.5,
+        friction: 0.5,
+        tier,
+        creep: 1,
+        rolling,
+        rolling_friction: 0.2,
+        rolling_damping: 0.3,
+    };
+    let mut err = [0 as c_char; 256];
+    // SAFETY: valid settings and error buffer.
+    let m = unsafe { creep_lammps_model_new(&s, err.as_mut_ptr(), err.len()) };
+    assert!(!m.is_null(), "{}", message(&err));
+    m
+}
+
 fn list_equals_pairs(tier: u32) {
-    let m = model(tier);
-    let m2 = model(tier);
+    list_equals_pairs_with(tier, CREEP_LAMMPS_ROLLING_EPSD);
+}
+
+fn list_equals_pairs_with(tier: u32, rolling: u32) {
+    let m = model_rolling(tier, rolling);
+    let m2 = model_rolling(tier, rolling);
     let table: Vec<*const CreepLammpsModel> = vec![
         std::ptr::null(),
         std::ptr::null(),
@@ -299,6 +324,12 @@ fn list_equals_pairs(tier: u32) {
 #[test]
 fn list_path_is_bitwise_the_pairs_path_spring() {
     list_equals_pairs(CREEP_LAMMPS_TIER_SPRING);
+}
+
+/// The spring tier without rolling resistance (the pair style's default).
+#[test]
+fn list_path_is_bitwise_the_pairs_path_spring_no_rolling() {
+    list_equals_pairs_with(CREEP_LAMMPS_TIER_SPRING, CREEP_LAMMPS_ROLLING_NONE);
 }
 
 #[test]

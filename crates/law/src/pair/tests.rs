@@ -644,3 +644,134 @@ fn carried_tangent_is_the_rotation_to_second_order() {
     let got = carry_tangent(e1, from, -from, 0.0).unwrap();
     assert!((got + e1).length() < 1e-15, "{got:?}");
 }
+
+#[test]
+fn block_equals_the_one_contact_kernel() {
+    // Random sphere pairs in contact, stepped a few times from a loaded history (sticking,
+    // sliding and creeping contacts, small and large spins, normals that turn far): every lane
+    // the block takes has the one-contact kernel's outputs and history, bit for bit, and the
+    // lanes it leaves are untouched; most lanes are taken.
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let dt = 2e-6;
+    let (mut taken, mut lanes) = (0, 0);
+    for (case, creep) in [Some(CreepModel::Kuhn), None]
+        .into_iter()
+        .cycle()
+        .take(1200)
+        .enumerate()
+    {
+        let mu = [0.5, 0.05, 0.0, 1.0][case % 4];
+        let c = constants(mu, 0.6, creep);
+        assert!(block_supports(&c));
+        let mut pairs = SphereLanes::default();
+        let mut hist = [ContactHistory::<Cheap>::default(); LANES];
+        let mut bodies = Vec::new();
+        for l in 0..LANES {
+            let (rp, rq) = (0.001 * (1.0 + 0.4 * rnd()), 0.001 * (1.0 + 0.4 * rnd()));
+            let dir = Vec3::new(rnd(), rnd(), rnd()).try_normalize().unwrap();
+            let xp = Vec3::new(rnd(), rnd(), rnd()) * 0.01;
+            let xq = xp + dir * ((rp + rq) * (1.0 - 0.002 * (rnd() + 0.5)));
+            let speed = [1e-3, 0.1, 3.0][(case + l) % 3];
+            let spin = [1.0, 100.0, 1e3][(case / 3 + l) % 3];
+            let mut v = |s: f64| Vec3::new(rnd(), rnd(), rnd()) * s;
+            let p = sphere(xp, v(speed), v(spin), rp);
+            let q = sphere(xq, v(speed), v(spin), rq);
+            // Load the history with a few steps of the kernel (from a virgin contact).
+            let g = ContactGeometry::sphere_sphere(p.position, rp, q.position, rq).unwrap();
+            for _ in 0..1 + (case + l) % 4 {
+                pair_force(&c, &p, &q, &g, &mut hist[l], dt);
+            }
+            if (case + l) % 7 == 0 {
+                // A normal that turned far since the last step: the block leaves it.
+                hist[l].normal = hist[l].t1;
+            }
+            // The next step with the bodies moved on.
+            let p = PairBody {
+                position: p.position + p.velocity * dt,
+                ..p
+            };
+            let q = PairBody {
+                position: q.position + q.velocity * dt,
+                ..q
+            };
+            pairs.set(
+                l,
+                &SpherePair {
+                    xp: p.position,
+                    xq: q.position,
+                    rp,
+                    rq,
+                    vp: p.velocity,
+                    vq: q.velocity,
+                    wp: p.angular_velocity,
+                    wq: q.angular_velocity,
+                    mp: p.mass,
+                    mq: q.mass,
+                },
+            );
+            bodies.push((p, q, rp, rq));
+        }
+        let before = hist;
+        let mut out = [SphereForces::default(); LANES];
+        let idx = std::array::from_fn(|l| l);
+        let mask = cheap_sphere_block(&c, &pairs, &mut hist, &mut out, idx, LANES, dt);
+        for l in 0..LANES {
+            lanes += 1;
+            if mask >> l & 1 == 0 {
+                assert_eq!(
+                    hist[l], before[l],
+                    "case {case} lane {l}: a left lane changed"
+                );
+                continue;
+            }
+            taken += 1;
+            let (p, q, rp, rq) = bodies[l];
+            let mut h = before[l];
+            let g = ContactGeometry::sphere_sphere(p.position, rp, q.position, rq).unwrap();
+            let f = pair_force(&c, &p, &q, &g, &mut h, dt);
+            assert!(f.touching);
+            let bits3 = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+            let o = out[l];
+            assert_eq!(
+                bits3(o.force_p),
+                bits3(f.force_p),
+                "case {case} lane {l}: force"
+            );
+            assert_eq!(bits3(o.torque_p), bits3(f.torque_p), "case {case} lane {l}");
+            assert_eq!(bits3(o.torque_q), bits3(f.torque_q), "case {case} lane {l}");
+            assert_eq!(o.sliding, f.sliding, "case {case} lane {l}");
+            assert_eq!(
+                [
+                    o.creep_displacement.x.to_bits(),
+                    o.creep_displacement.y.to_bits()
+                ],
+                [
+                    f.creep_displacement.x.to_bits(),
+                    f.creep_displacement.y.to_bits()
+                ],
+                "case {case} lane {l}"
+            );
+            let d = |x: PairDissipation| {
+                [x.damping, x.slip, x.creep, x.rolling, x.truncation].map(f64::to_bits)
+            };
+            assert_eq!(d(o.dissipation), d(f.dissipation), "case {case} lane {l}");
+            let hb = |h: &ContactHistory<Cheap>| {
+                let mut v = [0.0; ContactHistory::<Cheap>::LEN];
+                h.write(&mut v).unwrap();
+                v.map(f64::to_bits)
+            };
+            assert_eq!(hb(&hist[l]), hb(&h), "case {case} lane {l}: history");
+        }
+    }
+    println!("block took {taken} of {lanes} lanes");
+    assert!(
+        taken * 10 > lanes * 6,
+        "block took {taken} of {lanes} lanes"
+    );
+}

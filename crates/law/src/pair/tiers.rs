@@ -1,8 +1,9 @@
 //! The tangential tiers: the [`TangentialLaw`] trait, [`Exact`] (Cattaneo-Mindlin memory with
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
-use super::PairConstants;
+use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block};
 use super::kernel::finite;
+use super::{ContactHistory, PairConstants};
 use crate::LawError;
 use crate::creep::{CreepInput, CreepLaw, CreepState};
 use crate::kalker;
@@ -57,6 +58,30 @@ pub trait TangentialLaw:
     fn write(h: &Self::History, out: &mut [f64]);
     /// Reads a history written by [`TangentialLaw::write`].
     fn read(v: &[f64]) -> Result<Self::History, LawError>;
+
+    /// Whether the tier has a kernel of [`LANES`] sphere-sphere contacts at once
+    /// ([`TangentialLaw::sphere_block`]).
+    const HAS_BLOCK: bool = false;
+
+    /// [`LANES`] sphere-sphere contacts at once with constants `c`, bodies `pairs`, histories
+    /// `hist[idx[l]]` (none virgin; lanes from `n` on repeat one of the first and are not
+    /// written) and step `dt` \[s\]: the mask of the lanes done (their histories updated, their
+    /// outputs in `out[idx[l]]`, the same bits as [`pair_force`](super::pair_force)'s); the others are
+    /// left for the one-contact kernel. None by default; the cheap tier's is
+    /// [`cheap_sphere_block`](super::cheap_sphere_block).
+    #[inline(always)]
+    fn sphere_block(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        out: &mut [SphereForces],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+    ) -> u32 {
+        let _ = (c, pairs, hist, out, idx, n, dt);
+        0
+    }
 }
 
 /// Cattaneo-Mindlin with load-history memory (Popov & Heß's method of dimensionality reduction,
@@ -240,6 +265,21 @@ impl TangentialLaw for Cheap {
         } else {
             0.0
         }
+    }
+
+    const HAS_BLOCK: bool = true;
+
+    #[inline(always)]
+    fn sphere_block(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        out: &mut [SphereForces],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+    ) -> u32 {
+        cheap_sphere_block(c, pairs, hist, out, idx, n, dt)
     }
 
     fn write(h: &CheapHistory, out: &mut [f64]) {

@@ -1,0 +1,534 @@
+//! Four sphere-sphere contacts of the [`Cheap`] tier at once: [`cheap_sphere_block`].
+//!
+//! The same arithmetic as [`pair_force`](super::pair_force) for two movable spheres with the
+//! cheap tier, no rolling resistance and (with creep) Kuhn's steady law, operation for
+//! operation, but on lanes of four contacts (`[f64; 4]` arrays the compiler turns into vector
+//! instructions: SSE2's two `f64` per instruction on every x86-64, four with AVX), so every
+//! lane's result is the same bits as the one-contact kernel's (IEEE 754 operations are
+//! correctly rounded lane by lane; no fused multiply-add is introduced). The branches of the
+//! one-contact kernel become masks: both sides are evaluated and each lane keeps its own
+//! (the Coulomb limit, the creep term, the spin of the basis, the renormalisation of the
+//! carried tangent); the cube root of the creep term and the sine of a spin beyond 1e-3 rad
+//! per step are taken lane by lane with the one-contact kernel's functions. The cases the
+//! block does not take, a lane's rare branches (a virgin or opening contact, a normal that
+//! turned beyond 45 degrees, a carried tangent of length zero, a non-finite value), leave
+//! that lane untouched and clear its bit of the returned mask: the host runs the one-contact
+//! kernel on it, so the results are the same whichever way a contact goes (test
+//! `block_equals_the_one_contact_kernel`).
+
+use super::kernel::finite;
+use super::{Cheap, ContactHistory, PairConstants, PairDissipation};
+use crate::kalker;
+use crate::steady_law::SteadyLaw;
+use crate::vector::{Vec2, Vec3};
+
+/// Contacts per block.
+pub const LANES: usize = 4;
+
+/// One lane's bodies: two spheres p and q (the normal points from p to q).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpherePair {
+    /// Centre of p \[m\].
+    pub xp: Vec3,
+    /// Centre of q \[m\].
+    pub xq: Vec3,
+    /// Radius of p \[m\].
+    pub rp: f64,
+    /// Radius of q \[m\].
+    pub rq: f64,
+    /// Velocity of p [m/s].
+    pub vp: Vec3,
+    /// Velocity of q [m/s].
+    pub vq: Vec3,
+    /// Angular velocity of p [rad/s].
+    pub wp: Vec3,
+    /// Angular velocity of q [rad/s].
+    pub wq: Vec3,
+    /// Mass of p \[kg\].
+    pub mp: f64,
+    /// Mass of q \[kg\].
+    pub mq: f64,
+}
+
+/// The bodies of [`LANES`] sphere pairs, lane by lane (structure of arrays: each quantity's
+/// lanes side by side, as the block loads them).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SphereLanes {
+    xp: [[f64; LANES]; 3],
+    xq: [[f64; LANES]; 3],
+    vp: [[f64; LANES]; 3],
+    vq: [[f64; LANES]; 3],
+    wp: [[f64; LANES]; 3],
+    wq: [[f64; LANES]; 3],
+    rp: [f64; LANES],
+    rq: [f64; LANES],
+    mp: [f64; LANES],
+    mq: [f64; LANES],
+}
+
+impl SphereLanes {
+    /// Sets lane `l` (< [`LANES`]) to the pair `s`.
+    #[inline(always)]
+    pub fn set(&mut self, l: usize, s: &SpherePair) {
+        let put = |a: &mut [[f64; LANES]; 3], v: Vec3| {
+            a[0][l] = v.x;
+            a[1][l] = v.y;
+            a[2][l] = v.z;
+        };
+        put(&mut self.xp, s.xp);
+        put(&mut self.xq, s.xq);
+        put(&mut self.vp, s.vp);
+        put(&mut self.vq, s.vq);
+        put(&mut self.wp, s.wp);
+        put(&mut self.wq, s.wq);
+        self.rp[l] = s.rp;
+        self.rq[l] = s.rq;
+        self.mp[l] = s.mp;
+        self.mq[l] = s.mq;
+    }
+
+    /// Copies lane `from` into lane `to` (to fill the unused lanes of a block).
+    #[inline]
+    pub fn copy_lane(&mut self, from: usize, to: usize) {
+        for a in [
+            &mut self.xp,
+            &mut self.xq,
+            &mut self.vp,
+            &mut self.vq,
+            &mut self.wp,
+            &mut self.wq,
+        ] {
+            for c in a.iter_mut() {
+                c[to] = c[from];
+            }
+        }
+        for a in [&mut self.rp, &mut self.rq, &mut self.mp, &mut self.mq] {
+            a[to] = a[from];
+        }
+    }
+}
+
+/// What one lane of [`cheap_sphere_block`] returns: the outputs of
+/// [`PairForces`](super::PairForces) a DEM host uses, for a touching contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SphereForces {
+    /// Force on p \[N\] (`-force_p` on q).
+    pub force_p: Vec3,
+    /// Torque on p about its centre [N m].
+    pub torque_p: Vec3,
+    /// Torque on q about its centre [N m].
+    pub torque_q: Vec3,
+    /// Whether the contact is at the Coulomb limit.
+    pub sliding: bool,
+    /// Creep displacement of the step in `(t1, t2)` \[m\].
+    pub creep_displacement: Vec2,
+    /// The step's energies.
+    pub dissipation: PairDissipation,
+}
+
+/// Whether the block takes contacts with constants `c` at all: no rolling resistance, and
+/// with creep, Kuhn's steady law (the others go to the one-contact kernel).
+#[inline]
+pub fn block_supports(c: &PairConstants) -> bool {
+    c.rolling.is_none() && (c.creep.is_none() || matches!(c.steady, SteadyLaw::Kuhn { .. }))
+}
+
+#[derive(Clone, Copy)]
+struct F([f64; LANES]);
+
+/// A lane mask: all ones (true) or all zeros, as the vector compares give them (held as
+/// `f64` bit patterns so that they stay in the vector registers).
+#[derive(Clone, Copy)]
+struct M([f64; LANES]);
+
+#[inline(always)]
+fn mask(b: bool) -> f64 {
+    f64::from_bits((b as u64).wrapping_neg())
+}
+
+#[inline(always)]
+fn bits(x: f64) -> u64 {
+    x.to_bits()
+}
+
+#[derive(Clone, Copy)]
+struct V {
+    x: F,
+    y: F,
+    z: F,
+}
+
+macro_rules! lanes {
+    ($l:ident => $e:expr) => {
+        F(std::array::from_fn(|$l| $e))
+    };
+}
+
+macro_rules! binop {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl std::ops::$tr for F {
+            type Output = F;
+            #[inline(always)]
+            fn $f(self, o: F) -> F {
+                lanes!(l => self.0[l] $op o.0[l])
+            }
+        }
+        impl std::ops::$tr<f64> for F {
+            type Output = F;
+            #[inline(always)]
+            fn $f(self, o: f64) -> F {
+                lanes!(l => self.0[l] $op o)
+            }
+        }
+        impl std::ops::$tr for V {
+            type Output = V;
+            #[inline(always)]
+            fn $f(self, o: V) -> V {
+                V { x: self.x $op o.x, y: self.y $op o.y, z: self.z $op o.z }
+            }
+        }
+        impl std::ops::$tr<F> for V {
+            type Output = V;
+            #[inline(always)]
+            fn $f(self, o: F) -> V {
+                V { x: self.x $op o, y: self.y $op o, z: self.z $op o }
+            }
+        }
+    };
+}
+binop!(Add, add, +);
+binop!(Sub, sub, -);
+binop!(Mul, mul, *);
+binop!(Div, div, /);
+
+impl F {
+    #[inline(always)]
+    fn splat(x: f64) -> F {
+        F([x; LANES])
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F {
+        lanes!(l => self.0[l].sqrt())
+    }
+    #[inline(always)]
+    fn neg(self) -> F {
+        lanes!(l => -self.0[l])
+    }
+    #[inline(always)]
+    fn gt(self, o: F) -> M {
+        M(std::array::from_fn(|l| mask(self.0[l] > o.0[l])))
+    }
+    #[inline(always)]
+    fn lt(self, o: F) -> M {
+        M(std::array::from_fn(|l| mask(self.0[l] < o.0[l])))
+    }
+    #[inline(always)]
+    fn ge(self, o: F) -> M {
+        M(std::array::from_fn(|l| mask(self.0[l] >= o.0[l])))
+    }
+    #[inline(always)]
+    fn finite(self) -> M {
+        M(std::array::from_fn(|l| mask(finite(self.0[l]))))
+    }
+}
+
+impl M {
+    #[inline(always)]
+    fn and(self, o: M) -> M {
+        M(std::array::from_fn(|l| {
+            f64::from_bits(bits(self.0[l]) & bits(o.0[l]))
+        }))
+    }
+    #[inline(always)]
+    fn sel(self, a: F, b: F) -> F {
+        lanes!(l => f64::from_bits((bits(a.0[l]) & bits(self.0[l])) | (bits(b.0[l]) & !bits(self.0[l]))))
+    }
+    #[inline(always)]
+    fn sel_v(self, a: V, b: V) -> V {
+        V {
+            x: self.sel(a.x, b.x),
+            y: self.sel(a.y, b.y),
+            z: self.sel(a.z, b.z),
+        }
+    }
+}
+
+impl V {
+    #[inline(always)]
+    fn load(a: &[[f64; LANES]; 3]) -> V {
+        V {
+            x: F(a[0]),
+            y: F(a[1]),
+            z: F(a[2]),
+        }
+    }
+    #[inline(always)]
+    fn gather(f: impl Fn(usize) -> Vec3) -> V {
+        V {
+            x: lanes!(l => f(l).x),
+            y: lanes!(l => f(l).y),
+            z: lanes!(l => f(l).z),
+        }
+    }
+    /// As `Vec3::dot`: `x x' + y y' + z z'`, left to right.
+    #[inline(always)]
+    fn dot(self, o: V) -> F {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    /// As `Vec3::cross`.
+    #[inline(always)]
+    fn cross(self, o: V) -> V {
+        V {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
+    }
+    #[inline(always)]
+    fn lane(self, l: usize) -> Vec3 {
+        Vec3::new(self.x.0[l], self.y.0[l], self.z.0[l])
+    }
+}
+
+/// The cheap tier's step on [`LANES`] sphere-sphere contacts with the same constants `c`
+/// (which [`block_supports`]), bodies `pairs` and histories `hist[idx[l]]` (none virgin; the
+/// first `used` lanes are contacts, the others repeat one of them and are not written), time
+/// step `dt` \[s\]: for each lane whose bit the returned mask sets, its history is updated
+/// and `out[idx[l]]` holds the contact's outputs, the same bits as [`pair_force`](super::pair_force)
+/// gives on that lane; the other lanes (see the module docs) are left as they were for the
+/// caller's one-contact kernel.
+#[inline(always)]
+pub fn cheap_sphere_block(
+    c: &PairConstants,
+    pairs: &SphereLanes,
+    hist: &mut [ContactHistory<Cheap>],
+    out: &mut [SphereForces],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+) -> u32 {
+    let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
+    let pm = &c.material;
+    let creep_on = c.creep.is_some();
+    let c11 = match c.steady {
+        SteadyLaw::Kuhn { c11 } => c11,
+        _ if !creep_on => 0.0,
+        _ => return 0,
+    };
+    if c.rolling.is_some() {
+        return 0;
+    }
+    let xp = V::load(&pairs.xp);
+    let xq = V::load(&pairs.xq);
+    let (rp, rq, mp, mq) = (F(pairs.rp), F(pairs.rq), F(pairs.mp), F(pairs.mq));
+
+    // Geometry (`ContactGeometry::sphere_sphere`).
+    let d = xq - xp;
+    let dist = d.dot(d).sqrt();
+    let mut ok = dist.gt(F::splat(f64::MIN_POSITIVE)).and(dist.finite());
+    let n = d * (F::splat(1.0) / dist);
+    let delta = rp + rq - dist;
+
+    // `R*` and `m*` with one reciprocal (the kernel's `reduced_mass_and_material`).
+    let (sr, sm) = (rp + rq, mp + mq);
+    let inv = F::splat(1.0) / (sr * sm);
+    ok = ok
+        .and(mp.gt(F::splat(0.0)))
+        .and(mq.gt(F::splat(0.0)))
+        .and(inv.gt(F::splat(0.0)))
+        .and(inv.finite())
+        .and(sm.finite());
+    let r_star = rp * rq * sm * inv;
+    let m_star = mp * mq * sr * inv;
+    ok = ok
+        .and(delta.gt(F::splat(0.0)))
+        .and(m_star.gt(F::splat(0.0)))
+        .and(r_star.finite());
+
+    // Kuhn & Bagi's rates for two spheres (`sphere_rates_and_approach`).
+    let rho_p = rp - delta * 0.5;
+    let rho_q = rq - delta * 0.5;
+    let wp = V::load(&pairs.wp);
+    let wq = V::load(&pairs.wq);
+    let a_w = wp.cross(n);
+    let b_w = wq.cross(n);
+    let dv = V::load(&pairs.vq) - V::load(&pairs.vp);
+    let dvn = dv.dot(n);
+    let dv_t = dv - n * dvn;
+    let dd = rho_p + rho_q;
+    ok = ok.and(dd.gt(F::splat(0.0))).and(dd.finite());
+    let v_roll =
+        dv_t * ((rho_q - rho_p) / (dd * 2.0)) + (a_w * rho_p - b_w * rho_q) * F::splat(0.5);
+    let v_disp = dv_t - a_w * rho_p - b_w * rho_q;
+    let delta_dot = dvn.neg();
+
+    // The carried basis (`carry_tangent`, the projection branch).
+    let t1_old = V::gather(|l| h[l].t1);
+    let from = V::gather(|l| h[l].normal);
+    ok = ok.and(from.dot(n).gt(F::splat(std::f64::consts::FRAC_1_SQRT_2)));
+    let spin = (wp + wq).dot(n) * 0.5;
+    // `0.5 * s` and `s * 0.5` are the same product.
+    let angle = spin * dt;
+    let a2 = angle * angle;
+    let mut s = angle * (F::splat(1.0) - a2 * (1.0 / 6.0));
+    let mut cs = F::splat(1.0) - a2 * 0.5 * (F::splat(1.0) - a2 * (1.0 / 12.0));
+    // Beyond 1e-3 rad per step (`small_sin_cos`'s series) libm's, lane by lane.
+    for l in 0..LANES {
+        if !(angle.0[l].abs() < 1e-3) {
+            (s.0[l], cs.0[l]) = angle.0[l].sin_cos();
+        }
+    }
+    let spun = t1_old * cs + n.cross(t1_old) * s;
+    let zero_angle = M(std::array::from_fn(|l| mask(angle.0[l] == 0.0)));
+    let spun = zero_angle.sel_v(t1_old, spun);
+    let t = spun - n * spun.dot(n);
+    let l2 = t.dot(t);
+    // `renormalize`: one Newton step near 1, else `try_normalize`.
+    let near = lanes!(l => (l2.0[l] - 1.0).abs()).lt(F::splat(1e-8));
+    let len = l2.sqrt();
+    ok = ok.and(M(std::array::from_fn(|l| {
+        f64::from_bits(
+            bits(near.0[l]) | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
+        )
+    })));
+    let t1 = near.sel_v(t * (F::splat(1.5) - l2 * 0.5), t * (F::splat(1.0) / len));
+    let t2 = n.cross(t1);
+
+    // Normal force: Hertz + Tsuji, never attractive.
+    let a = (r_star * delta).sqrt();
+    let e43 = 4.0 / 3.0 * pm.e_star;
+    let p_el = F::splat(e43) * a * delta;
+    let damp = F::splat(c.alpha) * (F::splat(e43) * m_star * a).sqrt();
+    let p_try = p_el + damp * delta_dot;
+    let p_tot = p_try.gt(F::splat(0.0)).sel(p_try, F::splat(0.0));
+    let damping = (p_tot - p_el) * delta_dot * dt;
+
+    // Tangential displacements in the basis.
+    let ud = v_disp * F::splat(dt);
+    let (dux, duy) = (ud.dot(t1), ud.dot(t2));
+    ok = ok.and(dux.finite()).and(duy.finite());
+    let (drx, dry) = if creep_on {
+        let ur = v_roll * F::splat(dt);
+        (ur.dot(t1), ur.dot(t2))
+    } else {
+        (F::splat(0.0), F::splat(0.0))
+    };
+
+    // The cheap tier (`Cheap::step`).
+    ok = ok
+        .and(p_el.gt(F::splat(0.0)))
+        .and(a.gt(F::splat(0.0)))
+        .and(p_el.finite())
+        .and(a.finite());
+    let k = F::splat(8.0 * pm.g_star) * a;
+    let mu_p = F::splat(pm.mu) * p_el;
+    ok = ok.and(mu_p.finite());
+    let qx = lanes!(l => h[l].tangential.q.x);
+    let qy = lanes!(l => h[l].tangential.q.y);
+    let hk = lanes!(l => h[l].tangential.k);
+    let q2 = qx * qx + qy * qy;
+    let zero = F::splat(0.0);
+    let trunc_on = q2.gt(zero).and(hk.gt(zero));
+    let truncation = trunc_on.sel(q2 * 0.5 * ((hk - k) / (k * hk)), zero);
+    let roll2 = drx * drx + dry * dry;
+    let creep_in = roll2.gt(zero).and(q2.gt(zero)).and(roll2.finite());
+    // `creep_per_force`, Kuhn's branch; a creeping lane outside it goes to the kernel.
+    let ga2 = F::splat(pm.g) * a * a;
+    let kuhn = mu_p
+        .gt(zero)
+        .and(mu_p.lt(F::splat(f64::INFINITY)))
+        .and(ga2.gt(zero))
+        .and(ga2.lt(F::splat(f64::INFINITY)));
+    ok = M(std::array::from_fn(|l| {
+        f64::from_bits(bits(ok.0[l]) & (!bits(creep_in.0[l]) | bits(kuhn.0[l])))
+    }));
+    let roll = roll2.sqrt();
+    let q_abs = q2.sqrt();
+    let gc = ga2 * c11;
+    let below = q_abs.lt(mu_p);
+    let diff = mu_p - q_abs;
+    // The cube root's fraction lane by lane (bit operations); lanes not below the limit or
+    // not creeping take a harmless argument.
+    let use_root = below.and(creep_in).and(kuhn).and(ok);
+    let xr = use_root.sel(diff / mu_p, F::splat(1.0));
+    let inv_xr = use_root.sel(mu_p / diff, F::splat(1.0));
+    let mut tt = F::splat(0.0);
+    let mut tn_n = F::splat(0.0);
+    let mut td = F::splat(0.0);
+    for l in 0..LANES {
+        let (t, nn, dd) = kalker::cbrt_fraction(xr.0[l], inv_xr.0[l]);
+        tt.0[l] = t;
+        tn_n.0[l] = nn;
+        td.0[l] = dd;
+    }
+    let tn = tt * tn_n;
+    let num_b = roll * 3.0 * (td * td);
+    let den_b = gc * (td * (td + tn) + tn * tn);
+    let num_s = roll * 3.0 * mu_p;
+    let den_s = gc * q_abs;
+    let num = below.sel(num_b, num_s);
+    let den = below.sel(den_b, den_s);
+    let f = (num * k).lt(den).sel(num / den, F::splat(1.0) / k);
+    let creep_use = creep_in.and(f.gt(zero)).and(f.finite());
+    let fc = creep_use.sel(f, zero);
+    let (cx, cy) = (creep_use.sel(qx * fc, zero), creep_use.sel(qy * fc, zero));
+    let creep_e = creep_use.sel(q2 * fc, zero);
+    let trial_x = qx + (dux - cx) * k;
+    let trial_y = qy + (duy - cy) * k;
+    let tr2 = trial_x * trial_x + trial_y * trial_y;
+    let slide = tr2.gt(mu_p * mu_p);
+    let scale = mu_p / tr2.sqrt();
+    let (sx, sy) = (trial_x * scale, trial_y * scale);
+    let slip_s = (sx * (trial_x - sx) + sy * (trial_y - sy)) / k;
+    let q_x = slide.sel(sx, trial_x);
+    let q_y = slide.sel(sy, trial_y);
+    let slip = slide.sel(slip_s, zero);
+
+    // Outputs.
+    let q_world = t1 * q_x + t2 * q_y;
+    let limit = F::splat((1.0 - 1e-9) * pm.mu) * p_el;
+    let sliding = (q_x * q_x + q_y * q_y).ge(limit * limit);
+    let f_p = q_world - n * p_tot;
+    let nf = t2 * q_x - t1 * q_y;
+    let torque_p = nf * rho_p
+        - V {
+            x: zero,
+            y: zero,
+            z: zero,
+        };
+    let torque_q = nf * rho_q
+        + V {
+            x: zero,
+            y: zero,
+            z: zero,
+        };
+    let ok = ok.0;
+    let mut done = 0;
+    for l in 0..used.min(LANES) {
+        if bits(ok[l]) == 0 {
+            continue;
+        }
+        done |= 1 << l;
+        let hl = &mut hist[idx[l]];
+        hl.tangential.q = Vec2::new(q_x.0[l], q_y.0[l]);
+        hl.tangential.k = k.0[l];
+        hl.t1 = t1.lane(l);
+        hl.normal = n.lane(l);
+        hl.overlap = delta.0[l];
+        out[idx[l]] = SphereForces {
+            force_p: f_p.lane(l),
+            torque_p: torque_p.lane(l),
+            torque_q: torque_q.lane(l),
+            sliding: bits(sliding.0[l]) != 0,
+            creep_displacement: Vec2::new(cx.0[l], cy.0[l]),
+            dissipation: PairDissipation {
+                damping: damping.0[l],
+                slip: slip.0[l],
+                creep: creep_e.0[l],
+                rolling: 0.0,
+                truncation: truncation.0[l],
+            },
+        };
+    }
+    done
+}
