@@ -1,5 +1,5 @@
-//! The Cattaneo-Mindlin memory as it was before its speed-up (frozen copy of
-//! `crates/law/src/mindlin.rs` at commit 2c0955e, unchanged but for this header): the oracle
+//! The Cattaneo-Mindlin memory in its plain, unoptimised form (a frozen copy of an earlier
+//! `crates/law/src/mindlin.rs`, unchanged but for this header): the oracle
 //! that the faster [`super::MindlinState`] must reproduce bit for bit (`mindlin/tests.rs`,
 //! `reference_*` tests) and the baseline of `crates/law/benches/mindlin.rs`. Not used by the
 //! library itself. Its module documentation follows.
