@@ -50,3 +50,20 @@ pub use hooks::{CreepPhysicsHooks, CreepRapierPlugin};
 pub use material::CreepMaterial;
 pub use plugin::CreepFrictionPlugin;
 pub use state::{CreepFriction, CreepWarning};
+
+/// What an app needs, in one `use creep_bevy::prelude::*;` next to `bevy::prelude::*` and
+/// `bevy_rapier3d::prelude::*`: the plugins, the components, the resource and its settings.
+pub mod prelude {
+    pub use crate::contacts::{ContactState, CreepContact};
+    #[cfg(feature = "gizmos")]
+    pub use crate::gizmos::CreepGizmos;
+    pub use crate::hooks::{CreepPhysicsHooks, CreepRapierPlugin};
+    pub use crate::material::CreepMaterial;
+    pub use crate::plugin::CreepFrictionPlugin;
+    pub use crate::state::{CreepFriction, CreepWarning};
+    pub use creep_law::Material;
+    pub use creep_law::rolling_torque::RollingModel;
+    pub use creep_rapier::{
+        CompliantSettings, CreepSettings, Fidelity, RollingResistance, StepCounts,
+    };
+}

@@ -13,8 +13,10 @@ use creep_rapier::{
 };
 use rapier3d::prelude::{ColliderHandle, ColliderSet};
 
-/// Why the plugin warned. Every warning is also logged once with Bevy's `warn!`; the list is
-/// kept in [`CreepFriction::warnings`] so that an app (or a test) can inspect it.
+/// Why the plugin warned. Each warning is given once: with Bevy's `warn!` when a log subscriber
+/// listens (`LogPlugin`, part of `DefaultPlugins`), else on standard error (an app on
+/// `MinimalPlugins` has no `LogPlugin`, and `warn!` alone would print nothing); the list is kept
+/// in [`CreepFriction::warnings`] so that an app (or a test) can inspect it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CreepWarning {
     /// `CreepFrictionPlugin` was added a second time; the second one (and its configuration)
@@ -45,13 +47,30 @@ pub enum CreepWarning {
         /// The entity.
         entity: Entity,
     },
-    /// `CreepMaterial` on a collider whose shape creep-law does not model (only balls, and
-    /// cuboids and half-spaces as planes, are): it stays Coulomb.
+    /// `CreepMaterial` on a collider whose shape creep-rapier does not model
+    /// ([`creep_rapier::supported_shape`], listed in [`creep_rapier::SUPPORTED_SHAPES`]): it
+    /// stays Coulomb.
     UnsupportedShape {
         /// The collider entity.
         entity: Entity,
         /// Rapier's shape type.
         shape: String,
+    },
+    /// A crown (`CreepMaterial::with_crown`) on a collider that is not a cylinder: only wheels
+    /// have one; it is ignored.
+    CrownIgnored {
+        /// The collider entity.
+        entity: Entity,
+        /// Rapier's shape type.
+        shape: String,
+    },
+    /// A `CreepMaterial` creep-rapier refuses (a wheel's crown radius not finite and > 0): the
+    /// collider stays Coulomb.
+    InvalidMaterial {
+        /// The collider entity.
+        entity: Entity,
+        /// What was wrong.
+        error: PluginError,
     },
     /// `CreepMaterial` on a collider of another Rapier context than the one the plugin serves
     /// (the default context): it stays Coulomb.
@@ -124,8 +143,18 @@ impl fmt::Display for CreepWarning {
             ),
             Self::UnsupportedShape { entity, shape } => write!(
                 f,
-                "creep-friction: collider {entity} is a {shape}; creep-friction models balls \
-                 (and cuboids and half-spaces as planes) only: it stays Coulomb"
+                "creep-friction: collider {entity} is a {shape}, which creep-friction does not \
+                 model (it models {}): it stays Coulomb",
+                creep_rapier::SUPPORTED_SHAPES
+            ),
+            Self::CrownIgnored { entity, shape } => write!(
+                f,
+                "creep-friction: collider {entity} is a {shape}: its CreepMaterial's crown is \
+                 read for cylinders (wheels) only and is ignored"
+            ),
+            Self::InvalidMaterial { entity, error } => write!(
+                f,
+                "creep-friction: collider {entity}: {error}; it stays Coulomb"
             ),
             Self::OtherContext { entity } => write!(
                 f,
@@ -150,6 +179,23 @@ impl fmt::Display for CreepWarning {
             }
         }
     }
+}
+
+/// Gives a warning: Bevy's `warn!` when a `tracing` subscriber listens (Bevy's `LogPlugin`, in
+/// `DefaultPlugins`, or one of the app's own), otherwise (`MinimalPlugins`, a test harness)
+/// a line on standard error, `WARN creep-friction: ...`, where `warn!` would reach nobody.
+pub(crate) fn emit(warning: &CreepWarning) {
+    if log_listens() {
+        warn!("{warning}");
+    } else {
+        eprintln!("WARN {warning}");
+    }
+}
+
+/// Whether a `tracing` subscriber (global, or scoped to this thread) is installed.
+fn log_listens() -> bool {
+    use bevy::log::tracing::{dispatcher, subscriber::NoSubscriber};
+    dispatcher::get_default(|d| !d.is::<NoSubscriber>())
 }
 
 /// How many "missing material" warnings are given before the plugin stops looking for more.
@@ -182,6 +228,8 @@ pub struct CreepFriction {
     pub(crate) warned: HashSet<WarnKey>,
     pub(crate) missing_warned: usize,
     pub(crate) configure_parameters: bool,
+    /// Set one solver substep on new contexts.
+    pub(crate) one_substep: bool,
     pub(crate) warn_missing_material: bool,
 }
 
@@ -216,6 +264,7 @@ impl CreepFriction {
             warned: HashSet::new(),
             missing_warned: 0,
             configure_parameters,
+            one_substep: true,
             warn_missing_material,
         })
     }
@@ -266,7 +315,8 @@ impl CreepFriction {
         self.steps
     }
 
-    /// The warnings given so far (each also logged once with `warn!`).
+    /// The warnings given so far, in order (each also given once with `warn!`, or on standard
+    /// error when no log subscriber listens).
     pub fn warnings(&self) -> &[CreepWarning] {
         &self.warnings
     }
@@ -308,10 +358,10 @@ impl CreepFriction {
         }
     }
 
-    /// Records and logs a warning, once per key.
+    /// Records and gives a warning ([`emit`]), once per key.
     pub(crate) fn warn(&mut self, key: WarnKey, warning: CreepWarning) {
         if self.warned.insert(key) {
-            warn!("{warning}");
+            emit(&warning);
             self.warnings.push(warning);
         }
     }
