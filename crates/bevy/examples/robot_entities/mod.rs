@@ -99,7 +99,8 @@ fn wheel_joint(chassis: Entity, anchor: Vec3, v: f64, params: &RobotParams) -> I
 
 /// Spawns the robot at rest on the floor `floor`, its axle midpoint above `origin` (on the
 /// floor), heading along world `x`, its motors at `speeds`; `fidelity` for the wheels and the
-/// caster. The scene's `Robot::new` with its `set_speeds`, as entities.
+/// caster. The scene's `Robot::new` with its `set_speeds`, as entities: [`spawn_chassis`],
+/// [`spawn_wheel`] (left, right), [`spawn_caster`].
 pub fn spawn_robot(
     commands: &mut Commands,
     params: &RobotParams,
@@ -109,15 +110,23 @@ pub fn spawn_robot(
     origin: Vec3,
 ) -> Result<RobotEntities, String> {
     params.validate().map_err(|e| e.to_string())?;
-    let crown = params.crown().map_err(|e| e.to_string())?;
-    let mu = params.material.friction() as f32;
-    let wheel_material = CreepMaterial::new(params.material)
-        .with_fidelity(fidelity)
-        .with_crown(crown);
+    let chassis = spawn_chassis(commands, params, origin);
+    let (l, lc) = spawn_wheel(commands, params, fidelity, chassis, 0, speeds.left, origin)?;
+    let (r, rc) = spawn_wheel(commands, params, fidelity, chassis, 1, speeds.right, origin)?;
+    let caster = spawn_caster(commands, params, fidelity, chassis, origin);
+    Ok(RobotEntities {
+        chassis,
+        wheels: [l, r],
+        wheel_colliders: [lc, rc],
+        caster,
+        floor,
+    })
+}
+
+/// The chassis: a body whose origin is the axle midpoint (at the wheels' centre height, above
+/// `origin`), its box (a child collider of the chassis' density) centred 0.4 wheelbase behind it.
+pub fn spawn_chassis(commands: &mut Commands, params: &RobotParams, origin: Vec3) -> Entity {
     let r = params.wheel_radius as f32;
-    let half_track = 0.5 * params.track as f32;
-    // The chassis body's origin is the axle midpoint (at the wheels' centre height); its box is
-    // centred 0.4 wheelbase behind it.
     let lb = params.wheelbase as f32;
     let (hx, hy, hz) = (0.7 * lb, 0.4 * r, 0.4 * params.track as f32);
     let volume = 8.0 * f64::from(hx * hy * hz);
@@ -134,55 +143,74 @@ pub fn spawn_robot(
         ColliderMassProperties::Density((params.chassis_mass / volume) as f32),
         ChildOf(chassis),
     ));
-    let mut wheels = [chassis; 2];
-    let mut wheel_colliders = [chassis; 2];
-    for (i, (side, v)) in [(-1.0f32, speeds.left), (1.0, speeds.right)]
-        .into_iter()
-        .enumerate()
-    {
-        let anchor = Vec3::new(0.0, 0.0, side * half_track);
-        wheels[i] = commands
-            .spawn((
-                RigidBody::Dynamic,
-                Transform::from_translation(origin + Vec3::new(0.0, r, side * half_track)),
-                Sleeping::disabled(),
-                wheel_joint(chassis, anchor, v, params),
-            ))
-            .id();
-        // Rapier's cylinder has its axis along local y: turned onto the body's z.
-        wheel_colliders[i] = commands
-            .spawn((
-                Collider::cylinder(0.5 * params.wheel_width as f32, r),
-                Transform::from_rotation(Quat::from_rotation_x(FRAC_PI_2)),
-                Friction::coefficient(mu),
-                wheel_material,
-                ChildOf(wheels[i]),
-            ))
-            .id();
-    }
+    chassis
+}
+
+/// Wheel `i` (0 left at `z = -track/2`, 1 right), its revolute joint to `chassis` with its
+/// motor at rim speed `v` \[m/s\]: the wheel body and its collider (a child entity).
+pub fn spawn_wheel(
+    commands: &mut Commands,
+    params: &RobotParams,
+    fidelity: Fidelity,
+    chassis: Entity,
+    i: usize,
+    v: f64,
+    origin: Vec3,
+) -> Result<(Entity, Entity), String> {
+    let crown = params.crown().map_err(|e| e.to_string())?;
+    let material = CreepMaterial::new(params.material)
+        .with_fidelity(fidelity)
+        .with_crown(crown);
+    let r = params.wheel_radius as f32;
+    let side = if i == 0 { -1.0 } else { 1.0 };
+    let z = side * 0.5 * params.track as f32;
+    let wheel = commands
+        .spawn((
+            RigidBody::Dynamic,
+            Transform::from_translation(origin + Vec3::new(0.0, r, z)),
+            Sleeping::disabled(),
+            wheel_joint(chassis, Vec3::new(0.0, 0.0, z), v, params),
+        ))
+        .id();
+    // Rapier's cylinder has its axis along local y: turned onto the body's z.
+    let collider = commands
+        .spawn((
+            Collider::cylinder(0.5 * params.wheel_width as f32, r),
+            Transform::from_rotation(Quat::from_rotation_x(FRAC_PI_2)),
+            Friction::coefficient(params.material.friction() as f32),
+            material,
+            ChildOf(wheel),
+        ))
+        .id();
+    Ok((wheel, collider))
+}
+
+/// The caster ball (body and collider) on a spherical joint to `chassis`, one wheelbase behind
+/// the axle.
+pub fn spawn_caster(
+    commands: &mut Commands,
+    params: &RobotParams,
+    fidelity: Fidelity,
+    chassis: Entity,
+    origin: Vec3,
+) -> Entity {
+    let (r, lb) = (params.wheel_radius as f32, params.wheelbase as f32);
     let rc = params.caster_radius as f32;
-    let caster_joint = SphericalJointBuilder::new()
+    let joint = SphericalJointBuilder::new()
         .local_anchor1(Vec3::new(-lb, rc - r, 0.0))
         .local_anchor2(Vec3::ZERO)
         .contacts_enabled(false);
-    let caster = commands
+    commands
         .spawn((
             RigidBody::Dynamic,
             Transform::from_translation(origin + Vec3::new(-lb, rc, 0.0)),
             Sleeping::disabled(),
             Collider::ball(rc),
-            Friction::coefficient(mu),
+            Friction::coefficient(params.material.friction() as f32),
             CreepMaterial::new(params.material).with_fidelity(fidelity),
-            ImpulseJoint::new(chassis, caster_joint),
+            ImpulseJoint::new(chassis, joint),
         ))
-        .id();
-    Ok(RobotEntities {
-        chassis,
-        wheels,
-        wheel_colliders,
-        caster,
-        floor,
-    })
+        .id()
 }
 
 /// Sets the motors' target rim speeds \[m/s\] (the scene's `Robot::set_speeds`).
