@@ -34,6 +34,7 @@ mod rigid;
 mod rolling;
 mod shape;
 mod store;
+mod warning;
 mod wheel;
 mod wheel_hook;
 mod world;
@@ -47,18 +48,21 @@ pub use registry::{
     CreepMaterial, Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of, surface_of,
 };
 pub use rigid::{
-    CreepHooks, CreepSettings, StepCounts, check_parameters, configure_parameters, solver_tangents,
+    CreepHooks, CreepSettings, ROLLING_PGS_ITERATIONS, SolverPreset, StepCounts, check_parameters,
+    configure_parameters, configure_parameters_for, solver_tangents,
 };
 pub use shape::{FlatShape, SUPPORTED_SHAPES, SupportedShape, supported_shape};
 pub use store::{ContactKey, ContactRecord, ContactStore, KeyHasher};
+pub use warning::{CreepWarning, ROTATION_GAP_TURN};
 pub use world::{CreepWorld, clone_physics};
 
 /// What a user of the plugin needs, in one `use creep_rapier::prelude::*;` (with
 /// `rapier3d::prelude::*` for Rapier's own types).
 pub mod prelude {
     pub use crate::{
-        CreepMaterial, CreepPipeline, CreepSettings, CreepWorld, Fidelity, PluginError, RapierStep,
-        RollingResistance, StepCounts,
+        CreepMaterial, CreepPipeline, CreepSettings, CreepWarning, CreepWorld, Fidelity,
+        PluginError, RapierStep, RollingResistance, SolverPreset, StepCounts, SupportedShape,
+        configure_parameters, configure_parameters_for, supported_shape,
     };
     pub use creep_law::Material;
 }

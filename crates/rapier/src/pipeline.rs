@@ -142,7 +142,17 @@ impl CreepPipeline {
             &self.hooks,
             s.events,
         );
+        self.report_quarantine(s.pipeline.quarantine());
         self.finish_host_step(s.bodies)
+    }
+
+    /// For a host that runs Rapier's step itself: passes what Rapier quarantined in the step
+    /// (`PhysicsPipeline::quarantine`) to the step's [`StepCounts`] (call between the host's
+    /// step and [`CreepPipeline::finish_host_step`]; [`CreepPipeline::step`] does it).
+    pub fn report_quarantine(&mut self, quarantine: &rapier3d::pipeline::Quarantine) {
+        if self.hooks.is_step_prepared() {
+            self.hooks.report_quarantine(quarantine);
+        }
     }
 
     /// For a host that runs Rapier's step itself (bevy_rapier3d): everything the pipeline does
@@ -162,6 +172,7 @@ impl CreepPipeline {
         self.hooks.begin_step(params)?;
         self.hooks.lift_rotation_cap(bodies, colliders);
         self.hooks.update_activation(bodies, colliders);
+        self.hooks.scan_unregistered(narrow_phase);
         if let Err(e) = self.compliant.begin_step(
             self.hooks.registry(),
             params,

@@ -9,7 +9,7 @@ use crate::compliant::CompliantSettings;
 use crate::error::PluginError;
 use crate::pipeline::CreepPipeline;
 use crate::registry::CreepMaterial;
-use crate::rigid::{CreepHooks, CreepSettings, StepCounts, configure_parameters};
+use crate::rigid::{CreepHooks, CreepSettings, StepCounts, configure_parameters_for};
 
 /// A Rapier world stepped with creep-friction.
 pub struct CreepWorld {
@@ -34,11 +34,13 @@ impl std::ops::DerefMut for CreepWorld {
 
 impl CreepWorld {
     /// An empty world with gravity `(0, -9.81, 0)` m/s^2, time step `dt` \[s\], and the
-    /// integration parameters the plugin needs.
+    /// integration parameters the plugin needs with those of `settings.solver`
+    /// ([`crate::configure_parameters_for`]: by default one solver substep, what rolling balls
+    /// and wheels need; [`crate::SolverPreset::Rapier`] keeps Rapier's four).
     pub fn new(dt: f32, settings: CreepSettings) -> Result<Self, PluginError> {
         let mut physics = PhysicsWorld::default();
         physics.integration_parameters.dt = dt;
-        configure_parameters(&mut physics.integration_parameters);
+        configure_parameters_for(&mut physics.integration_parameters, settings.solver);
         crate::rigid::check_parameters(&physics.integration_parameters)?;
         Ok(Self {
             physics,

@@ -38,7 +38,7 @@ fn run_one(
     dt: f64,
     fidelity: Fidelity,
 ) -> Result<CueBallRun, SceneError> {
-    let mut w = CreepWorld::new(dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(dt as f32, CreepSettings::default().with_rapier_solver())?;
     let mat = CreepMaterial::new(material).with_fidelity(fidelity);
     let mu = material.friction() as f32;
     w.insert(

@@ -26,7 +26,7 @@ fn run_one(
     duration: f64,
     fidelity: Fidelity,
 ) -> Result<f64, SceneError> {
-    let mut w = CreepWorld::new(dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(dt as f32, CreepSettings::default().with_rapier_solver())?;
     let mat = CreepMaterial::new(material).with_fidelity(fidelity);
     w.insert(
         RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),

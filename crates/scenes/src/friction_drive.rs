@@ -108,7 +108,7 @@ struct Measured {
 }
 
 fn run_one(p: &DriveParams, torque: f64, fidelity: Fidelity) -> Result<Measured, SceneError> {
-    let mut w = CreepWorld::new(p.dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(p.dt as f32, CreepSettings::default().with_rapier_solver())?;
     let mat = CreepMaterial::new(p.material).with_fidelity(fidelity);
     let r = p.radius as f32;
     let mu = p.material.friction() as f32;

@@ -100,7 +100,7 @@ pub fn run(p: &ImpactParams) -> Result<ImpactResult, SceneError> {
         .map_err(|e| SceneError::Parameter(e.to_string()))?;
     let t_r = hertz::rayleigh_time_step(&p.material, r);
     let dt = p.dt_over_rayleigh * t_r;
-    let mut w = CreepWorld::new(dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(dt as f32, CreepSettings::default().with_rapier_solver())?;
     w.physics.gravity = Vector::ZERO;
     // One solver iteration: symplectic Euler for the contact forces (the regime's requirement).
     w.physics.integration_parameters.num_solver_iterations = 1;

@@ -80,7 +80,7 @@ impl InclineParams {
 }
 
 /// What the incline measured, for one fidelity.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct InclineRun {
     /// Mean acceleration along the incline [m/s^2].
     pub acceleration: f64,
@@ -96,7 +96,7 @@ pub struct InclineRun {
 }
 
 /// The incline measured with Coulomb and with creep-friction, and the closed forms.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct InclineResult {
     /// Coulomb run (Rapier's own rolling, including its spurious slip).
     pub coulomb: InclineRun,
@@ -124,7 +124,8 @@ pub fn world(
     let settings = CreepSettings {
         creep_model: p.creep_model,
         ..Default::default()
-    };
+    }
+    .with_rapier_solver();
     let mut w = CreepWorld::new(p.dt as f32, settings)?;
     w.physics.gravity = Vector::new((G * p.theta.sin()) as f32, (-G * p.theta.cos()) as f32, 0.0);
     let mu = p.material.friction() as f32;
@@ -206,11 +207,12 @@ pub fn run(p: &InclineParams) -> Result<InclineResult, SceneError> {
     } else {
         p.rolling_loads()
     };
+    let creepage_measured = creep.slip - coulomb.slip;
     Ok(InclineResult {
         coulomb,
         creep,
         acceleration_expected: 5.0 / 7.0 * G * p.theta.sin(),
-        creepage_measured: creep.slip - coulomb.slip,
+        creepage_measured,
         creepage_expected: p.expected_creepage(pn, q)?,
         q_over_mu_p: q / (mu * pn),
     })

@@ -131,7 +131,7 @@ pub fn dropped_lattice(n: usize) -> Result<CreepWorld, SceneError> {
     if n == 0 {
         return Err(SceneError::Parameter("n must be at least 1".into()));
     }
-    let mut w = CreepWorld::new(DT, CreepSettings::default())?;
+    let mut w = CreepWorld::new(DT, CreepSettings::default().with_rapier_solver())?;
     let mat = CreepMaterial::new(Material::glass());
     add_box(&mut w, mat, 0.9, 0.9, 4.0);
     let spacing = 2.0 * RADIUS * 1.1;
@@ -169,7 +169,7 @@ pub fn stacked(n: usize, layers: usize, settle_steps: usize) -> Result<Pile, Sce
             "a stacked pile needs n >= 2 and layers >= 1, got n = {n}, layers = {layers}"
         )));
     }
-    let mut w = CreepWorld::new(DT, CreepSettings::default())?;
+    let mut w = CreepWorld::new(DT, CreepSettings::default().with_rapier_solver())?;
     let mat = CreepMaterial::new(Material::glass());
     let pitch = 2.0 * RADIUS * (1.0 + 1e-5);
     let rise = RADIUS * std::f32::consts::SQRT_2 * (1.0 + 1e-5);

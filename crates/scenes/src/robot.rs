@@ -311,7 +311,10 @@ impl Robot {
     pub fn new(params: &RobotParams, fidelity: Fidelity) -> Result<Self, SceneError> {
         params.validate()?;
         let crown = params.crown()?;
-        let mut w = CreepWorld::new(params.dt as f32, CreepSettings::default())?;
+        let mut w = CreepWorld::new(
+            params.dt as f32,
+            CreepSettings::default().with_rapier_solver(),
+        )?;
         // One substep (the rotation-gap correction is exact there), Gauss-Seidel iterations
         // for the coupled joints and contacts, the wheel's radius as the length unit (Rapier's
         // allowed overlap is 1e-3 units: a rolling-radius error below the creepages).

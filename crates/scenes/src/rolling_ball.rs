@@ -234,7 +234,7 @@ fn build(
     speed: f64,
     substeps: usize,
 ) -> Result<(World, RigidBodyHandle), SceneError> {
-    let mut w = CreepWorld::new(dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(dt as f32, CreepSettings::default().with_rapier_solver())?;
     w.physics.integration_parameters.num_solver_iterations = substeps;
     let body = RigidBodyBuilder::dynamic()
         .translation(Vector::new(0.0, y0 as f32, 0.0))

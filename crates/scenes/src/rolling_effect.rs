@@ -491,7 +491,7 @@ impl RollingEffect {
             "> 0 (a material with density and stiffness)",
         )?;
         let dt = f64::from(dt32);
-        let mut world = CreepWorld::new(dt32, CreepSettings::default())?;
+        let mut world = CreepWorld::new(dt32, CreepSettings::default().with_rapier_solver())?;
         world.physics.gravity = Vector::ZERO;
         world.physics.integration_parameters.num_solver_iterations = 1;
         world.compliant.set_settings(CompliantSettings {

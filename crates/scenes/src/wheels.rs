@@ -115,6 +115,9 @@ pub struct WheelMeasure {
     pub p_min: f64,
     /// Largest normal force of one measured step \[N\] (an impact shows as a multiple of `p`).
     pub p_max: f64,
+    /// Largest sideways speed of the wheel's centre (along its axle) of one measured step
+    /// \[m/s\].
+    pub lateral_speed: f64,
 }
 
 fn v3(v: Vector) -> Vec3 {
@@ -167,6 +170,8 @@ struct WheelWorld {
     wheel_co: ColliderHandle,
     floor: RigidBodyHandle,
     floor_co: ColliderHandle,
+    /// The chassis of the documented recipe ([`build_on_joint`]).
+    chassis: Option<RigidBodyHandle>,
 }
 
 fn build(
@@ -182,7 +187,10 @@ fn build(
     if let Some(rc) = params.crown {
         positive("crown", rc)?;
     }
-    let mut w = CreepWorld::new(params.dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(
+        params.dt as f32,
+        CreepSettings::default().with_rapier_solver(),
+    )?;
     // One substep (the rotation-gap correction is exact there) with enough Gauss-Seidel
     // iterations for the line contact's two or three coupled friction points (one iteration
     // leaves the Coulomb twin slipping by up to 10 % at 0.9 mu P).
@@ -225,6 +233,7 @@ fn build(
         wheel_co,
         floor,
         floor_co,
+        chassis: None,
     })
 }
 
@@ -235,6 +244,7 @@ fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, Sc
     let mut sum = WheelMeasure::default();
     let mut count = 0.0;
     let (mut p_min, mut p_max) = (f64::INFINITY, 0.0f64);
+    let mut lateral = 0.0f64;
     let n = Vec3::new(0.0, -1.0, 0.0);
     for i in 0..steps {
         ww.w.step()?;
@@ -262,6 +272,7 @@ fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, Sc
         sum.p += p;
         p_min = p_min.min(p);
         p_max = p_max.max(p);
+        lateral = lateral.max(v.z.abs());
         sum.qx += q.dot(x);
         sum.qy += q.dot(y);
         sum.xi += v_disp.dot(x) / speed;
@@ -279,6 +290,94 @@ fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, Sc
         points: sum.points * k,
         p_min,
         p_max,
+        lateral_speed: lateral,
+    })
+}
+
+/// The documented wheel recipe (creep-rapier's crate docs, "Wheels"): a world from
+/// `CreepWorld::new` with default settings and nothing else, a fixed floor, and the wheel, a
+/// cylinder collider turned so that its axis (Rapier's local `y`) lies along its body's `z`,
+/// on its own dynamic body, held by a revolute joint about `z` (contacts between the two
+/// disabled) to a chassis body; the chassis' rotations are locked, standing for the rest of a
+/// vehicle that holds its axle level (its other wheels). Nothing else is locked: the wheel
+/// may slide along its axle with the chassis. The chassis (a box of the wheel's mass, clear of
+/// the floor) and the wheel start at `params.speed`.
+fn build_on_joint(params: &WheelParams, fidelity: Fidelity) -> Result<WheelWorld, SceneError> {
+    positive("radius", params.radius)?;
+    positive("width", params.width)?;
+    positive("speed", params.speed)?;
+    positive("dt", params.dt)?;
+    positive("duration", params.duration)?;
+    let mut w = CreepWorld::new(params.dt as f32, CreepSettings::default())?;
+    let mu = params.material.friction() as f32;
+    let mut mat = CreepMaterial::new(params.material).with_fidelity(fidelity);
+    let (floor, floor_co) = w.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
+        ColliderBuilder::cuboid(1.0e3, 0.5, 1.0e3).friction(mu),
+        Some(mat),
+    );
+    if let Some(rc) = params.crown {
+        mat = mat.with_crown(rc);
+    }
+    let r = params.radius as f32;
+    let v = params.speed as f32;
+    let (wheel, wheel_co) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, r, 0.0))
+            .linvel(Vector::new(v, 0.0, 0.0))
+            .angvel(Vector::new(0.0, 0.0, -v / r)),
+        // Rapier's cylinder has its axis along local y: turned onto the body's z.
+        ColliderBuilder::cylinder(0.5 * params.width as f32, r)
+            .rotation(Vector::new(FRAC_PI_2 as f32, 0.0, 0.0))
+            .friction(mu),
+        Some(mat),
+    );
+    let wheel_mass = f64::from(w.physics.bodies[wheel].mass());
+    let (hx, hy, hz) = (0.5 * r, 0.3 * r, 0.3 * r);
+    let volume = 8.0 * f64::from(hx * hy * hz);
+    let (chassis, _) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, r, 0.0))
+            .linvel(Vector::new(v, 0.0, 0.0))
+            .lock_rotations(),
+        ColliderBuilder::cuboid(hx, hy, hz).density((wheel_mass / volume) as f32),
+        None,
+    );
+    let joint = RevoluteJointBuilder::new(Vector::Z).contacts_enabled(false);
+    w.physics.impulse_joints.insert(chassis, wheel, joint, true);
+    Ok(WheelWorld {
+        w,
+        wheel,
+        wheel_co,
+        floor,
+        floor_co,
+        chassis: Some(chassis),
+    })
+}
+
+/// [`driven`] with the wheel of the documented recipe ([`build_on_joint`]'s docs): the drive
+/// torque `T = share mu (m_w + m_c) g R` on the wheel, the holding force `T/R` on the chassis.
+pub fn driven_on_joint(params: &WheelParams, share: f64) -> Result<DrivenRow, SceneError> {
+    if !(share.is_finite() && (0.0..1.0).contains(&share)) {
+        return Err(SceneError::Parameter(format!(
+            "share must be in [0, 1), got {share}"
+        )));
+    }
+    let run = |fidelity| -> Result<WheelMeasure, SceneError> {
+        let mut ww = build_on_joint(params, fidelity)?;
+        let chassis = ww.chassis.unwrap_or(ww.wheel);
+        let m = f64::from(ww.w.physics.bodies[ww.wheel].mass())
+            + f64::from(ww.w.physics.bodies[chassis].mass());
+        let t = share * params.material.friction() * m * crate::incline::G * params.radius;
+        ww.w.physics.bodies[ww.wheel].add_torque(Vector::new(0.0, 0.0, -t as f32), true);
+        ww.w.physics.bodies[chassis]
+            .add_force(Vector::new((-t / params.radius) as f32, 0.0, 0.0), true);
+        measure(&mut ww, params)
+    };
+    Ok(DrivenRow {
+        share,
+        creep: run(Fidelity::Creep)?,
+        coulomb: run(Fidelity::Coulomb)?,
     })
 }
 

@@ -167,7 +167,10 @@ pub fn run(params: &SpinParams, fidelity: Fidelity) -> Result<SpinRun, SceneErro
             params.spin
         )));
     }
-    let mut w = CreepWorld::new(params.dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(
+        params.dt as f32,
+        CreepSettings::default().with_rapier_solver(),
+    )?;
     w.physics.integration_parameters.num_solver_iterations = 1;
     let mu = params.material.friction() as f32;
     let mat = CreepMaterial::new(params.material).with_fidelity(fidelity);
@@ -238,7 +241,10 @@ pub fn lateral_push(params: &SpinParams, share: f64) -> Result<LateralPush, Scen
             "share must be finite and >= 0, got {share}"
         )));
     }
-    let mut w = CreepWorld::new(params.dt as f32, CreepSettings::default())?;
+    let mut w = CreepWorld::new(
+        params.dt as f32,
+        CreepSettings::default().with_rapier_solver(),
+    )?;
     w.physics.integration_parameters.num_solver_iterations = 1;
     let mu = params.material.friction() as f32;
     let mat = CreepMaterial::new(params.material).with_fidelity(Fidelity::Creep);

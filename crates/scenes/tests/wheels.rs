@@ -323,3 +323,42 @@ fn ball_lateral_creep_follows_c22() {
     assert!(worst < 0.02, "lateral slope error {worst}");
     assert!((f - 1.0).abs() < 0.02, "saturation {f}");
 }
+
+/// The documented recipe (a wheel on a revolute joint to a chassis, `CreepWorld::new`'s
+/// defaults and nothing else; `driven_on_joint`): the driven line-contact wheel follows Carter
+/// within 2 % of `mu P` from 0.2 to 0.9 `mu P`, at 1/240 s and at the game step 1/60 s, and
+/// does not wobble sideways (the joint holds its axle).
+#[test]
+fn wheel_from_the_recipe_follows_carter() {
+    for dt in [1.0 / 240.0, 1.0 / 60.0] {
+        let p = WheelParams {
+            dt,
+            duration: if dt < 0.01 { 1.0 } else { 4.0 },
+            ..WheelParams::default()
+        };
+        let (_, e_star) = moduli(&p).unwrap();
+        let mu = p.material.friction();
+        let mut worst = 0.0f64;
+        for share in [0.2, 0.5, 0.7, 0.9] {
+            let row = wheels::driven_on_joint(&p, share).unwrap();
+            let s = row.force_ratio(mu);
+            let carter = Carter::from_load(row.creep.p / p.width, p.radius, e_star, mu).unwrap();
+            let s_ref = carter.force_ratio(row.creepage()).unwrap();
+            eprintln!(
+                "recipe dt {dt:.5}: share {share}: Q/(mu P) {s:.4}, xi {:.5e} (creep {:.5e}, coulomb {:.5e}), Carter {s_ref:.4}, err {:+.4}, vz {:.2e} / {:.2e}",
+                row.creepage(),
+                row.creep.xi,
+                row.coulomb.xi,
+                s - s_ref,
+                row.creep.lateral_speed,
+                row.coulomb.lateral_speed,
+            );
+            assert!(
+                row.creep.lateral_speed < 1e-4 && row.coulomb.lateral_speed < 1e-4,
+                "sideways wobble {row:?}"
+            );
+            worst = worst.max((s - s_ref).abs());
+        }
+        assert!(worst < 0.02, "dt {dt}: worst |Q/(mu P) - Carter| {worst}");
+    }
+}

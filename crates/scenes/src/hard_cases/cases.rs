@@ -240,7 +240,7 @@ impl Outcome {
 /// The column case ([`HardCase::Column`]).
 pub(super) fn column(label: &str, steps: usize) -> Result<Outcome, SceneError> {
     let build = |fidelity: Fidelity| -> Result<Scene, SceneError> {
-        let mut w = CreepWorld::new(1.0 / 60.0, CreepSettings::default())?;
+        let mut w = CreepWorld::new(1.0 / 60.0, CreepSettings::default().with_rapier_solver())?;
         let mat = CreepMaterial::new(Material::steel()).with_fidelity(fidelity);
         w.insert(
             RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),

@@ -92,7 +92,7 @@ impl Vee {
             count_slab,
             check: _,
         } = *self;
-        let mut w = CreepWorld::new(dt, CreepSettings::default())?;
+        let mut w = CreepWorld::new(dt, CreepSettings::default().with_rapier_solver())?;
         if let Some(n) = substeps {
             w.physics.integration_parameters.num_solver_iterations = n;
         }

@@ -38,7 +38,7 @@ impl Specimen {
     pub fn generate(params: TriaxialParams) -> Result<Self, SceneError> {
         params.validate()?;
         let dt = params.time_step();
-        let mut world = CreepWorld::new(dt as f32, CreepSettings::default())?;
+        let mut world = CreepWorld::new(dt as f32, CreepSettings::default().with_rapier_solver())?;
         world.physics.gravity = Vector::ZERO;
         world.physics.integration_parameters.num_solver_iterations = 1;
         // Rapier's prediction distance is 2e-3 length units: with the default unit (1 m) every
