@@ -43,7 +43,9 @@ pub mod plugin;
 pub mod state;
 
 pub use contacts::{ContactState, CreepContact};
-pub use creep_rapier::{CompliantSettings, CreepSettings, Fidelity, RollingResistance, StepCounts};
+pub use creep_rapier::{
+    CompliantSettings, CreepSettings, Fidelity, RollingResistance, SolverPreset, StepCounts,
+};
 #[cfg(feature = "gizmos")]
 pub use gizmos::CreepGizmos;
 pub use hooks::{CreepPhysicsHooks, CreepRapierPlugin};
@@ -64,6 +66,6 @@ pub mod prelude {
     pub use creep_law::Material;
     pub use creep_law::rolling_torque::RollingModel;
     pub use creep_rapier::{
-        CompliantSettings, CreepSettings, Fidelity, RollingResistance, StepCounts,
+        CompliantSettings, CreepSettings, Fidelity, RollingResistance, SolverPreset, StepCounts,
     };
 }

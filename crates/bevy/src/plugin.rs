@@ -13,7 +13,8 @@ use bevy_rapier3d::prelude::{
     RapierContextSimulation, RapierRigidBodySet, SimulationMode, SolverGroups,
 };
 use creep_rapier::{
-    CompliantSettings, CreepSettings, Fidelity, PluginError, RollingResistance, supported_shape,
+    CompliantSettings, CreepSettings, Fidelity, PluginError, RollingResistance, SolverPreset,
+    configure_parameters_for, supported_shape,
 };
 use rapier3d::prelude::{ActiveHooks, IntegrationParameters};
 
@@ -39,8 +40,9 @@ use crate::state::{CreepFriction, CreepWarning, MAX_MISSING_MATERIAL_WARNINGS, W
 /// ```
 ///
 /// What it does:
-/// - sets one solver substep on each new context ([`set_one_substep`]: what rolling balls and
-///   wheels need at game time steps), unless [`CreepFrictionPlugin::keep_rapier_substeps`];
+/// - sets one solver substep on each new context (`CreepSettings::solver`,
+///   [`SolverPreset::Rolling`]: what rolling balls and wheels need at game time steps), unless
+///   [`CreepFrictionPlugin::with_rapier_solver`];
 /// - sets the integration parameters creep-rapier needs (`FrictionModel::Coulomb`, no contact
 ///   clustering) on the default context at start, and checks them before every step
 ///   ([`creep_rapier::check_parameters`]); a context that does not suit is set
@@ -67,7 +69,6 @@ pub struct CreepFrictionPlugin {
     schedule: Interned<dyn ScheduleLabel>,
     custom_hooks: bool,
     configure_parameters: bool,
-    one_substep: bool,
     warn_missing_material: bool,
 }
 
@@ -81,7 +82,6 @@ impl Default for CreepFrictionPlugin {
             schedule: PostUpdate.intern(),
             custom_hooks: false,
             configure_parameters: true,
-            one_substep: true,
             warn_missing_material: true,
         }
     }
@@ -131,14 +131,17 @@ impl CreepFrictionPlugin {
         self.configure_parameters = false;
         self
     }
-    /// Keep the number of solver substeps a context is created with (Rapier's default is 4)
-    /// instead of setting one (`IntegrationParameters::num_solver_iterations = 1`), for scenes
-    /// that need Rapier's defaults: tall stacks, long joint chains. With more than one substep a
-    /// rolling ball or wheel lags its exact rotation by a gap Rapier's contact closes with a
-    /// position correction: the body floats and slides (a 0.1 m steel ball rolling at 5 m/s at
-    /// 1/60 s floats 2 mm and loses 17 % of its energy in a second).
-    pub fn keep_rapier_substeps(mut self) -> Self {
-        self.one_substep = false;
+    /// Keep the solver iterations a context is created with (Rapier's defaults: four substeps,
+    /// one Gauss-Seidel iteration each) instead of the plugin's default,
+    /// [`SolverPreset::Rolling`] (one substep, [`creep_rapier::ROLLING_PGS_ITERATIONS`]
+    /// iterations in it): for scenes that need Rapier's substeps (tall stacks, long joint
+    /// chains). The same as `CreepSettings::solver = SolverPreset::Rapier` in
+    /// [`CreepFrictionPlugin::with_settings`]. With more than one substep a fast-rolling ball or
+    /// wheel floats and slides (a 0.1 m steel ball rolling at 5 m/s at 1/60 s floats 2.2 mm and
+    /// loses 17 % of its energy in a second); the plugin says so once
+    /// ([`CreepWarning::RotationGap`]).
+    pub fn with_rapier_solver(mut self) -> Self {
+        self.settings.solver = SolverPreset::Rapier;
         self
     }
     /// Whether to warn about colliders without a material touching creep colliders (default
@@ -185,8 +188,6 @@ impl Plugin for CreepFrictionPlugin {
                 .expect("the default settings are valid")
             }
         };
-        let mut state = state;
-        state.one_substep = self.one_substep;
         app.insert_resource(state);
         if let Some(w) = warning {
             app.world_mut()
@@ -229,7 +230,8 @@ impl Plugin for CreepFrictionPlugin {
         if state.steps > 0 || state.warned.contains(&WarnKey::Global("finished")) {
             return;
         }
-        let (configure, one_substep) = (state.configure_parameters, state.one_substep);
+        let (configure, solver) = (state.configure_parameters, state.settings().solver);
+        let mut preset_set = false;
         if configure
             && let Some(mut init) = app
                 .world_mut()
@@ -239,13 +241,14 @@ impl Plugin for CreepFrictionPlugin {
                 ..
             } = &mut *init
         {
-            creep_rapier::configure_parameters(integration_parameters);
-            if one_substep {
-                set_one_substep(integration_parameters);
-            }
+            // The default context is created from this (in `PreStartup`): with the plugin's
+            // solver preset, which a `Startup` system may still change.
+            configure_parameters_for(integration_parameters, solver);
+            preset_set = true;
         }
         let hooks_installed = app.is_plugin_added::<CreepRapierPlugin>();
         let mut state = app.world_mut().resource_mut::<CreepFriction>();
+        state.default_context_preset = preset_set;
         state.warned.insert(WarnKey::Global("finished"));
         if !hooks_installed && !self.custom_hooks {
             state.warn(WarnKey::Global("hooks"), CreepWarning::HooksNotInstalled);
@@ -271,42 +274,40 @@ fn served_context<'a>(contexts: impl Iterator<Item = (Entity, bool)> + 'a) -> Op
     if count == 1 { only } else { None }
 }
 
-/// Sets the integration parameters creep-rapier needs on every new context, before its first
-/// step (a later change that does not suit draws a warning in [`pre_step`]), and, unless
-/// [`CreepFrictionPlugin::keep_rapier_substeps`], one solver substep
-/// ([`set_one_substep`]). Parameters changed after the context's first frame are kept.
+/// Sets the integration parameters of every new context before its first step
+/// ([`creep_rapier::configure_parameters_for`]): what creep-rapier requires
+/// (`FrictionModel::Coulomb`, no contact clustering; a later change draws a warning in
+/// [`pre_step`]) and the solver preset of the plugin's settings (`CreepSettings::solver`):
+/// by default [`SolverPreset::Rolling`], one solver substep with
+/// [`creep_rapier::ROLLING_PGS_ITERATIONS`] Gauss-Seidel iterations, what rolling balls and
+/// wheels need at game steps (creep-rapier's `SolverPreset` docs: Rapier's four substeps make
+/// a fast-rolling ball float and slide); [`CreepFrictionPlugin::with_rapier_solver`] keeps
+/// the context's own. The default context got the preset at its creation, from
+/// bevy_rapier3d's `RapierContextInitialization` (in [`CreepFrictionPlugin`]'s `finish`), so
+/// that a `Startup` system's changes hold; parameters changed later are kept too.
 fn configure_new_contexts(
     state: Res<CreepFriction>,
-    mut contexts: Query<(Entity, &mut RapierContextSimulation), Added<RapierContextSimulation>>,
+    mut contexts: Query<
+        (
+            Entity,
+            &mut RapierContextSimulation,
+            Has<DefaultRapierContext>,
+        ),
+        Added<RapierContextSimulation>,
+    >,
 ) {
     if !state.configure_parameters {
         return;
     }
-    for (entity, mut sim) in &mut contexts {
-        if creep_rapier::check_parameters(&sim.integration_parameters).is_err() {
-            creep_rapier::configure_parameters(&mut sim.integration_parameters);
-            debug!(
-                "creep-friction: context {entity}: set FrictionModel::Coulomb and \
-                 contact_clustering = false"
-            );
-        }
-        if state.one_substep {
-            set_one_substep(&mut sim.integration_parameters);
-        }
+    for (entity, mut sim, is_default) in &mut contexts {
+        let preset = if is_default && state.default_context_preset {
+            SolverPreset::Rapier // the preset is set already; keep what Startup changed
+        } else {
+            state.settings().solver
+        };
+        configure_parameters_for(&mut sim.integration_parameters, preset);
+        debug!("creep-friction: context {entity}: integration parameters set ({preset:?})");
     }
-}
-
-/// The plugin's default for a new context: one solver substep (`num_solver_iterations = 1`).
-///
-/// Why: Rapier integrates a rolling body's rotation per substep but builds its contacts once a
-/// step, so with `n > 1` substeps a rolling ball's contact point lags the rotation and Rapier
-/// closes the gap with a position correction that lifts the ball and makes it slide; with one
-/// substep creep-rapier's rotation-gap correction is exact (creep-rapier's `hooks` module docs;
-/// measured: a 0.1 m steel ball rolling at 5 m/s at 1/60 s keeps 0.999 of its energy over 10 s
-/// and its height within 0.1 mm, against 17 % lost in the first second with 4 substeps).
-/// Opt out with [`CreepFrictionPlugin::keep_rapier_substeps`].
-pub fn set_one_substep(params: &mut IntegrationParameters) {
-    params.num_solver_iterations = 1;
 }
 
 /// Gives new `CreepMaterial` colliders their density (unless they have their own mass
@@ -546,7 +547,8 @@ fn pre_step(
     if let Err(error) = creep_rapier::check_parameters(&sim.integration_parameters) {
         let time_step = matches!(error, PluginError::TimeStep(_));
         if state.configure_parameters && !time_step {
-            creep_rapier::configure_parameters(&mut sim.integration_parameters);
+            // What the plugin requires only: the solver's iterations stay the user's.
+            configure_parameters_for(&mut sim.integration_parameters, SolverPreset::Rapier);
         }
         if !time_step {
             let configured = state.configure_parameters;
@@ -621,6 +623,7 @@ fn post_step(
         return;
     };
     let steps = sim.step_stats().num_steps;
+    state.pipeline.report_quarantine(sim.pipeline.quarantine());
     if steps == 0 {
         // No step ran (Interpolated mode ahead of real time): undo the preparation.
         state.pipeline.cancel_host_step(&mut bodies.bodies);
@@ -638,6 +641,40 @@ fn post_step(
             state.warn(WarnKey::Global("step"), CreepWarning::Step { error });
             return;
         }
+    }
+    // creep-rapier's own warnings (each given once there), with entities for handles. Its
+    // `Unregistered` is this plugin's `MissingMaterial` (below), which names the entity.
+    let entity_of_collider = |h| {
+        colliders
+            .colliders
+            .get(h)
+            .and_then(|c| Entity::try_from_bits(c.user_data as u64))
+    };
+    for w in state.counts.warnings.clone() {
+        let warning = match w {
+            creep_rapier::CreepWarning::RotationGap {
+                collider,
+                rim_speed,
+                turn,
+                substeps,
+            } => CreepWarning::RotationGap {
+                entity: entity_of_collider(collider),
+                rim_speed,
+                turn,
+                substeps,
+            },
+            creep_rapier::CreepWarning::NothingRegistered { colliders } => {
+                CreepWarning::NothingRegistered { colliders }
+            }
+            creep_rapier::CreepWarning::Quarantined { body } => CreepWarning::Quarantined {
+                entity: bodies
+                    .bodies
+                    .get(body)
+                    .and_then(|b| Entity::try_from_bits(b.user_data as u64)),
+            },
+            creep_rapier::CreepWarning::Unregistered { .. } => continue,
+        };
+        state.give(warning);
     }
     state.steps += 1;
 

@@ -86,6 +86,33 @@ pub enum CreepWarning {
         /// Steps in that run.
         steps: usize,
     },
+    /// A registered ball or wheel turned more than creep-rapier's `ROTATION_GAP_TURN` in a
+    /// step with more than one solver substep (the plugin's default is one,
+    /// `SolverPreset::Rolling`; kept away by [`crate::CreepFrictionPlugin::with_rapier_solver`]
+    /// or by changing `num_solver_iterations`): Rapier's rotation gap makes it float or sink
+    /// and lose energy. Given once.
+    RotationGap {
+        /// The ball's or wheel's collider entity.
+        entity: Option<Entity>,
+        /// Its rim speed `|omega| R` \[m/s\].
+        rim_speed: f64,
+        /// Its turn in the step `|omega| dt` \[rad\].
+        turn: f64,
+        /// The solver substeps of the step.
+        substeps: usize,
+    },
+    /// The context has colliders but none has a `CreepMaterial`: every contact is plain
+    /// Rapier. Given once.
+    NothingRegistered {
+        /// Colliders in the context.
+        colliders: usize,
+    },
+    /// Rapier quarantined a body whose state went non-finite (NaN or infinite): it is
+    /// disabled.
+    Quarantined {
+        /// The body's entity.
+        entity: Option<Entity>,
+    },
     /// The plugin's settings were refused; the defaults are used.
     InvalidSettings {
         /// What was wrong.
@@ -167,6 +194,32 @@ impl fmt::Display for CreepWarning {
                  Interpolated catching up); the plugin updates its state once per run, so \
                  creep is approximate: use TimestepMode::Fixed {{ substeps: 1, .. }}"
             ),
+            Self::RotationGap {
+                entity,
+                rim_speed,
+                turn,
+                substeps,
+            } => write!(
+                f,
+                "creep-friction: collider {} rolls at {rim_speed:.3} m/s ({turn:.3} rad a step) \
+                 with num_solver_iterations = {substeps}: Rapier's rotation gap makes it float \
+                 or sink and lose energy; use one substep (the plugin's default, \
+                 SolverPreset::Rolling: drop CreepFrictionPlugin::with_rapier_solver(), or set \
+                 RapierContextSimulation::integration_parameters.num_solver_iterations = 1)",
+                name(*entity)
+            ),
+            Self::NothingRegistered { colliders } => write!(
+                f,
+                "creep-friction: none of the context's {colliders} colliders has a \
+                 CreepMaterial: every contact is plain Rapier (give the colliders that should \
+                 creep a CreepMaterial)"
+            ),
+            Self::Quarantined { entity } => write!(
+                f,
+                "creep-friction: Rapier quarantined body {}: its state went non-finite (NaN or \
+                 infinite) and it is disabled (check its size, mass and speed)",
+                name(*entity)
+            ),
             Self::InvalidSettings { error } => write!(
                 f,
                 "creep-friction: invalid settings: {error}; the defaults are used"
@@ -179,6 +232,11 @@ impl fmt::Display for CreepWarning {
             }
         }
     }
+}
+
+/// An entity, or `?` for a Rapier object without one.
+fn name(entity: Option<Entity>) -> String {
+    entity.map_or_else(|| "?".to_string(), |e| e.to_string())
 }
 
 /// Gives a warning: Bevy's `warn!` when a `tracing` subscriber listens (Bevy's `LogPlugin`, in
@@ -228,8 +286,9 @@ pub struct CreepFriction {
     pub(crate) warned: HashSet<WarnKey>,
     pub(crate) missing_warned: usize,
     pub(crate) configure_parameters: bool,
-    /// Set one solver substep on new contexts.
-    pub(crate) one_substep: bool,
+    /// The default context was created with the solver preset (through bevy_rapier3d's
+    /// `RapierContextInitialization`).
+    pub(crate) default_context_preset: bool,
     pub(crate) warn_missing_material: bool,
 }
 
@@ -264,7 +323,7 @@ impl CreepFriction {
             warned: HashSet::new(),
             missing_warned: 0,
             configure_parameters,
-            one_substep: true,
+            default_context_preset: false,
             warn_missing_material,
         })
     }
@@ -306,8 +365,8 @@ impl CreepFriction {
     /// What the plugin did in the last Rapier step: contacts by path (Coulomb for each reason,
     /// creep, rolling torque), the power dissipated by creep `sum Q . v_disp` \[W\], the largest
     /// loop gain, and how many registered colliders had their hook on.
-    pub fn counts(&self) -> StepCounts {
-        self.counts
+    pub fn counts(&self) -> &StepCounts {
+        &self.counts
     }
 
     /// Number of Rapier steps the plugin has taken part in.
@@ -356,6 +415,12 @@ impl CreepFriction {
                 .is_some_and(|c| c.user_data as u64 == e.to_bits()),
             None => true,
         }
+    }
+
+    /// Records and gives a warning that is given once by construction (creep-rapier's).
+    pub(crate) fn give(&mut self, warning: CreepWarning) {
+        emit(&warning);
+        self.warnings.push(warning);
     }
 
     /// Records and gives a warning ([`emit`]), once per key.

@@ -29,15 +29,15 @@ fn the_readme_shows_the_quick_start_as_compiled() {
 }
 
 /// The quick start's app without a window: `MinimalPlugins` and `TransformPlugin` (both in
-/// `DefaultPlugins`), its physics and its scene; or, with `keep_rapier_substeps`, the same
-/// physics with that opt-out.
-fn quick_start_app(keep_rapier_substeps: bool) -> App {
+/// `DefaultPlugins`), its physics and its scene; or, with `rapier_solver`, the same physics
+/// with the opt-out `CreepFrictionPlugin::with_rapier_solver`.
+fn quick_start_app(rapier_solver: bool) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, TransformPlugin));
-    if keep_rapier_substeps {
+    if rapier_solver {
         app.add_plugins((
             CreepRapierPlugin::default(),
-            CreepFrictionPlugin::default().keep_rapier_substeps(),
+            CreepFrictionPlugin::default().with_rapier_solver(),
         ))
         .insert_resource(TimestepMode::Fixed {
             dt: 1.0 / 60.0,
@@ -80,8 +80,8 @@ struct Run {
     warnings: Vec<CreepWarning>,
 }
 
-fn run(keep_rapier_substeps: bool, steps: usize) -> Run {
-    let mut app = quick_start_app(keep_rapier_substeps);
+fn run(rapier_solver: bool, steps: usize) -> Run {
+    let mut app = quick_start_app(rapier_solver);
     app.update();
     let ball = {
         let mut q = app
@@ -143,14 +143,26 @@ fn quick_start_ball_rolls_at_5_m_s_for_10_s_keeping_energy_and_height() {
 }
 
 #[test]
-fn keeping_rapier_substeps_is_the_named_opt_out() {
-    // Rapier's four substeps: the same ball floats and slides (what the default avoids).
+fn rapier_solver_is_the_named_opt_out_and_warns_once() {
+    // Rapier's four substeps: the same ball floats and slides (what the default avoids), and
+    // the plugin says so once, naming the setting.
     let r = run(true, 60);
     println!(
-        "keep_rapier_substeps, 1 s at 1/60 s: energy kept {:.4}, largest |y - R| {:.3e} m, \
+        "with_rapier_solver, 1 s at 1/60 s: energy kept {:.4}, largest |y - R| {:.3e} m, \
          end v {:.4} m/s, w R {:.4} m/s, {} substeps",
         r.energy_kept, r.height_error, r.end.0, r.end.1, r.substeps
     );
     assert_eq!(r.substeps, 4, "Rapier's default kept");
     assert!(r.energy_kept < 0.95, "energy kept {}", r.energy_kept);
+    assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
+    assert!(
+        matches!(r.warnings[0], CreepWarning::RotationGap { substeps: 4, .. }),
+        "{:?}",
+        r.warnings
+    );
+    let text = r.warnings[0].to_string();
+    assert!(
+        text.contains("num_solver_iterations") && text.contains("with_rapier_solver"),
+        "{text}"
+    );
 }
