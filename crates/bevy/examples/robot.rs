@@ -421,7 +421,7 @@ fn draw(
     mut gizmos: Gizmos,
     mut panel: ResMut<PanelText>,
 ) {
-    let (Some(scene), Ok(set)) = (scene, sets.single()) else {
+    let (Some(scene), Ok(rapier_bodies)) = (scene, sets.single()) else {
         return;
     };
     let p = &scene.params;
@@ -440,7 +440,7 @@ fn draw(
     );
     for (k, lane) in scene.lanes.iter().enumerate() {
         let robot = &lane.robot;
-        let pose = |e: Entity| body(set, e).map(|b| (b.translation(), *b.rotation()));
+        let pose = |e: Entity| body(rapier_bodies, e).map(|b| (b.translation(), *b.rotation()));
         // Bodies.
         let Some((cp, cq)) = pose(robot.chassis) else {
             continue;
@@ -493,7 +493,7 @@ fn draw(
             if !(c.p > 0.0) {
                 continue;
             }
-            let Some(rb) = body(set, e) else {
+            let Some(rb) = body(rapier_bodies, e) else {
                 continue;
             };
             let (t, v) = (rb.translation(), rb.linvel());
