@@ -29,10 +29,11 @@ use crate::state::{CreepFriction, CreepWarning, MAX_MISSING_MATERIAL_WARNINGS, W
 /// ```no_run
 /// use bevy::prelude::*;
 /// use bevy_rapier3d::prelude::*;
-/// use creep_bevy::{CreepFrictionPlugin, CreepMaterial, CreepPhysicsHooks};
+/// use creep_bevy::prelude::*;
 /// App::new()
 ///     .add_plugins((MinimalPlugins, TransformPlugin))
-///     .add_plugins((RapierPhysicsPlugin::<CreepPhysicsHooks>::default(), CreepFrictionPlugin::default()))
+///     .add_plugins((CreepRapierPlugin::default(), CreepFrictionPlugin::default()))
+///     .insert_resource(TimestepMode::Fixed { dt: 1.0 / 60.0, substeps: 1 })
 ///     .add_systems(Startup, |mut commands: Commands| {
 ///         commands.spawn((RigidBody::Dynamic, Collider::ball(0.1), CreepMaterial::steel()));
 ///     })
