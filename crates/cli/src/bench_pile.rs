@@ -1,3 +1,9 @@
+//! `creep bench pile --settled --n N [--steps S]`: the cost of the plugin on a poured pile once
+//! it sleeps: `N` steel balls (rounded to a cube `n^3`) poured into a box with sleeping on and
+//! `CreepWorld::new`'s defaults, four piles (plain Rapier, the plugin at `Coulomb`, `Auto` and
+//! `Creep`) each settled for `--settle` steps, then `S` steps of each timed in turn; prints how
+//! many balls sleep and the median step times and ratios (`creep_scenes::pile::settled_costs`).
+//!
 //! `creep bench pile --moving --n N [--steps S]`: the cost of the plugin on a poured pile while
 //! it moves. `N` spheres (rounded to a cube `n^3`) fall into a box and settle; plain Rapier
 //! (the plugin's integration parameters), the plugin at `Fidelity::Auto` and the plugin with
@@ -11,14 +17,20 @@ type Res = Result<(), Box<dyn std::error::Error>>;
 /// Arguments of `creep bench pile`.
 #[derive(Debug, clap::Args)]
 pub struct PileArgs {
-    /// Time the pile while it moves (pour and settling); the only mode.
+    /// Time the pile while it moves (pour and settling).
     #[arg(long)]
     pub moving: bool,
+    /// Time the settled pile, asleep (pour, settle for `--settle` steps, then time `--steps`).
+    #[arg(long, conflicts_with = "moving")]
+    pub settled: bool,
+    /// Settling steps of `--settled` (1/60 s each).
+    #[arg(long, default_value_t = 900)]
+    pub settle: usize,
     /// Spheres (rounded to the nearest cube n^3; 1,000 = 10^3, 4,096 = 16^3).
     #[arg(long, default_value_t = 1000)]
     pub n: usize,
-    /// Steps timed, from the release of the lattice (1/60 s each; 300 = 5 s: the pour and the
-    /// settling).
+    /// Steps timed (1/60 s each): with `--moving` from the release of the lattice (300 = 5 s:
+    /// the pour and the settling), with `--settled` after the settling.
     #[arg(long, default_value_t = 300)]
     pub steps: usize,
     /// Step only one of the plugin copies beside plain Rapier (`auto` or `creep`; the other's
@@ -38,13 +50,51 @@ pub enum OnlyWorld {
 
 /// Runs `creep bench pile`.
 pub fn run(args: &PileArgs, out: &mut dyn Write) -> Res {
-    if !args.moving {
-        return Err("creep bench pile needs --moving (the settled pile is `cargo bench -p creep-scenes --bench pile`)".into());
+    if !args.moving && !args.settled {
+        return Err("creep bench pile needs --moving or --settled (the awake settled pile is `cargo bench -p creep-scenes --bench pile`)".into());
     }
     if args.n == 0 {
         return Err("--n must be at least 1".into());
     }
     let side = (args.n as f64).cbrt().round().max(1.0) as usize;
+    if args.settled {
+        let c = creep_scenes::pile::settled_costs(side, args.settle, args.steps)?;
+        writeln!(
+            out,
+            "settled pile: {} steel balls, settled {} steps of 1/60 s, {} steps timed; asleep: plain {} coulomb {} auto {} creep {}",
+            c.spheres,
+            c.settle_steps,
+            c.timed_steps,
+            c.asleep[0],
+            c.asleep[1],
+            c.asleep[2],
+            c.asleep[3]
+        )?;
+        writeln!(
+            out,
+            "median step [us]: plain {:.3} coulomb {:.3} auto {:.3} creep {:.3}",
+            c.step[0] * 1e6,
+            c.step[1] * 1e6,
+            c.step[2] * 1e6,
+            c.step[3] * 1e6
+        )?;
+        writeln!(
+            out,
+            "mean step [us]: plain {:.3} coulomb {:.3} auto {:.3} creep {:.3}",
+            c.mean[0] * 1e6,
+            c.mean[1] * 1e6,
+            c.mean[2] * 1e6,
+            c.mean[3] * 1e6
+        )?;
+        writeln!(
+            out,
+            "median step ratios: coulomb/plain {:.3} auto/plain {:.3} creep/plain {:.3}",
+            c.step[1] / c.step[0],
+            c.step[2] / c.step[0],
+            c.step[3] / c.step[0]
+        )?;
+        return Ok(());
+    }
     let worlds = match args.only {
         None => [true, true],
         Some(OnlyWorld::Auto) => [true, false],
@@ -76,6 +126,8 @@ mod tests {
         let mut out = Vec::new();
         run(
             &PileArgs {
+                settled: false,
+                settle: 0,
                 moving: true,
                 n: 8,
                 steps: 6,
@@ -100,6 +152,8 @@ mod tests {
         let mut out = Vec::new();
         run(
             &PileArgs {
+                settled: false,
+                settle: 0,
                 moving: true,
                 n: 8,
                 steps: 4,
@@ -111,9 +165,31 @@ mod tests {
         let text = String::from_utf8(out).unwrap();
         let last = text.lines().last().unwrap();
         assert!(last.contains("auto/plain NaN creep/plain "), "{last}");
+        // The settled pile: its three ratios last.
+        let mut out = Vec::new();
+        run(
+            &PileArgs {
+                settled: true,
+                settle: 30,
+                moving: false,
+                n: 8,
+                steps: 3,
+                only: None,
+            },
+            &mut out,
+        )
+        .unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let last = text.lines().last().unwrap();
+        assert!(
+            last.starts_with("median step ratios: coulomb/plain "),
+            "{last}"
+        );
         assert!(
             run(
                 &PileArgs {
+                    settled: false,
+                    settle: 0,
                     moving: false,
                     n: 8,
                     steps: 1,
@@ -126,6 +202,8 @@ mod tests {
         assert!(
             run(
                 &PileArgs {
+                    settled: false,
+                    settle: 0,
                     moving: true,
                     n: 8,
                     steps: 0,

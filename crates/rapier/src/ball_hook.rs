@@ -4,7 +4,7 @@
 //! manifold shares, looked up once per manifold: the two bodies, the pair's constants
 //! (crate::pair_cache), the fidelity and the rolling model.
 //!
-//! # Cost (issue #14 item 3)
+//! # Cost
 //! Per contact: the record (one hash lookup in the shard's store), the bodies' motion at the
 //! contact (shared by the rotation-gap correction and the creep), Kuhn & Bagi's rates, Hertz's
 //! radius, the effective mass along the force, and the implicit solve. Contacts that carry no

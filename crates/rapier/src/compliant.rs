@@ -34,7 +34,9 @@
 //! The step owner ([`crate::CreepPipeline`]) runs the regime's `begin_step` (before `PhysicsPipeline::step`), which computes the geometry of
 //! every candidate pair from the *current* poses, the forces with the current velocities, and
 //! adds them to the bodies' user forces, saving these first; its `end_step`
-//! (after the step) restores the saved user forces exactly. Forces at `x_n` with Rapier's
+//! (after the step) restores the saved user forces exactly. Settled bodies sleep as in plain
+//! Rapier: the forces are added without waking a body, except a sleeping one that a moving
+//! body touches. Forces at `x_n` with Rapier's
 //! velocity-then-position update are symplectic Euler when
 //! `IntegrationParameters::num_solver_iterations == 1`; with `k` substeps Rapier applies the
 //! frozen force in each substep (still first order, not symplectic): use 1 for DEM scenes.
@@ -103,7 +105,7 @@ pub struct CompliantRegime {
     settings: CompliantSettings,
     contacts: FastMap<PairKey, CompliantContact>,
     /// Force and torque per body of the step (reused to avoid allocating every step).
-    accum: FastMap<RigidBodyHandle, (Vec3, Vec3)>,
+    accum: FastMap<RigidBodyHandle, (Vec3, Vec3, bool)>,
     generation: u64,
     saved: Vec<(RigidBodyHandle, Vector, Vector)>,
     energy: CompliantEnergy,
@@ -208,10 +210,7 @@ impl CompliantRegime {
             rayleigh_time_step: f64::INFINITY,
             ..CompliantCounts::default()
         };
-        if !registry
-            .iter()
-            .any(|(_, m)| m.fidelity == Fidelity::Compliant)
-        {
+        if registry.compliant_len() == 0 {
             self.contacts.clear();
             self.energy.normal_elastic = 0.0;
             self.energy.tangential_elastic = 0.0;
@@ -282,11 +281,15 @@ impl CompliantRegime {
         self.energy.normal_elastic = elastic.0;
         self.energy.tangential_elastic = elastic.1;
 
-        for (&h, &(f, m)) in &accum {
+        for (&h, &(f, m, touched_by_awake)) in &accum {
             if let Some(rb) = bodies.get_mut(h) {
                 self.saved.push((h, rb.user_force(), rb.user_torque()));
-                rb.add_force(vf(f), true);
-                rb.add_torque(vf(m), true);
+                // Wake a sleeping body only when a moving body touches it: waking every body
+                // every step (its timer restarted) kept a settled compliant pile awake for
+                // ever, and two sleeping bodies' steady contact force needs no wake-up.
+                let wake = rb.is_sleeping() && touched_by_awake;
+                rb.add_force(vf(f), wake);
+                rb.add_torque(vf(m), wake);
             }
         }
         self.accum = accum;

@@ -1,6 +1,6 @@
 //! Three-dimensional creep of one rigid contact: the rolling frame, the anisotropic implicit
 //! solve (longitudinal and lateral creep with their own coefficients) and the spin's lateral
-//! force and twisting moment (issue #17, part 3).
+//! force and twisting moment.
 //!
 //! # Frame and creepages (Kalker 1967; Kalker 1990, *Three-dimensional elastic bodies in rolling
 //! contact*, §1.2; signs of creep-reference's `bem` module)

@@ -10,7 +10,7 @@
 //!   ([`rotation_gap_correction`]; it also never exceeds the gap, so it never pushes bodies
 //!   apart and adds no energy). The fast-rolling matrix passes there.
 //! * More substeps (Rapier's default is 4): no correction a hook can write meets the
-//!   fast-rolling bounds (issue 14; measured on the 108-case matrix of creep-scenes'
+//!   fast-rolling bounds (measured on the 108-case matrix of creep-scenes'
 //!   `hard_cases::fast_rolling`, 10 s, spin cap lifted where stated). What a hook can write
 //!   into a `SolverContact` reaches the gap reading only as `dist` (a constant) and the normal
 //!   part of `tangent_velocity` (a rate); the anchors cannot help, because Rapier derives from
@@ -31,7 +31,8 @@
 //!   1/30 s V-incline by 5.1e-6 of E0, the column of ten spinning spheres by 1.2e-5; the
 //!   minimax lines: 5.8e-6..1.1e-5 and 6.7e-6..1.5e-5; no correction: the column by 3.1e-4),
 //!   so the mean stays, and the spin cap stays on (`lift_rotation_cap` acts at one substep
-//!   only). For fast-rolling balls at game steps use one substep.
+//!   only). For fast-rolling balls at game steps use one substep (the plugin's default,
+//!   `SolverPreset::Rolling`).
 //! * What would meet them at 4 substeps: one unilateral row per secant of the readings (the
 //!   largest of `n` lines follows a convex sequence of `n + 1` readings exactly), i.e. the
 //!   solver contact duplicated `n` times with the lines `(c_k, b_k)` through `(t_k, e_k)` and
@@ -44,7 +45,7 @@
 //!   start is applied `n` times: the hard-case matrix fails (creep 0.02..0.34 of Kalker's
 //!   `F_ss`, a column of spheres drifting 0.29 m). It needs Rapier to keep impulses per solver
 //!   contact, or a hook that may add manifold points (the experiment is
-//!   `docs/experiments/substep-secant-rows.patch` in the repository, for commit 48e0c6e).
+//!   `docs/experiments/substep-secant-rows.patch` in the repository).
 //!
 //! With one substep the correction is also not what limits a free ball's energy: Rapier
 //! clamps the relaxed reading at zero overlap, so scaling the correction by 1.001 changes

@@ -1,7 +1,7 @@
-//! Per-pair constants of the rigid hook, computed once per pair of materials (issue #14 item 3):
+//! Per-pair constants of the rigid hook, computed once per pair of materials:
 //! the combined moduli of [`PairMaterial`] (Hertz's `E*`, Mindlin's `G*`, Kalker's combined
 //! `G` and `nu`, `C11(nu)`), the steady law ([`SteadyLaw`]) and the 3-D law ([`Steady3d`] at
-//! `a/b = 1`, Kalker's `C11/C22`). Before this cache the hook rebuilt them for every manifold
+//! `a/b = 1`, Kalker's `C11/C22`). Without it the hook would rebuild them for every manifold
 //! of every step (`PairMaterial::with_rule`: six divisions and Kalker's table in `nu`).
 //!
 //! Only the effective radius depends on the contact's shapes (`1/R* = 1/R_p + 1/R_q`, Hertz;
@@ -12,7 +12,7 @@
 //! The cache is a short list (no hashing, no allocation once every pair of materials has been
 //! seen) keyed by the two materials and the friction coefficient, compared bit for bit; a scene
 //! with more than [`PAIR_CACHE_LEN`] distinct pairs replaces entries round-robin (then pays
-//! the construction on a miss, as before the cache).
+//! the construction on a miss).
 
 use creep_law::steady_law::SteadyLaw;
 use creep_law::steady3d::Steady3d;
@@ -29,7 +29,7 @@ pub(crate) struct PairConsts {
     /// The configured steady law at the pair's `nu` and `C11`.
     pub law: SteadyLaw,
     /// The 3-D law of a circular contact at the pair's `nu` clamped to `[0, 0.5]` (`None`
-    /// outside Kalker's table: such a contact is left to Coulomb, as before).
+    /// outside Kalker's table: such a contact is left to Coulomb).
     pub law3: Option<Steady3d>,
     /// `C11/C22` of [`Self::law3`] (the lateral ratio of the anisotropic solve, crate::creep3d).
     pub r: f64,
@@ -37,7 +37,7 @@ pub(crate) struct PairConsts {
 
 impl PairConsts {
     /// The constants of materials `p`, `q` at friction `mu`; `None` if the pair is invalid
-    /// (the hook then leaves the contact to Coulomb, as before).
+    /// (the hook then leaves the contact to Coulomb).
     fn new(p: &Material, q: &Material, mu: f64, model: CreepModel) -> Option<Self> {
         // Any valid shapes: only r_star and the surfaces depend on them (pair_for).
         let template = PairMaterial::new(p, q, Surface::Sphere(1.0), Surface::Plane)

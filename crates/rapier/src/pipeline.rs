@@ -1,18 +1,26 @@
 //! The step owner: [`CreepPipeline`] runs one Rapier step with creep-friction, doing in the
 //! right order what the two regimes need around Rapier's own `PhysicsPipeline::step`:
 //!
-//! 1. check the integration parameters, prepare the rigid hooks (time step, substeps, counts,
-//!    contact generation), forget the materials of colliders Rapier no longer has, refuse a
-//!    NaN or negative collider friction, lift Rapier's angular speed cap on registered balls;
-//! 2. switch each registered collider's hook on or off ([`crate::CreepSettings::activation_speed`]);
+//! 1. choose the registered colliders to visit (those of awake bodies; all of them on the
+//!    first step, after a registry change, when colliders were added or removed, and every
+//!    few hundred steps, forgetting the materials of colliders Rapier no longer has), refuse
+//!    their NaN or negative friction and invalid materials, check the integration parameters,
+//!    prepare the rigid hooks (time step, substeps, counts, contact generation), lift Rapier's
+//!    angular speed cap on registered balls (one substep);
+//! 2. switch each visited collider's hook on or off ([`crate::CreepSettings::activation_speed`]),
+//!    and note what deserves a [`crate::CreepWarning`] (a fast ball or wheel with substeps, no
+//!    registered collider, an unregistered collider touching a registered one);
 //! 3. the compliant regime's forces (pairs of `Fidelity::Compliant` colliders);
-//! 4. Rapier's step, with the rigid hooks;
-//! 5. the compliant regime restores the user forces; the rigid hooks apply the contact-torque
-//!    rolling impulses and sweep the records of contacts that ended.
+//! 4. Rapier's step, with the rigid hooks (which also refuse a NaN or negative friction on a
+//!    registered collider's unregistered partner);
+//! 5. what Rapier quarantined; the compliant regime restores the user forces; the rigid hooks
+//!    apply the contact-torque rolling impulses (without waking a body) and sweep the records
+//!    of contacts that ended.
 //!
 //! A user's own loop calls [`CreepPipeline::step`] (the arguments of `PhysicsPipeline::step`,
 //! in a [`RapierStep`]) or [`CreepPipeline::step_world`]. A host that runs Rapier's step itself
-//! (bevy_rapier3d) calls [`CreepPipeline::prepare_host_step`] before and
+//! (bevy_rapier3d) calls [`CreepPipeline::prepare_host_step_with_islands`] (or
+//! [`CreepPipeline::prepare_host_step`]) before, [`CreepPipeline::report_quarantine`] and
 //! [`CreepPipeline::finish_host_step`] after it; misuse is a typed error: finishing an
 //! unprepared step ([`PluginError::StepNotPrepared`]), preparing twice
 //! ([`PluginError::StepAlreadyPrepared`]), or a Rapier step that used the hooks without the
@@ -126,7 +134,13 @@ impl CreepPipeline {
     /// One step, with creep-friction: prepares both regimes, runs `PhysicsPipeline::step`
     /// with the rigid hooks, finishes both regimes. Returns what the rigid hooks did.
     pub fn step(&mut self, s: RapierStep<'_>) -> Result<StepCounts, PluginError> {
-        self.prepare_host_step(s.params, s.bodies, s.colliders, s.narrow_phase)?;
+        self.prepare(
+            s.params,
+            Some(&*s.islands),
+            s.bodies,
+            s.colliders,
+            s.narrow_phase,
+        )?;
         s.pipeline.step(
             s.gravity,
             s.params,
@@ -159,7 +173,9 @@ impl CreepPipeline {
     /// before the step (module docs, 1-3), with the step's parameters (`params.dt` the step's
     /// time step). On error nothing is prepared and the host's step leaves every contact to
     /// Rapier (the error says why); call [`CreepPipeline::finish_host_step`] after the host's
-    /// step only if this returned `Ok`.
+    /// step only if this returned `Ok`. Visits every registered collider every step; a host
+    /// with Rapier's island manager at hand uses
+    /// [`CreepPipeline::prepare_host_step_with_islands`] instead.
     pub fn prepare_host_step(
         &mut self,
         params: &IntegrationParameters,
@@ -167,12 +183,38 @@ impl CreepPipeline {
         colliders: &mut ColliderSet,
         narrow_phase: &NarrowPhase,
     ) -> Result<(), PluginError> {
-        self.forget_removed(colliders);
+        self.prepare(params, None, bodies, colliders, narrow_phase)
+    }
+
+    /// [`CreepPipeline::prepare_host_step`] with the host's island manager (bevy_rapier3d's
+    /// `RapierContextSimulation::islands`): on most steps the preparation then visits only the
+    /// colliders of awake bodies, as [`CreepPipeline::step`] does, so that a settled world
+    /// whose bodies sleep costs about what it costs plain Rapier.
+    pub fn prepare_host_step_with_islands(
+        &mut self,
+        params: &IntegrationParameters,
+        islands: &IslandManager,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+        narrow_phase: &NarrowPhase,
+    ) -> Result<(), PluginError> {
+        self.prepare(params, Some(islands), bodies, colliders, narrow_phase)
+    }
+
+    fn prepare(
+        &mut self,
+        params: &IntegrationParameters,
+        islands: Option<&IslandManager>,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+        narrow_phase: &NarrowPhase,
+    ) -> Result<(), PluginError> {
+        self.hooks.select_colliders(islands, bodies, colliders);
         self.check_friction(colliders)?;
         self.hooks.begin_step(params)?;
         self.hooks.lift_rotation_cap(bodies, colliders);
         self.hooks.update_activation(bodies, colliders);
-        self.hooks.scan_unregistered(narrow_phase);
+        self.hooks.scan_unregistered(narrow_phase, colliders.len());
         if let Err(e) = self.compliant.begin_step(
             self.hooks.registry(),
             params,
@@ -209,18 +251,13 @@ impl CreepPipeline {
         self.hooks.abandon_step();
     }
 
-    /// Forgets the materials of colliders that are no longer in `colliders` (removed through
-    /// Rapier's own API). No allocation.
-    fn forget_removed(&mut self, colliders: &ColliderSet) {
-        self.hooks
-            .registry_mut()
-            .retain(|handle, _| colliders.contains(handle));
-    }
-
     /// Refuses a registered collider whose friction coefficient is NaN, infinite or negative,
     /// or whose material is invalid (a wheel's crown radius).
     fn check_friction(&self, colliders: &ColliderSet) -> Result<(), PluginError> {
-        for (&handle, mat) in self.hooks.registry().iter() {
+        for &handle in self.hooks.selected() {
+            let Some(mat) = self.hooks.registry().get(handle) else {
+                continue;
+            };
             mat.validate()?;
             if mat.fidelity == Fidelity::Compliant {
                 continue;

@@ -103,6 +103,9 @@ impl CreepMaterial {
 pub struct MaterialRegistry {
     slots: Vec<Option<(ColliderHandle, CreepMaterial)>>,
     len: usize,
+    /// Registered colliders with `Fidelity::Compliant` (the compliant regime runs only with
+    /// some; kept so that a step need not scan the registry to know).
+    compliant: usize,
 }
 
 impl MaterialRegistry {
@@ -117,22 +120,26 @@ impl MaterialRegistry {
         if i >= self.slots.len() {
             self.slots.resize(i + 1, None);
         }
-        if self.slots[i].replace((collider, material)).is_none() {
-            self.len += 1;
+        match self.slots[i].replace((collider, material)) {
+            None => self.len += 1,
+            Some((_, old)) => self.compliant -= usize::from(old.fidelity == Fidelity::Compliant),
         }
+        self.compliant += usize::from(material.fidelity == Fidelity::Compliant);
     }
     /// Forgets a collider (call when removing it; unknown colliders fall back to Coulomb).
     pub fn remove(&mut self, collider: ColliderHandle) -> Option<CreepMaterial> {
         let slot = self.slots.get_mut(collider.into_raw_parts().0 as usize)?;
         if slot.is_some_and(|(h, _)| h == collider) {
             self.len -= 1;
-            slot.take().map(|(_, m)| m)
+            let m = slot.take().map(|(_, m)| m);
+            self.compliant -= usize::from(m.is_some_and(|m| m.fidelity == Fidelity::Compliant));
+            m
         } else {
             None
         }
     }
-    /// The material of a collider, if registered, to change it.
-    pub fn get_mut(&mut self, collider: ColliderHandle) -> Option<&mut CreepMaterial> {
+    /// The material of a collider, if registered, to change anything but its fidelity.
+    pub(crate) fn get_mut(&mut self, collider: ColliderHandle) -> Option<&mut CreepMaterial> {
         match self.slots.get_mut(collider.into_raw_parts().0 as usize) {
             Some(Some((h, m))) if *h == collider => Some(m),
             _ => None,
@@ -159,11 +166,18 @@ impl MaterialRegistry {
     /// Keeps only the colliders for which `keep` is true (no allocation).
     pub fn retain(&mut self, mut keep: impl FnMut(ColliderHandle, &CreepMaterial) -> bool) {
         for slot in &mut self.slots {
-            if slot.is_some_and(|(h, m)| !keep(h, &m)) {
+            if let Some((h, m)) = *slot
+                && !keep(h, &m)
+            {
                 *slot = None;
                 self.len -= 1;
+                self.compliant -= usize::from(m.fidelity == Fidelity::Compliant);
             }
         }
+    }
+    /// Number of registered colliders with `Fidelity::Compliant`.
+    pub fn compliant_len(&self) -> usize {
+        self.compliant
     }
     /// Whether no collider is registered.
     pub fn is_empty(&self) -> bool {

@@ -14,7 +14,7 @@
 //! step (total impulses of the step divided by `dt`), and the contact radius from Hertz. Below
 //! the Coulomb limit the implicit friction solve enforces that slip; at the limit it slides.
 //!
-//! # Three-dimensional creep (crate module `creep3d`, issue #17)
+//! # Three-dimensional creep (crate module `creep3d`)
 //! The slip target is built in Kalker's rolling frame (`x = -v_roll/|v_roll|`, `y = n × x`):
 //! along `x` the configured law `F_ss` as above, across it Kalker's `C22` (the force direction
 //! of Kalker's simplified theory: the creepage for a force `Q` is `F_ss(|Q|/(mu P)) (u_x,
@@ -45,19 +45,23 @@
 //! # Rolling at game steps: the spin cap and the rotation gap
 //! Rapier 0.36 caps every body's spin at 45 degrees per step (for CCD), so a 0.1 m ball rolling
 //! faster than 2.4 m/s at 1/30 s, 4.7 m/s at 1/60 s or 9.4 m/s at 1/120 s slides and loses most
-//! of its energy within seconds; with one solver substep the pipeline lifts the cap on bodies of
-//! registered balls ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change
-//! its swept volume; with more substeps the cap stays, see the setting).
+//! of its energy within seconds; with one solver substep (the default,
+//! [`SolverPreset::Rolling`]) the pipeline lifts the cap on bodies of registered balls
+//! ([`CreepSettings::lift_rotation_cap`]; a ball's rotation does not change its swept volume;
+//! with more substeps the cap stays, see the setting).
 //! Rapier also tracks each solver contact's point as a point fixed in its body, so within a step
 //! the point of a rolling sphere turns with it, away from the lowest point: the solver reads a
 //! growing gap `R (1 - cos(omega t))` and lets the sphere sink, then pushes it back (energy is
 //! lost). The hook corrects the contact's `dist` and the rate at which the tracked point moves
 //! along the normal ([`CreepSettings::anchor_drift_correction`], on by default, every
 //! registered pair, Coulomb fidelity included; the `gap` module has the formulas): exact with
-//! one solver substep (`num_solver_iterations = 1`: a free 0.1 m ball then keeps its energy to
-//! 1e-5 and its height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the
-//! substeps otherwise (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without,
-//! -0.33 mm with it; it can lift a fast ball by millimetres and add energy, see `gap`).
+//! one solver substep (`num_solver_iterations = 1`, the default of [`configure_parameters`]
+//! and [`crate::CreepWorld::new`]: a free 0.1 m ball then keeps its energy to 1e-5 and its
+//! height to 1e-7 m at 2-20 m/s and 1/30-1/120 s), the gap's mean over the substeps otherwise
+//! (measured at 1/60 s, 4 substeps, 2.4 m/s: sinking -2.4 mm without, -0.33 mm with it; it can
+//! lift a fast ball by millimetres and add energy, see `gap`). With substeps kept
+//! ([`SolverPreset::Rapier`]) a registered ball or wheel that turns more than
+//! [`crate::ROTATION_GAP_TURN`] in a step gets a [`crate::CreepWarning::RotationGap`].
 //!
 //! # What remains of the engine's own error
 //! Plain Rapier shows a spurious slip of a rolling contact (from positions, `(dx - R dtheta) /
@@ -75,30 +79,16 @@
 //! target (even rounding noise) into a saturated friction force there; give such bodies their
 //! rotations (the friction-drive scene locks translations only).
 //!
-//! # Cost where things move (issue #14 item 3)
-//! Profile of `creep bench pile --moving --n 1000 --steps 150 --only auto|creep` (1,000 glass
-//! balls poured into a box, one plugin copy interleaved with plain Rapier; `perf record
-//! --call-graph dwarf`, samples split by world, in units of one plain step; machine load
-//! 11-17 on 2 cores, so a few percent of noise), before this round (commit 349bfe1) -> after:
-//!
-//! | part | Auto | creep everywhere | plain Rapier |
-//! |---|---|---|---|
-//! | whole step | 1.67 -> 1.57 | 2.16 -> 1.98 | 1 |
-//! | the hook (`modify_solver_contacts`) | 0.28 -> 0.27 | 0.56 -> 0.48 | - |
-//! | contact updates (`process_pair`, hook included) | 0.89 -> 0.84 | 1.41 -> 1.25 | 0.45-0.47 |
-//! | solver-graph upkeep of non-recycled pairs | 0.14 -> 0.14 | 0.14 -> 0.14 | 0.00-0.01 |
-//! | solver | 0.36 -> 0.32 | 0.33 -> 0.32 | 0.31-0.34 |
-//!
-//! Inside the hook before: the lock 24 %, the record's hash lookup 13 %,
-//! `PairMaterial::with_rule` per manifold 6 %, shape downcasts 7 %, the rotation-gap
-//! correction 5 %, the implicit solve 9 %, `Steady3d::loads` 4 %. After: the pair constants and
-//! the downcasts are gone (crate::pair_cache, one typed-shape call), and what remains is the
-//! lock (19-25 %: a locked instruction pair per manifold, which also waits for the memory
-//! traffic Rapier left in flight), the record lookup (15-17 %) and the law (solve, creepage,
-//! loads: ~25 %). Most of the cost is not the hook's: a pair with any active hook flag is never
-//! recycled (docs/RAPIER_CONTACT_RECYCLING.md), so creep everywhere pays a full contact update
-//! and the solver-graph upkeep of every pair every step (~0.9 plain steps here); creep within
-//! 1.5x of plain Rapier needs a Rapier hook on recycled pairs.
+//! # Cost
+//! Where things move, most of the plugin's cost is not the hook's: a pair with any active hook
+//! flag is never recycled by Rapier (docs/RAPIER_CONTACT_RECYCLING.md), so a pair that creeps
+//! pays a full contact update and the solver-graph upkeep every step. Inside the hook the
+//! per-pair constants are cached (crate::pair_cache) and each collider's shape is read once
+//! (one typed-shape call); what remains is the shard's lock, the record's lookup and the law.
+//! `creep bench pile --moving` measures it. Where things rest the hooks go off below
+//! [`CreepSettings::activation_speed`] and Rapier's recycling returns; bodies sleep as in plain
+//! Rapier, and the step's preparation visits only the colliders of awake bodies
+//! (`creep bench pile --settled`).
 //!
 //! The per-contact records live in shards keyed by the collider pair (one without feature
 //! `parallel`, 64 with it): a hook call locks only its pair's shard, never a global lock, and
@@ -276,7 +266,8 @@ impl CreepSettings {
 /// What the plugin did in the last step.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct StepCounts {
-    /// Contacts with a collider the registry does not know: left to Coulomb.
+    /// Contacts with a collider the registry does not know: left to Coulomb (each such
+    /// collider touching a registered one is also named once in [`StepCounts::warnings`]).
     pub coulomb_unregistered: usize,
     /// Contacts with a shape the rigid regime does not model (not a ball, cuboid, half-space,
     /// triangle mesh, heightfield or convex polyhedron, nor a cylinder on one of the flat
@@ -297,7 +288,9 @@ pub struct StepCounts {
     pub creep_power: f64,
     /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
     pub max_loop_gain: f64,
-    /// Registered colliders whose hook was on for this step (set by [`crate::CreepPipeline`]).
+    /// Registered colliders whose hook was on for this step, among those the step visited (the
+    /// colliders of awake bodies; every registered collider on a full visit; set by
+    /// [`crate::CreepPipeline`]).
     pub hooks_on: usize,
     /// Contacts of pairs whose two colliders are below the activation speed, in the one step
     /// before their hooks go off: left as plain Rapier contacts (their targets cleared, so that
@@ -358,7 +351,7 @@ struct Shard {
 /// different pairs on several threads at once; each call locks only the shard of its collider
 /// pair, never a global lock, so calls on different shards never wait for each other (two
 /// given calls meet on one shard with probability 1/64). Without it there is one thread and one
-/// shard: one uncontended lock per manifold, and the records in one map as before.
+/// shard: one uncontended lock per manifold, and the records in one map.
 const SHARDS: usize = if cfg!(feature = "parallel") { 64 } else { 1 };
 
 /// The shard of a collider pair (a multiplicative hash of the two indices; the pair's order
@@ -433,7 +426,21 @@ pub struct CreepHooks {
     max_linvel: f64,
     /// Steps until the next scan of the contact pairs for unregistered colliders.
     scan_countdown: u32,
+    /// The registered colliders the step's preparation visits ([`CreepHooks::select_colliders`]).
+    selected: Vec<ColliderHandle>,
+    /// Steps until the next preparation that visits every registered collider.
+    full_countdown: u32,
+    /// Whether the registry may have changed since the last full visit (`registry_mut`).
+    registry_dirty: bool,
+    /// Colliders in the world at the last full visit.
+    last_collider_count: usize,
 }
+
+/// Steps between two preparations that visit every registered collider (the others visit the
+/// colliders of awake bodies only, [`CreepHooks::select_colliders`]): what only such a visit
+/// finds is a registered collider of a fixed body whose friction was made invalid since, which
+/// the hook also refuses as soon as a moving registered body touches it.
+const FULL_PASS_STEPS: u32 = 600;
 
 /// Steps between two scans of the narrow phase's contact pairs for unregistered colliders
 /// touching registered ones ([`CreepHooks::scan_unregistered`]; a pair whose hook runs is seen
@@ -463,6 +470,10 @@ impl CreepHooks {
             quarantined: (Vec::new(), Vec::new()),
             max_linvel: f64::MAX,
             scan_countdown: 0,
+            selected: Vec::new(),
+            full_countdown: 0,
+            registry_dirty: true,
+            last_collider_count: 0,
         })
     }
 
@@ -472,7 +483,60 @@ impl CreepHooks {
     }
     /// The material registry, to add or remove colliders.
     pub fn registry_mut(&mut self) -> &mut MaterialRegistry {
+        self.registry_dirty = true;
         &mut self.registry
+    }
+
+    /// Chooses the registered colliders the step's preparation visits (friction check, spin
+    /// cap, hook activation), so that a settled world whose bodies sleep costs no more than in
+    /// plain Rapier: the colliders of the bodies `islands` has awake (a sleeping body's flags
+    /// stay as they were when it fell asleep, when it was below the activation speed), and
+    /// every registered collider (after forgetting those Rapier no longer has) on the first
+    /// step, after any change through [`CreepHooks::registry_mut`], when the number of
+    /// colliders changed, every [`FULL_PASS_STEPS`] steps, or without `islands`.
+    pub(crate) fn select_colliders(
+        &mut self,
+        islands: Option<&IslandManager>,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) {
+        let mut selected = std::mem::take(&mut self.selected);
+        selected.clear();
+        let full = match islands {
+            None => true,
+            Some(_) => {
+                self.registry_dirty
+                    || self.full_countdown == 0
+                    || colliders.len() != self.last_collider_count
+            }
+        };
+        match islands {
+            Some(islands) if !full => {
+                self.full_countdown -= 1;
+                for b in islands.active_bodies() {
+                    if let Some(rb) = bodies.get(b) {
+                        selected.extend(
+                            rb.colliders()
+                                .iter()
+                                .filter(|&&c| self.registry.get(c).is_some()),
+                        );
+                    }
+                }
+            }
+            _ => {
+                self.full_countdown = FULL_PASS_STEPS - 1;
+                self.registry_dirty = false;
+                self.last_collider_count = colliders.len();
+                self.registry.retain(|handle, _| colliders.contains(handle));
+                selected.extend(self.registry.iter().map(|(h, _)| *h));
+            }
+        }
+        self.selected = selected;
+    }
+
+    /// The registered colliders selected for this step ([`CreepHooks::select_colliders`]).
+    pub(crate) fn selected(&self) -> &[ColliderHandle] {
+        &self.selected
     }
     /// The settings.
     pub fn settings(&self) -> &CreepSettings {
@@ -552,7 +616,10 @@ impl CreepHooks {
             });
         }
         let check_gap = self.substeps > 1 && !self.warned_gap;
-        for (&handle, mat) in self.registry.iter() {
+        for &handle in &self.selected {
+            let Some(mat) = self.registry.get(handle) else {
+                continue;
+            };
             // Read first: `ColliderSet::get_mut` marks a collider as modified, which makes Rapier
             // re-process it (a large cost if done for every collider every step).
             let Some(co) = colliders.get(handle) else {
@@ -694,9 +761,14 @@ impl CreepHooks {
     /// warns once about each unregistered collider in contact with a registered one. The hook
     /// sees such pairs only while the registered collider's hook is on; this scan also finds
     /// them against a resting or fixed registered collider (a floor), at the cost of one pass
-    /// over the contact pairs every few steps.
-    pub(crate) fn scan_unregistered(&mut self, narrow_phase: &NarrowPhase) {
-        if !self.settings.warn_unregistered || self.registry.is_empty() {
+    /// over the contact pairs every few steps while some collider (of `colliders` in the
+    /// world) is not registered.
+    pub(crate) fn scan_unregistered(&mut self, narrow_phase: &NarrowPhase, colliders: usize) {
+        // Nothing to find when every collider is registered (or none is).
+        if !self.settings.warn_unregistered
+            || self.registry.is_empty()
+            || colliders <= self.registry.len()
+        {
             return;
         }
         if self.scan_countdown > 0 {
@@ -754,7 +826,10 @@ impl CreepHooks {
         if !self.settings.lift_rotation_cap || self.substeps != 1 {
             return;
         }
-        for (&handle, mat) in self.registry.iter() {
+        for &handle in &self.selected {
+            let Some(mat) = self.registry.get(handle) else {
+                continue;
+            };
             if mat.fidelity == Fidelity::Compliant {
                 continue;
             }

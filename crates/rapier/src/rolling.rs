@@ -42,10 +42,15 @@ fn apply_capped_impulse(bodies: &mut RigidBodySet, rec: &ContactRecord, torque: 
     }
     let j = vf(axis * impulse);
     for (handle, jj) in [(rec.bodies.1, j), (rec.bodies.0, -j)] {
+        // Without waking the body: it took part in the step (its contact was solved), and a
+        // wake-up would restart its sleep timer every step, so that a settled pile with creep
+        // or a rolling torque on its contacts never slept. A body Rapier has just put to sleep
+        // keeps its rest.
         if let Some(rb) = handle.and_then(|h| bodies.get_mut(h))
             && rb.is_dynamic()
+            && !rb.is_sleeping()
         {
-            rb.apply_torque_impulse(jj, true);
+            rb.apply_torque_impulse(jj, false);
         }
     }
 }

@@ -1,4 +1,4 @@
-//! Wheels in the rigid regime (issue #17, part 3): a cylinder collider rolling on its round face
+//! Wheels in the rigid regime: a cylinder collider rolling on its round face
 //! on a flat collider (cuboid, half-space, mesh, heightfield, convex polyhedron) gets the creep
 //! law of its contact, longitudinal and lateral, through the implicit solve of crate module
 //! `creep3d`.
@@ -11,7 +11,8 @@
 //! speed is `V = |v_roll . x|` (Kuhn & Bagi's `v_roll` at the contact centre, the mean of the
 //! manifold's solver contacts), so a wheel at slip angle `alpha` has `eta = tan(alpha)`.
 //!
-//! * **Crowned wheel** (a crown radius `R_c` given with [`crate::CreepHooks::set_wheel_crown`]):
+//! * **Crowned wheel** (a crown radius `R_c`: [`crate::CreepMaterial::with_crown`], or
+//!   [`crate::CreepHooks::set_wheel_crown`] once registered):
 //!   Hertz's elliptic contact with the curvature sums `kx = 1/R`, `ky = 1/R_c` (Hertz 1882;
 //!   Johnson 1985, §4.2; creep-law's `elliptic`), semi-axes `a` (rolling direction) and `b`, both
 //!   `~ P^(1/3)`; the law along `x` is creep-law's fast 3-D law at zero spin (`Steady3d`, fitted

@@ -762,3 +762,46 @@ fn forces_equal_a_direct_kernel_call() {
         );
     }
 }
+
+/// A compliant ball settled on a compliant floor sleeps (a steady contact force does not wake
+/// it), and a compliant ball dropped on it wakes it.
+#[test]
+fn a_settled_compliant_ball_sleeps_and_is_woken_by_a_moving_one() {
+    let soft = Material::new(1.0e6, 0.4, 0.5, 1100.0).unwrap();
+    let mut w = CreepWorld::new(1.0e-3, CreepSettings::default()).unwrap();
+    let mat = compliant(soft);
+    w.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)),
+        ColliderBuilder::cuboid(5.0, 0.5, 5.0).restitution(0.3),
+        mat,
+    );
+    let r = 0.05f32;
+    let (low, _) = w.insert(
+        RigidBodyBuilder::dynamic().translation(Vector::new(0.0, r + 1e-3, 0.0)),
+        ColliderBuilder::ball(r).restitution(0.3),
+        mat,
+    );
+    for _ in 0..3000 {
+        w.step().unwrap();
+    }
+    assert!(
+        w.physics.bodies[low].is_sleeping(),
+        "the settled ball sleeps"
+    );
+    let y = w.physics.bodies[low].translation().y;
+    w.insert(
+        RigidBodyBuilder::dynamic().translation(Vector::new(0.0, y + 2.0 * r + 0.02, 0.0)),
+        ColliderBuilder::ball(r).restitution(0.3),
+        mat,
+    );
+    let mut woke = false;
+    for _ in 0..300 {
+        w.step().unwrap();
+        woke |= !w.physics.bodies[low].is_sleeping();
+    }
+    assert!(woke, "the ball dropped on it wakes it");
+    assert!(
+        w.physics.bodies[low].translation().y < y,
+        "and presses it into the floor"
+    );
+}

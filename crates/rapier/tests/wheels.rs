@@ -1,4 +1,4 @@
-//! Wheels and spin in the rigid regime through the public API (issue #17, part 3).
+//! Wheels and spin in the rigid regime through the public API.
 
 use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld, Fidelity, PluginError};
 use rapier3d::prelude::*;

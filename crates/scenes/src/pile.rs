@@ -425,6 +425,157 @@ pub fn moving_ratios_of(
     })
 }
 
+/// The pile of [`sleeping_pile`]: `n^3` 5 cm steel balls (`Material::steel`, its density)
+/// released from the lattice of [`dropped`] into its box (steel walls), sleeping on (Rapier's
+/// defaults), `CreepWorld::new`'s default settings (one solver substep), every collider
+/// registered at `fidelity`, or none with `None` (plain Rapier, stepped without the plugin:
+/// [`step_sleeping`]).
+pub fn sleeping_lattice(n: usize, fidelity: Option<Fidelity>) -> Result<CreepWorld, SceneError> {
+    if n == 0 {
+        return Err(SceneError::Parameter("n must be at least 1".into()));
+    }
+    let mut w = CreepWorld::new(DT, CreepSettings::default())?;
+    let steel = Material::steel();
+    let mu = steel.friction() as f32;
+    let mat = fidelity.map(|f| CreepMaterial::new(steel).with_fidelity(f));
+    let (half, height) = (0.9f32, 4.0f32);
+    w.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(0.0, -WALL, 0.0)),
+        ColliderBuilder::cuboid(half + 2.0 * WALL, WALL, half + 2.0 * WALL).friction(mu),
+        mat,
+    );
+    let h = 0.5 * height;
+    for (x, z, hx, hz) in [
+        (half + WALL, 0.0, WALL, half),
+        (-half - WALL, 0.0, WALL, half),
+        (0.0, half + WALL, half, WALL),
+        (0.0, -half - WALL, half, WALL),
+    ] {
+        w.insert(
+            RigidBodyBuilder::fixed().translation(Vector::new(x, h, z)),
+            ColliderBuilder::cuboid(hx, h, hz).friction(mu),
+            mat,
+        );
+    }
+    let spacing = 2.0 * RADIUS * 1.1;
+    let offset = -(n as f32 - 1.0) * spacing / 2.0;
+    for i in 0..n {
+        for j in 0..n {
+            for k in 0..n {
+                let jit = ((i * 7 + j * 13 + k * 29) % 11) as f32 * 1e-3;
+                let p = Vector::new(
+                    offset + i as f32 * spacing + jit,
+                    RADIUS + 0.01 + j as f32 * spacing,
+                    offset + k as f32 * spacing - jit,
+                );
+                w.insert(
+                    RigidBodyBuilder::dynamic().translation(p),
+                    ColliderBuilder::ball(RADIUS)
+                        .density(steel.density() as f32)
+                        .friction(mu),
+                    mat,
+                );
+            }
+        }
+    }
+    Ok(w)
+}
+
+/// One step of a [`sleeping_lattice`] world: through the plugin if any collider is
+/// registered, else plain Rapier's `PhysicsWorld::step`.
+pub fn step_sleeping(w: &mut CreepWorld) -> Result<(), SceneError> {
+    if w.registry().is_empty() {
+        w.physics.step();
+    } else {
+        w.step()?;
+    }
+    Ok(())
+}
+
+/// Dynamic bodies of `p` that sleep.
+pub fn asleep(p: &PhysicsWorld) -> usize {
+    p.bodies
+        .iter()
+        .filter(|(_, b)| b.is_dynamic() && b.is_sleeping())
+        .count()
+}
+
+/// [`sleeping_lattice`] stepped `steps` steps of 1/60 s: the pile poured and, at rest, asleep.
+pub fn sleeping_pile(
+    n: usize,
+    fidelity: Option<Fidelity>,
+    steps: usize,
+) -> Result<CreepWorld, SceneError> {
+    let mut w = sleeping_lattice(n, fidelity)?;
+    for _ in 0..steps {
+        step_sleeping(&mut w)?;
+    }
+    Ok(w)
+}
+
+/// The settled piles' costs ([`settled_costs`]): plain Rapier, the plugin at
+/// `Fidelity::Coulomb`, `Auto` and `Creep`, in that order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SettledCosts {
+    /// Spheres per pile.
+    pub spheres: usize,
+    /// Steps each pile was settled for.
+    pub settle_steps: usize,
+    /// Steps timed.
+    pub timed_steps: usize,
+    /// Sleeping spheres at the end of the settling.
+    pub asleep: [usize; 4],
+    /// Median wall-clock time of one step of the settled pile \[s\].
+    pub step: [f64; 4],
+    /// Mean wall-clock time of one step of the settled pile \[s\].
+    pub mean: [f64; 4],
+}
+
+/// Pours the four piles of [`SettledCosts`] (each its own, from the same lattice), settles each
+/// for `settle_steps` steps, then times `timed_steps` more steps of each, interleaved (one step
+/// of each world in turn, the order rotating), and returns the medians.
+pub fn settled_costs(
+    n: usize,
+    settle_steps: usize,
+    timed_steps: usize,
+) -> Result<SettledCosts, SceneError> {
+    if timed_steps == 0 {
+        return Err(SceneError::Parameter(
+            "timed steps must be at least 1".into(),
+        ));
+    }
+    let fidelities = [
+        None,
+        Some(Fidelity::Coulomb),
+        Some(Fidelity::Auto),
+        Some(Fidelity::Creep),
+    ];
+    let mut worlds = Vec::with_capacity(4);
+    for f in fidelities {
+        worlds.push(sleeping_pile(n, f, settle_steps)?);
+    }
+    let asleep = [0, 1, 2, 3].map(|k| asleep(&worlds[k].physics));
+    let mut times: [Vec<f64>; 4] = Default::default();
+    for i in 0..timed_steps {
+        for k in 0..4 {
+            let which = (i + k) % 4;
+            let t0 = Instant::now();
+            step_sleeping(&mut worlds[which])?;
+            times[which].push(t0.elapsed().as_secs_f64());
+        }
+    }
+    Ok(SettledCosts {
+        spheres: n * n * n,
+        settle_steps,
+        timed_steps,
+        asleep,
+        mean: times
+            .each_ref()
+            .map(|t| t.iter().sum::<f64>() / t.len() as f64),
+        step: times.map(|mut t| median(&mut t)),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

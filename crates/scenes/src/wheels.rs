@@ -1,4 +1,4 @@
-//! Wheels in the rigid regime (issue #17, part 4): a cylinder collider rolling on a floor, with
+//! Wheels in the rigid regime: a cylinder collider rolling on a floor, with
 //! a line contact (Carter 1926) or crowned (Hertz's ellipse, Kalker's theory).
 //!
 //! * [`driven`]: a wheel driven by a torque `T` about its axle and held back at the axle by the
@@ -16,6 +16,11 @@
 //!   push, lateral creepage `eta = tan(alpha)`; Kalker's linear theory gives the slope
 //!   `G a b C22` (Kalker 1967; Kalker 1990, Table E.3), the boundary elements the curve, and
 //!   the force saturates at `mu P`.
+//! * [`driven_on_joint`]: the driven wheel built from creep-rapier's documented recipe only
+//!   (`CreepWorld::new`'s defaults, the wheel on a revolute joint to a chassis). [`driven`] and
+//!   [`lateral`] use their own solver settings (one substep, 16 Gauss-Seidel iterations, the
+//!   wheel's radius as Rapier's length unit) and hold the wheel by locked axes instead of a
+//!   joint (the axle's sideways translation locked in [`driven`]).
 
 use std::f64::consts::FRAC_PI_2;
 

@@ -27,7 +27,7 @@ impl CompliantRegime {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
         dt: f64,
-        accum: &mut FastMap<RigidBodyHandle, (Vec3, Vec3)>,
+        accum: &mut FastMap<RigidBodyHandle, (Vec3, Vec3, bool)>,
         elastic: &mut (f64, f64),
     ) -> Result<(), PluginError> {
         let (c1, c2) = (pair.collider1, pair.collider2);
@@ -190,6 +190,12 @@ impl CompliantRegime {
         self.counts.sliding += usize::from(f.sliding);
         self.counts.creeping += usize::from(f.creep_displacement != Vec2::ZERO);
 
+        // Whether a body of the pair moves (is awake): a sleeping body it touches is woken
+        // (below); two sleeping bodies leave each other asleep.
+        let awake = [b1, b2]
+            .into_iter()
+            .flatten()
+            .any(|rb| !rb.is_fixed() && !rb.is_sleeping());
         // Forces and torques (about the centres of mass), equal and opposite.
         for (b, h, f, m) in [
             (b1, h1, f.force_p, f.torque_p),
@@ -201,9 +207,10 @@ impl CompliantRegime {
             if !rb.is_dynamic() {
                 continue;
             }
-            let e = accum.entry(h).or_insert((Vec3::ZERO, Vec3::ZERO));
+            let e = accum.entry(h).or_insert((Vec3::ZERO, Vec3::ZERO, false));
             e.0 += f;
             e.1 += m;
+            e.2 |= awake;
         }
         Ok(())
     }
