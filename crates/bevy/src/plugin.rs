@@ -575,8 +575,12 @@ fn pre_step(
         // The last prepared step was never finished (its post-step found no context): undo it.
         state.pipeline.cancel_host_step(&mut bodies.bodies);
     }
-    if let Err(error) = state.pipeline.prepare_host_step(
+    // With the island manager: the preparation visits the colliders of awake bodies only
+    // (as `CreepWorld::step`), so that a settled scene whose bodies sleep costs what it costs
+    // plain Rapier.
+    if let Err(error) = state.pipeline.prepare_host_step_with_islands(
         &params,
+        &sim.islands,
         &mut bodies.bodies,
         &mut colliders.colliders,
         &sim.narrow_phase,
