@@ -100,7 +100,8 @@ fn main() {
             dt: params.dt as f32,
             steps_per_frame: 8,
             gravity: Vec3::new(0.0, -G as f32, 0.0),
-            creep: CreepSettings::default(),
+            // The scene's solver (Rapier's own substeps), so that the demo is its scene.
+            creep: CreepSettings::default().with_rapier_solver(),
             compliant: CompliantSettings::default(),
             gizmos: false,
             camera: OrbitCamera {

@@ -116,7 +116,8 @@ fn main() {
             dt: params.dt as f32,
             steps_per_frame: 8,
             gravity,
-            creep: CreepSettings::default(),
+            // The scene's solver (Rapier's own substeps), so that the demo is its scene.
+            creep: CreepSettings::default().with_rapier_solver(),
             compliant: CompliantSettings::default(),
             gizmos: false,
             camera: OrbitCamera {

@@ -83,7 +83,8 @@ fn main() {
             dt,
             steps_per_frame: 1,
             gravity: Vec3::new(0.0, -9.81, 0.0),
-            creep: CreepSettings::default(),
+            // The scene's solver (Rapier's own substeps), so that the demo is its scene.
+            creep: CreepSettings::default().with_rapier_solver(),
             compliant: CompliantSettings::default(),
             gizmos: false,
             camera: OrbitCamera {

@@ -1,8 +1,9 @@
-//! `robot`: creep-scenes' differential-drive robot (issue #17: two driven crowned rubber wheels
-//! on revolute motors and a caster ball, `creep_scenes::robot`) with creep-friction, next to its
-//! Coulomb twin, both driven with the same motor targets, turning on the spot or on an arc.
-//! The scene's own `Robot` (a creep-rapier `CreepWorld`) is stepped here and drawn; what is
-//! measured is the scene's `RobotSample` (`creep run robot` prints the same numbers).
+//! `robot`: creep-scenes' differential-drive robot (two driven crowned rubber wheels on
+//! revolute motors and a caster ball, `creep_scenes::robot`) as bevy_rapier3d bodies, joints
+//! and motors whose contacts the creep-friction plugin runs (`robot_entities`: the same
+//! entities `tests/robot.rs` matches against the scene within 1 %), next to its Coulomb twin
+//! (the same robot with `Fidelity::Coulomb` materials) on one floor, both driven with the same
+//! motor targets, turning on the spot or on an arc.
 //!
 //! At each contact with the floor (gizmos): the floor's tangential force on the body (orange
 //! arrow, 0.2 m per N), the slip velocity `v_disp` of the floor against the body (cyan arrow,
@@ -24,13 +25,18 @@
 #![allow(clippy::too_many_arguments)] // Bevy systems
 
 mod common;
+mod robot_entities;
 
 use std::collections::VecDeque;
 
 use bevy::prelude::*;
-use common::{DemoPlugin, OrbitCamera, PanelText, ResetRequested, Stepping};
-use creep_bevy::{CompliantSettings, CreepSettings, Fidelity};
-use creep_scenes::robot::{ContactSample, Robot, RobotParams, RobotSample, WheelSpeeds};
+use bevy_rapier3d::prelude::*;
+use common::{DemoPlugin, OrbitCamera, PanelText, PhysicsStep, ResetRequested, Stepping};
+use creep_bevy::prelude::*;
+use creep_scenes::robot::{ContactSample, RobotParams, RobotSample, WheelSpeeds};
+use robot_entities::{
+    RobotEntities, RobotView, robot_parameters, set_speeds, spawn_floor, spawn_robot,
+};
 
 const USAGE: &str = "robot: a differential-drive robot with creep-friction and its Coulomb twin
 
@@ -43,7 +49,7 @@ keys: 1 spot, 2 arc, 3 straight, Up/Down speeds x1.25 / x0.8, R restarts";
 
 /// Drawn scale: world units per metre (Bevy's camera near plane is 0.1 units).
 const SCALE: f32 = 10.0;
-/// The twin is drawn this far along +x from the creep robot \[m\] (each robot has its own world).
+/// The twin starts this far along +x from the creep robot \[m\] (one world, one floor).
 const TWIN_OFFSET: f32 = 1.3;
 /// Arrow scales: tangential force \[m/N\], slip velocity \[m per m/s\], spin circle \[m per 1/m\].
 const FORCE_SCALE: f32 = 0.2;
@@ -88,17 +94,15 @@ impl Command {
 
 /// One robot and what the demo keeps of it.
 struct Lane {
-    robot: Robot,
+    robot: RobotEntities,
     fidelity: Fidelity,
-    /// Drawn offset \[m\].
-    offset: Vec3,
     recent: VecDeque<RobotSample>,
     trail: VecDeque<Vec3>,
     /// Energy dissipated by the contacts since the start: measured, as the hook books it \[J\].
     dissipated: f64,
     hook_energy: f64,
     last: Option<RobotSample>,
-    /// Entities: chassis, left wheel, right wheel, caster.
+    /// Drawn entities (meshes at the drawn scale): chassis, left wheel, right wheel, caster.
     parts: [Entity; 4],
 }
 
@@ -107,6 +111,8 @@ struct Scene {
     params: RobotParams,
     command: Command,
     lanes: Vec<Lane>,
+    /// The floor's physics entity.
+    floor: Entity,
     error: Option<String>,
     meshes: [Handle<Mesh>; 3],
     materials: [[Handle<StandardMaterial>; 2]; 2],
@@ -150,7 +156,7 @@ fn main() {
         }
     }
     let params = RobotParams::default();
-    if let Err(e) = Robot::new(&params, Fidelity::Creep) {
+    if let Err(e) = params.validate().and_then(|()| params.crown()) {
         common::exit_with(USAGE, &e.to_string());
     }
     App::new()
@@ -159,7 +165,7 @@ fn main() {
             args,
             dt: params.dt as f32,
             steps_per_frame: 2,
-            gravity: Vec3::ZERO,
+            gravity: Vec3::new(0.0, -9.81, 0.0),
             creep: CreepSettings::default(),
             compliant: CompliantSettings::default(),
             gizmos: false,
@@ -170,12 +176,19 @@ fn main() {
                 distance: 2.4 * SCALE,
                 up: Vec3::Y,
             },
-            physics: false,
+            physics: true,
             many_objects: false,
         })
         .insert_resource(Start(command))
-        .add_systems(Startup, setup)
-        .add_systems(Update, (keys, step, draw).chain().after(common::StepSet))
+        .add_systems(Startup, (robot_parameters(params), setup))
+        .add_systems(
+            Update,
+            (
+                (keys, respawn).chain().before(common::StepSet),
+                draw.after(common::StepSet),
+            ),
+        )
+        .add_systems(PhysicsStep, record.after(PhysicsSet::Writeback))
         .run();
 }
 
@@ -219,7 +232,8 @@ fn setup(
                 .expect("small subdivision"),
         ),
     ];
-    // The floor: a dark plane.
+    let floor = spawn_floor(&mut commands, &p, Fidelity::Creep);
+    // The floor drawn: a dark plane.
     commands.spawn((
         Mesh3d(meshes.add(Plane3d::default().mesh().size(60.0, 60.0))),
         MeshMaterial3d(materials.add(colour(Color::srgb(0.22, 0.23, 0.26)))),
@@ -229,6 +243,7 @@ fn setup(
         params: p,
         command: start.0,
         lanes: Vec::new(),
+        floor,
         error: None,
         meshes: meshes_,
         materials: materials_,
@@ -236,7 +251,11 @@ fn setup(
     reset.0 = true;
 }
 
-fn keys(input: Res<ButtonInput<KeyCode>>, scene: Option<ResMut<Scene>>) {
+fn keys(
+    input: Res<ButtonInput<KeyCode>>,
+    scene: Option<ResMut<Scene>>,
+    mut joints: Query<&mut ImpulseJoint>,
+) {
     let Some(mut scene) = scene else {
         return;
     };
@@ -261,20 +280,14 @@ fn keys(input: Res<ButtonInput<KeyCode>>, scene: Option<ResMut<Scene>>) {
     let changed = c.manoeuvre != before.manoeuvre || c.speed != before.speed;
     if changed {
         let speeds = scene.command.speeds();
-        let mut error = None;
-        for lane in &mut scene.lanes {
-            if let Err(e) = lane.robot.set_speeds(speeds) {
-                error = Some(e.to_string());
-            }
-        }
-        if error.is_some() {
-            scene.error = error;
+        for lane in &scene.lanes {
+            set_speeds(&mut joints, &lane.robot, speeds, &scene.params);
         }
     }
 }
 
-/// (Re)builds both robots at rest when R was pressed, then steps them `steps_per_frame` times.
-fn step(
+/// (Re)builds both robots at rest on the floor when R was pressed (before the frame's steps).
+fn respawn(
     mut commands: Commands,
     scene: Option<ResMut<Scene>>,
     mut reset: ResMut<ResetRequested>,
@@ -284,79 +297,84 @@ fn step(
         return;
     };
     let scene = &mut *scene;
-    if std::mem::take(&mut reset.0) {
-        for lane in scene.lanes.drain(..) {
-            for e in lane.parts {
-                commands.entity(e).despawn();
-            }
-        }
-        stepping.steps = 0;
-        for (k, fidelity) in [Fidelity::Creep, Fidelity::Coulomb].into_iter().enumerate() {
-            let robot = Robot::new(&scene.params, fidelity)
-                .and_then(|mut r| r.set_speeds(scene.command.speeds()).map(|()| r));
-            let robot = match robot {
-                Ok(r) => r,
-                Err(e) => {
-                    scene.error = Some(e.to_string());
-                    return;
-                }
-            };
-            let [chassis, wheel, ball] = scene.meshes.clone();
-            let [body, tyre] = scene.materials[k].clone();
-            let mut spawn = |mesh: Handle<Mesh>, material: Handle<StandardMaterial>| {
-                commands
-                    .spawn((Mesh3d(mesh), MeshMaterial3d(material), Transform::default()))
-                    .id()
-            };
-            let parts = [
-                spawn(chassis, body.clone()),
-                spawn(wheel.clone(), tyre.clone()),
-                spawn(wheel, tyre.clone()),
-                spawn(ball, body),
-            ];
-            scene.lanes.push(Lane {
-                robot,
-                fidelity,
-                offset: Vec3::new(k as f32 * TWIN_OFFSET, 0.0, 0.0),
-                recent: VecDeque::with_capacity(MEAN_STEPS + 1),
-                trail: VecDeque::with_capacity(TRAIL),
-                dissipated: 0.0,
-                hook_energy: 0.0,
-                last: None,
-                parts,
-            });
+    if !std::mem::take(&mut reset.0) {
+        return;
+    }
+    for lane in scene.lanes.drain(..) {
+        for e in lane.robot.bodies().into_iter().chain(lane.parts) {
+            commands.entity(e).despawn();
         }
     }
-    let n = if stepping.paused {
-        u32::from(stepping.single)
-    } else {
-        stepping.steps_per_frame
-    };
-    stepping.single = false;
-    let dt = scene.params.dt;
-    for _ in 0..n {
-        for lane in &mut scene.lanes {
-            match lane.robot.step() {
-                Ok(s) => {
-                    lane.dissipated += s.power() * dt;
-                    lane.hook_energy += s.hook_creep_power * dt;
-                    if lane.recent.len() == MEAN_STEPS {
-                        lane.recent.pop_front();
-                    }
-                    lane.recent.push_back(s);
-                    let p = vec3(s.position) + lane.offset;
-                    if lane.trail.back().is_none_or(|q| q.distance(p) > 1e-3) {
-                        if lane.trail.len() == TRAIL {
-                            lane.trail.pop_front();
-                        }
-                        lane.trail.push_back(p);
-                    }
-                    lane.last = Some(s);
-                }
-                Err(e) => scene.error = Some(e.to_string()),
+    stepping.steps = 0;
+    for (k, fidelity) in [Fidelity::Creep, Fidelity::Coulomb].into_iter().enumerate() {
+        let origin = Vec3::new(k as f32 * TWIN_OFFSET, 0.0, 0.0);
+        let robot = match spawn_robot(
+            &mut commands,
+            &scene.params,
+            fidelity,
+            scene.command.speeds(),
+            scene.floor,
+            origin,
+        ) {
+            Ok(r) => r,
+            Err(e) => {
+                scene.error = Some(e);
+                return;
             }
+        };
+        let [chassis, wheel, ball] = scene.meshes.clone();
+        let [body, tyre] = scene.materials[k].clone();
+        let mut spawn = |mesh: Handle<Mesh>, material: Handle<StandardMaterial>| {
+            commands
+                .spawn((Mesh3d(mesh), MeshMaterial3d(material), Transform::default()))
+                .id()
+        };
+        let parts = [
+            spawn(chassis, body.clone()),
+            spawn(wheel.clone(), tyre.clone()),
+            spawn(wheel, tyre.clone()),
+            spawn(ball, body),
+        ];
+        scene.lanes.push(Lane {
+            robot,
+            fidelity,
+            recent: VecDeque::with_capacity(MEAN_STEPS + 1),
+            trail: VecDeque::with_capacity(TRAIL),
+            dissipated: 0.0,
+            hook_energy: 0.0,
+            last: None,
+            parts,
+        });
+    }
+}
+
+/// After each Rapier step (in the physics schedule): each robot's sample, the scene's
+/// measurement, and the energies, means and trails the panel shows.
+fn record(view: RobotView, scene: Option<ResMut<Scene>>, stepping: Res<Stepping>) {
+    let Some(mut scene) = scene else {
+        return;
+    };
+    let dt = scene.params.dt;
+    // `Stepping::steps` counts the steps before this one.
+    let t = (stepping.steps + 1) as f64 * dt;
+    for lane in &mut scene.lanes {
+        let Some(s) = view.sample(&lane.robot, t, dt) else {
+            continue;
+        };
+        lane.dissipated += s.power() * dt;
+        lane.hook_energy += s.hook_creep_power * dt;
+        if lane.recent.len() == MEAN_STEPS {
+            lane.recent.pop_front();
         }
-        stepping.steps += 1;
+        lane.recent.push_back(s);
+        let p = vec3(s.position);
+        if lane.trail.back().is_none_or(|q| q.distance(p) > 1e-3) {
+            if lane.trail.len() == TRAIL {
+                lane.trail.pop_front();
+            }
+            lane.trail.push_back(p);
+        }
+        lane.last = Some(s);
     }
 }
 
@@ -364,13 +382,9 @@ fn vec3(v: creep_law::Vec3) -> Vec3 {
     Vec3::new(v.x as f32, v.y as f32, v.z as f32)
 }
 
-fn pose(robot: &Robot, h: rapier3d::prelude::RigidBodyHandle) -> (Vec3, Quat) {
-    let p = robot.world.physics.bodies[h].position();
-    let (t, q) = (p.translation, p.rotation);
-    (
-        Vec3::new(t.x, t.y, t.z),
-        Quat::from_xyzw(q.x, q.y, q.z, q.w),
-    )
+/// A body's Rapier pose, translation and velocity (`None` before it exists in Rapier).
+fn body(set: &RapierRigidBodySet, e: Entity) -> Option<&rapier3d::prelude::RigidBody> {
+    set.entity2body().get(&e).and_then(|h| set.bodies.get(*h))
 }
 
 /// Means of the recent samples of one contact: speed, creepages (mean slip / mean speed, as
@@ -402,11 +416,12 @@ fn mean_contact(
 
 fn draw(
     scene: Option<Res<Scene>>,
+    sets: Query<&RapierRigidBodySet, With<DefaultRapierContext>>,
     mut transforms: Query<&mut Transform>,
     mut gizmos: Gizmos,
     mut panel: ResMut<PanelText>,
 ) {
-    let Some(scene) = scene else {
+    let (Some(scene), Ok(rapier_bodies)) = (scene, sets.single()) else {
         return;
     };
     let p = &scene.params;
@@ -425,11 +440,13 @@ fn draw(
     );
     for (k, lane) in scene.lanes.iter().enumerate() {
         let robot = &lane.robot;
-        let off = lane.offset;
+        let pose = |e: Entity| body(rapier_bodies, e).map(|b| (b.translation(), *b.rotation()));
         // Bodies.
-        let (cp, cq) = pose(robot, robot.chassis);
+        let Some((cp, cq)) = pose(robot.chassis) else {
+            continue;
+        };
         let chassis =
-            Transform::from_translation((cp + cq * Vec3::new(-0.4 * lb, 0.0, 0.0) + off) * SCALE)
+            Transform::from_translation((cp + cq * Vec3::new(-0.4 * lb, 0.0, 0.0)) * SCALE)
                 .with_rotation(cq);
         let mut set = |e: Entity, t: Transform| {
             if let Ok(mut x) = transforms.get_mut(e) {
@@ -438,18 +455,20 @@ fn draw(
         };
         set(lane.parts[0], chassis);
         for i in 0..2 {
-            let (wp, wq) = pose(robot, robot.wheels[i]);
+            if let Some((wp, wq)) = pose(robot.wheels[i]) {
+                set(
+                    lane.parts[1 + i],
+                    Transform::from_translation(wp * SCALE)
+                        .with_rotation(wq * Quat::from_rotation_x(std::f32::consts::FRAC_PI_2)),
+                );
+            }
+        }
+        if let Some((bp, bq)) = pose(robot.caster) {
             set(
-                lane.parts[1 + i],
-                Transform::from_translation((wp + off) * SCALE)
-                    .with_rotation(wq * Quat::from_rotation_x(std::f32::consts::FRAC_PI_2)),
+                lane.parts[3],
+                Transform::from_translation(bp * SCALE).with_rotation(bq),
             );
         }
-        let (bp, bq) = pose(robot, robot.caster);
-        set(
-            lane.parts[3],
-            Transform::from_translation((bp + off) * SCALE).with_rotation(bq),
-        );
         // Trail.
         if lane.trail.len() > 1 {
             gizmos.linestrip(
@@ -470,11 +489,13 @@ fn draw(
             (robot.wheels[1], r, Some(heading), s.wheels[1]),
             (robot.caster, p.caster_radius as f32, None, s.caster),
         ];
-        for (h, radius, heading, c) in bodies {
+        for (e, radius, heading, c) in bodies {
             if !(c.p > 0.0) {
                 continue;
             }
-            let rb = &robot.world.physics.bodies[h];
+            let Some(rb) = body(rapier_bodies, e) else {
+                continue;
+            };
             let (t, v) = (rb.translation(), rb.linvel());
             let centre = Vec3::new(t.x, t.y, t.z);
             let vel = Vec3::new(v.x, 0.0, v.z);
@@ -485,7 +506,7 @@ fn draw(
             };
             let n = Vec3::NEG_Y;
             let y = n.cross(x);
-            let at = (centre - Vec3::Y * radius + off) * SCALE + Vec3::Y * 0.02;
+            let at = (centre - Vec3::Y * radius) * SCALE + Vec3::Y * 0.02;
             let force = vec3(c.force);
             let tangential = Vec3::new(force.x, 0.0, force.z);
             if tangential.length() > 0.0 {

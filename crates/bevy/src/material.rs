@@ -18,6 +18,7 @@ use std::ops::{Deref, DerefMut};
 /// - `fidelity`: Coulomb (Rapier's own response), `Auto` (creep where its slip speed bound
 ///   exceeds [`creep_rapier::CreepSettings::auto_tolerance`]) or `Creep` (always). A pair uses
 ///   the lower of its two colliders' (Coulomb < Auto < Creep).
+/// - `crown`: a wheel's crown radius \[m\] (`None`: a flat tread, line contact).
 /// - `rolling`: contact-torque rolling resistance (Ai et al. 2011 types A, B, C), the other
 ///   category of rolling resistance, for comparison; a pair uses the first collider's that is
 ///   not `None`.
@@ -26,8 +27,11 @@ use std::ops::{Deref, DerefMut};
 /// `ColliderMassProperties::Density(rho)` from this material; a `ColliderMassProperties` of
 /// your own wins.
 ///
-/// Shapes: a ball is a sphere, a cuboid or half-space a plane (its faces). Any other shape
-/// (capsule, cylinder, mesh, a ball with non-uniform scale) draws a warning and stays Coulomb.
+/// Shapes ([`creep_rapier::supported_shape`]): a ball is a sphere; a cuboid, half-space,
+/// triangle mesh, heightfield or convex polyhedron is flat at the contact; a cylinder rolling on
+/// a flat collider is a wheel (Carter's line contact, or Hertz's ellipse with a crown:
+/// [`CreepMaterial::with_crown`]). Any other shape (capsule, cone, compound, a ball with
+/// non-uniform scale) draws a warning and stays Coulomb.
 /// Both colliders of a pair need a `CreepMaterial`; a contact with a collider that has none
 /// draws a warning (once per collider) and stays Coulomb.
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
@@ -53,6 +57,13 @@ impl CreepMaterial {
     /// This material with another fidelity.
     pub fn with_fidelity(self, fidelity: Fidelity) -> Self {
         Self(self.0.with_fidelity(fidelity))
+    }
+    /// This material on a wheel with a crown of radius `crown` \[m\] (finite, > 0): the tread's
+    /// profile across the wheel, for Hertz's elliptic contact with spin creep instead of
+    /// Carter's line contact (creep-rapier's `CreepMaterial::crown`). Read for cylinder
+    /// colliders only.
+    pub fn with_crown(self, crown: f64) -> Self {
+        Self(self.0.with_crown(crown))
     }
     /// This material with a contact-torque rolling model.
     pub fn with_rolling(self, model: RollingModel) -> Self {

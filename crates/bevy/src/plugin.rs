@@ -12,8 +12,10 @@ use bevy_rapier3d::prelude::{
     RapierContextColliders, RapierContextEntityLink, RapierContextInitialization,
     RapierContextSimulation, RapierRigidBodySet, SimulationMode, SolverGroups,
 };
-use creep_rapier::rigid_surface_of;
-use creep_rapier::{CompliantSettings, CreepSettings, Fidelity, PluginError, RollingResistance};
+use creep_rapier::{
+    CompliantSettings, CreepSettings, Fidelity, PluginError, RollingResistance, SolverPreset,
+    configure_parameters_for, supported_shape,
+};
 use rapier3d::prelude::{ActiveHooks, IntegrationParameters};
 
 use crate::hooks::CreepRapierPlugin;
@@ -27,10 +29,11 @@ use crate::state::{CreepFriction, CreepWarning, MAX_MISSING_MATERIAL_WARNINGS, W
 /// ```no_run
 /// use bevy::prelude::*;
 /// use bevy_rapier3d::prelude::*;
-/// use creep_bevy::{CreepFrictionPlugin, CreepMaterial, CreepPhysicsHooks};
+/// use creep_bevy::prelude::*;
 /// App::new()
 ///     .add_plugins((MinimalPlugins, TransformPlugin))
-///     .add_plugins((RapierPhysicsPlugin::<CreepPhysicsHooks>::default(), CreepFrictionPlugin::default()))
+///     .add_plugins((CreepRapierPlugin::default(), CreepFrictionPlugin::default()))
+///     .insert_resource(TimestepMode::Fixed { dt: 1.0 / 60.0, substeps: 1 })
 ///     .add_systems(Startup, |mut commands: Commands| {
 ///         commands.spawn((RigidBody::Dynamic, Collider::ball(0.1), CreepMaterial::steel()));
 ///     })
@@ -38,6 +41,9 @@ use crate::state::{CreepFriction, CreepWarning, MAX_MISSING_MATERIAL_WARNINGS, W
 /// ```
 ///
 /// What it does:
+/// - sets one solver substep on each new context (`CreepSettings::solver`,
+///   [`SolverPreset::Rolling`]: what rolling balls and wheels need at game time steps), unless
+///   [`CreepFrictionPlugin::with_rapier_solver`];
 /// - sets the integration parameters creep-rapier needs (`FrictionModel::Coulomb`, no contact
 ///   clustering) on the default context at start, and checks them before every step
 ///   ([`creep_rapier::check_parameters`]); a context that does not suit is set
@@ -49,10 +55,11 @@ use crate::state::{CreepFriction, CreepWarning, MAX_MISSING_MATERIAL_WARNINGS, W
 /// - before each step: `CreepPipeline::prepare_host_step` (parameters, activation, compliant
 ///   forces); after it: `finish_host_step` (rolling torques, contact sweep) and the counts in
 ///   [`CreepFriction`];
-/// - warns (Bevy `warn!`, and [`CreepFriction::warnings`]) and falls back to Coulomb, never
-///   panics, on: the plugin added twice, the creep hooks not installed, a collider touching a
-///   creep collider without a material, an unsupported shape, a collider of another context,
-///   several Rapier steps per schedule run.
+/// - warns (Bevy `warn!` or standard error, and [`CreepFriction::warnings`]; see
+///   [`CreepWarning`]) and falls back to Coulomb, never panics, on: the plugin added twice, the
+///   creep hooks not installed, a collider touching a creep collider without a material, a
+///   shape creep-rapier does not model ([`creep_rapier::supported_shape`]), an invalid material
+///   (a wheel's crown), a collider of another context, several Rapier steps per schedule run.
 ///
 /// It serves one Rapier context: the one with `DefaultRapierContext` (or the only one).
 pub struct CreepFrictionPlugin {
@@ -125,6 +132,19 @@ impl CreepFrictionPlugin {
         self.configure_parameters = false;
         self
     }
+    /// Keep the solver iterations a context is created with (Rapier's defaults: four substeps,
+    /// one Gauss-Seidel iteration each) instead of the plugin's default,
+    /// [`SolverPreset::Rolling`] (one substep, [`creep_rapier::ROLLING_PGS_ITERATIONS`]
+    /// iterations in it): for scenes that need Rapier's substeps (tall stacks, long joint
+    /// chains). The same as `CreepSettings::solver = SolverPreset::Rapier` in
+    /// [`CreepFrictionPlugin::with_settings`]. With more than one substep a fast-rolling ball or
+    /// wheel floats and slides (a 0.1 m steel ball rolling at 5 m/s at 1/60 s floats 2.2 mm and
+    /// loses 17 % of its energy in a second); the plugin says so once
+    /// ([`CreepWarning::RotationGap`]).
+    pub fn with_rapier_solver(mut self) -> Self {
+        self.settings.solver = SolverPreset::Rapier;
+        self
+    }
     /// Whether to warn about colliders without a material touching creep colliders (default
     /// true; at most [`MAX_MISSING_MATERIAL_WARNINGS`] of them).
     pub fn warn_missing_material(mut self, warn: bool) -> Self {
@@ -145,7 +165,7 @@ impl Plugin for CreepFrictionPlugin {
             if let Some(mut state) = app.world_mut().get_resource_mut::<CreepFriction>() {
                 state.warn(WarnKey::Global("twice"), CreepWarning::PluginAddedTwice);
             } else {
-                warn!("{}", CreepWarning::PluginAddedTwice);
+                crate::state::emit(&CreepWarning::PluginAddedTwice);
             }
             return;
         }
@@ -211,7 +231,8 @@ impl Plugin for CreepFrictionPlugin {
         if state.steps > 0 || state.warned.contains(&WarnKey::Global("finished")) {
             return;
         }
-        let configure = state.configure_parameters;
+        let (configure, solver) = (state.configure_parameters, state.settings().solver);
+        let mut preset_set = false;
         if configure
             && let Some(mut init) = app
                 .world_mut()
@@ -221,10 +242,14 @@ impl Plugin for CreepFrictionPlugin {
                 ..
             } = &mut *init
         {
-            creep_rapier::configure_parameters(integration_parameters);
+            // The default context is created from this (in `PreStartup`): with the plugin's
+            // solver preset, which a `Startup` system may still change.
+            configure_parameters_for(integration_parameters, solver);
+            preset_set = true;
         }
         let hooks_installed = app.is_plugin_added::<CreepRapierPlugin>();
         let mut state = app.world_mut().resource_mut::<CreepFriction>();
+        state.default_context_preset = preset_set;
         state.warned.insert(WarnKey::Global("finished"));
         if !hooks_installed && !self.custom_hooks {
             state.warn(WarnKey::Global("hooks"), CreepWarning::HooksNotInstalled);
@@ -250,23 +275,39 @@ fn served_context<'a>(contexts: impl Iterator<Item = (Entity, bool)> + 'a) -> Op
     if count == 1 { only } else { None }
 }
 
-/// Sets the integration parameters creep-rapier needs on every new context, before its first
-/// step (a later change that does not suit draws a warning in [`pre_step`]).
+/// Sets the integration parameters of every new context before its first step
+/// ([`creep_rapier::configure_parameters_for`]): what creep-rapier requires
+/// (`FrictionModel::Coulomb`, no contact clustering; a later change draws a warning in
+/// [`pre_step`]) and the solver preset of the plugin's settings (`CreepSettings::solver`):
+/// by default [`SolverPreset::Rolling`], one solver substep with
+/// [`creep_rapier::ROLLING_PGS_ITERATIONS`] Gauss-Seidel iterations, what rolling balls and
+/// wheels need at game steps (creep-rapier's `SolverPreset` docs: Rapier's four substeps make
+/// a fast-rolling ball float and slide); [`CreepFrictionPlugin::with_rapier_solver`] keeps
+/// the context's own. The default context got the preset at its creation, from
+/// bevy_rapier3d's `RapierContextInitialization` (in [`CreepFrictionPlugin`]'s `finish`), so
+/// that a `Startup` system's changes hold; parameters changed later are kept too.
 fn configure_new_contexts(
     state: Res<CreepFriction>,
-    mut contexts: Query<(Entity, &mut RapierContextSimulation), Added<RapierContextSimulation>>,
+    mut contexts: Query<
+        (
+            Entity,
+            &mut RapierContextSimulation,
+            Has<DefaultRapierContext>,
+        ),
+        Added<RapierContextSimulation>,
+    >,
 ) {
     if !state.configure_parameters {
         return;
     }
-    for (entity, mut sim) in &mut contexts {
-        if creep_rapier::check_parameters(&sim.integration_parameters).is_err() {
-            creep_rapier::configure_parameters(&mut sim.integration_parameters);
-            debug!(
-                "creep-friction: context {entity}: set FrictionModel::Coulomb and \
-                 contact_clustering = false"
-            );
-        }
+    for (entity, mut sim, is_default) in &mut contexts {
+        let preset = if is_default && state.default_context_preset {
+            SolverPreset::Rapier // the preset is set already; keep what Startup changed
+        } else {
+            state.settings().solver
+        };
+        configure_parameters_for(&mut sim.integration_parameters, preset);
+        debug!("creep-friction: context {entity}: integration parameters set ({preset:?})");
     }
 }
 
@@ -367,16 +408,42 @@ fn sync_materials(
             continue;
         };
         let mut m = mat.to_rapier();
-        if rigid_surface_of(collider).is_none() {
+        let shape_name = || format!("{:?}", collider.shape().shape_type());
+        match supported_shape(collider) {
+            None => {
+                state.warn(
+                    WarnKey::Entity("shape", entity),
+                    CreepWarning::UnsupportedShape {
+                        entity,
+                        shape: shape_name(),
+                    },
+                );
+                m.fidelity = Fidelity::Coulomb;
+                m.rolling = RollingResistance::None;
+                m.crown = None;
+            }
+            Some(shape) if m.crown.is_some() && !shape.is_wheel() => {
+                state.warn(
+                    WarnKey::Entity("crown", entity),
+                    CreepWarning::CrownIgnored {
+                        entity,
+                        shape: shape_name(),
+                    },
+                );
+                m.crown = None;
+            }
+            Some(_) => {}
+        }
+        if let Err(error) = m.validate() {
+            // Registered as it is, the material would stop every step (creep-rapier refuses
+            // it before the step): this collider alone stays Coulomb.
             state.warn(
-                WarnKey::Entity("shape", entity),
-                CreepWarning::UnsupportedShape {
-                    entity,
-                    shape: format!("{:?}", collider.shape().shape_type()),
-                },
+                WarnKey::Entity("invalid-material", entity),
+                CreepWarning::InvalidMaterial { entity, error },
             );
             m.fidelity = Fidelity::Coulomb;
             m.rolling = RollingResistance::None;
+            m.crown = None;
         }
         if let Some(old) = state.handles.insert(entity, handle)
             && old != handle
@@ -481,7 +548,8 @@ fn pre_step(
     if let Err(error) = creep_rapier::check_parameters(&sim.integration_parameters) {
         let time_step = matches!(error, PluginError::TimeStep(_));
         if state.configure_parameters && !time_step {
-            creep_rapier::configure_parameters(&mut sim.integration_parameters);
+            // What the plugin requires only: the solver's iterations stay the user's.
+            configure_parameters_for(&mut sim.integration_parameters, SolverPreset::Rapier);
         }
         if !time_step {
             let configured = state.configure_parameters;
@@ -507,8 +575,12 @@ fn pre_step(
         // The last prepared step was never finished (its post-step found no context): undo it.
         state.pipeline.cancel_host_step(&mut bodies.bodies);
     }
-    if let Err(error) = state.pipeline.prepare_host_step(
+    // With the island manager: the preparation visits the colliders of awake bodies only
+    // (as `CreepWorld::step`), so that a settled scene whose bodies sleep costs what it costs
+    // plain Rapier.
+    if let Err(error) = state.pipeline.prepare_host_step_with_islands(
         &params,
+        &sim.islands,
         &mut bodies.bodies,
         &mut colliders.colliders,
         &sim.narrow_phase,
@@ -556,6 +628,7 @@ fn post_step(
         return;
     };
     let steps = sim.step_stats().num_steps;
+    state.pipeline.report_quarantine(sim.pipeline.quarantine());
     if steps == 0 {
         // No step ran (Interpolated mode ahead of real time): undo the preparation.
         state.pipeline.cancel_host_step(&mut bodies.bodies);
@@ -573,6 +646,40 @@ fn post_step(
             state.warn(WarnKey::Global("step"), CreepWarning::Step { error });
             return;
         }
+    }
+    // creep-rapier's own warnings (each given once there), with entities for handles. Its
+    // `Unregistered` is this plugin's `MissingMaterial` (below), which names the entity.
+    let entity_of_collider = |h| {
+        colliders
+            .colliders
+            .get(h)
+            .and_then(|c| Entity::try_from_bits(c.user_data as u64))
+    };
+    for w in state.counts.warnings.clone() {
+        let warning = match w {
+            creep_rapier::CreepWarning::RotationGap {
+                collider,
+                rim_speed,
+                turn,
+                substeps,
+            } => CreepWarning::RotationGap {
+                entity: entity_of_collider(collider),
+                rim_speed,
+                turn,
+                substeps,
+            },
+            creep_rapier::CreepWarning::NothingRegistered { colliders } => {
+                CreepWarning::NothingRegistered { colliders }
+            }
+            creep_rapier::CreepWarning::Quarantined { body } => CreepWarning::Quarantined {
+                entity: bodies
+                    .bodies
+                    .get(body)
+                    .and_then(|b| Entity::try_from_bits(b.user_data as u64)),
+            },
+            creep_rapier::CreepWarning::Unregistered { .. } => continue,
+        };
+        state.give(warning);
     }
     state.steps += 1;
 

@@ -13,8 +13,10 @@ use creep_rapier::{
 };
 use rapier3d::prelude::{ColliderHandle, ColliderSet};
 
-/// Why the plugin warned. Every warning is also logged once with Bevy's `warn!`; the list is
-/// kept in [`CreepFriction::warnings`] so that an app (or a test) can inspect it.
+/// Why the plugin warned. Each warning is given once: with Bevy's `warn!` when a log subscriber
+/// listens (`LogPlugin`, part of `DefaultPlugins`), else on standard error (an app on
+/// `MinimalPlugins` has no `LogPlugin`, and `warn!` alone would print nothing); the list is kept
+/// in [`CreepFriction::warnings`] so that an app (or a test) can inspect it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CreepWarning {
     /// `CreepFrictionPlugin` was added a second time; the second one (and its configuration)
@@ -45,13 +47,30 @@ pub enum CreepWarning {
         /// The entity.
         entity: Entity,
     },
-    /// `CreepMaterial` on a collider whose shape creep-law does not model (only balls, and
-    /// cuboids and half-spaces as planes, are): it stays Coulomb.
+    /// `CreepMaterial` on a collider whose shape creep-rapier does not model
+    /// ([`creep_rapier::supported_shape`], listed in [`creep_rapier::SUPPORTED_SHAPES`]): it
+    /// stays Coulomb.
     UnsupportedShape {
         /// The collider entity.
         entity: Entity,
         /// Rapier's shape type.
         shape: String,
+    },
+    /// A crown (`CreepMaterial::with_crown`) on a collider that is not a cylinder: only wheels
+    /// have one; it is ignored.
+    CrownIgnored {
+        /// The collider entity.
+        entity: Entity,
+        /// Rapier's shape type.
+        shape: String,
+    },
+    /// A `CreepMaterial` creep-rapier refuses (a wheel's crown radius not finite and > 0): the
+    /// collider stays Coulomb.
+    InvalidMaterial {
+        /// The collider entity.
+        entity: Entity,
+        /// What was wrong.
+        error: PluginError,
     },
     /// `CreepMaterial` on a collider of another Rapier context than the one the plugin serves
     /// (the default context): it stays Coulomb.
@@ -66,6 +85,33 @@ pub enum CreepWarning {
     StepsPerRun {
         /// Steps in that run.
         steps: usize,
+    },
+    /// A registered ball or wheel turned more than creep-rapier's `ROTATION_GAP_TURN` in a
+    /// step with more than one solver substep (the plugin's default is one,
+    /// `SolverPreset::Rolling`; kept away by [`crate::CreepFrictionPlugin::with_rapier_solver`]
+    /// or by changing `num_solver_iterations`): Rapier's rotation gap makes it float or sink
+    /// and lose energy. Given once.
+    RotationGap {
+        /// The ball's or wheel's collider entity.
+        entity: Option<Entity>,
+        /// Its rim speed `|omega| R` \[m/s\].
+        rim_speed: f64,
+        /// Its turn in the step `|omega| dt` \[rad\].
+        turn: f64,
+        /// The solver substeps of the step.
+        substeps: usize,
+    },
+    /// The context has colliders but none has a `CreepMaterial`: every contact is plain
+    /// Rapier. Given once.
+    NothingRegistered {
+        /// Colliders in the context.
+        colliders: usize,
+    },
+    /// Rapier quarantined a body whose state went non-finite (NaN or infinite): it is
+    /// disabled.
+    Quarantined {
+        /// The body's entity.
+        entity: Option<Entity>,
     },
     /// The plugin's settings were refused; the defaults are used.
     InvalidSettings {
@@ -124,8 +170,18 @@ impl fmt::Display for CreepWarning {
             ),
             Self::UnsupportedShape { entity, shape } => write!(
                 f,
-                "creep-friction: collider {entity} is a {shape}; creep-friction models balls \
-                 (and cuboids and half-spaces as planes) only: it stays Coulomb"
+                "creep-friction: collider {entity} is a {shape}, which creep-friction does not \
+                 model (it models {}): it stays Coulomb",
+                creep_rapier::SUPPORTED_SHAPES
+            ),
+            Self::CrownIgnored { entity, shape } => write!(
+                f,
+                "creep-friction: collider {entity} is a {shape}: its CreepMaterial's crown is \
+                 read for cylinders (wheels) only and is ignored"
+            ),
+            Self::InvalidMaterial { entity, error } => write!(
+                f,
+                "creep-friction: collider {entity}: {error}; it stays Coulomb"
             ),
             Self::OtherContext { entity } => write!(
                 f,
@@ -137,6 +193,32 @@ impl fmt::Display for CreepWarning {
                 "creep-friction: {steps} Rapier steps ran in one schedule run (substeps > 1 or \
                  Interpolated catching up); the plugin updates its state once per run, so \
                  creep is approximate: use TimestepMode::Fixed {{ substeps: 1, .. }}"
+            ),
+            Self::RotationGap {
+                entity,
+                rim_speed,
+                turn,
+                substeps,
+            } => write!(
+                f,
+                "creep-friction: collider {} rolls at {rim_speed:.3} m/s ({turn:.3} rad a step) \
+                 with num_solver_iterations = {substeps}: Rapier's rotation gap makes it float \
+                 or sink and lose energy; use one substep (the plugin's default, \
+                 SolverPreset::Rolling: drop CreepFrictionPlugin::with_rapier_solver(), or set \
+                 RapierContextSimulation::integration_parameters.num_solver_iterations = 1)",
+                name(*entity)
+            ),
+            Self::NothingRegistered { colliders } => write!(
+                f,
+                "creep-friction: none of the context's {colliders} colliders has a \
+                 CreepMaterial: every contact is plain Rapier (give the colliders that should \
+                 creep a CreepMaterial)"
+            ),
+            Self::Quarantined { entity } => write!(
+                f,
+                "creep-friction: Rapier quarantined body {}: its state went non-finite (NaN or \
+                 infinite) and it is disabled (check its size, mass and speed)",
+                name(*entity)
             ),
             Self::InvalidSettings { error } => write!(
                 f,
@@ -150,6 +232,28 @@ impl fmt::Display for CreepWarning {
             }
         }
     }
+}
+
+/// An entity, or `?` for a Rapier object without one.
+fn name(entity: Option<Entity>) -> String {
+    entity.map_or_else(|| "?".to_string(), |e| e.to_string())
+}
+
+/// Gives a warning: Bevy's `warn!` when a `tracing` subscriber listens (Bevy's `LogPlugin`, in
+/// `DefaultPlugins`, or one of the app's own), otherwise (`MinimalPlugins`, a test harness)
+/// a line on standard error, `WARN creep-friction: ...`, where `warn!` would reach nobody.
+pub(crate) fn emit(warning: &CreepWarning) {
+    if log_listens() {
+        warn!("{warning}");
+    } else {
+        eprintln!("WARN {warning}");
+    }
+}
+
+/// Whether a `tracing` subscriber (global, or scoped to this thread) is installed.
+fn log_listens() -> bool {
+    use bevy::log::tracing::{dispatcher, subscriber::NoSubscriber};
+    dispatcher::get_default(|d| !d.is::<NoSubscriber>())
 }
 
 /// How many "missing material" warnings are given before the plugin stops looking for more.
@@ -182,6 +286,9 @@ pub struct CreepFriction {
     pub(crate) warned: HashSet<WarnKey>,
     pub(crate) missing_warned: usize,
     pub(crate) configure_parameters: bool,
+    /// The default context was created with the solver preset (through bevy_rapier3d's
+    /// `RapierContextInitialization`).
+    pub(crate) default_context_preset: bool,
     pub(crate) warn_missing_material: bool,
 }
 
@@ -216,6 +323,7 @@ impl CreepFriction {
             warned: HashSet::new(),
             missing_warned: 0,
             configure_parameters,
+            default_context_preset: false,
             warn_missing_material,
         })
     }
@@ -257,8 +365,8 @@ impl CreepFriction {
     /// What the plugin did in the last Rapier step: contacts by path (Coulomb for each reason,
     /// creep, rolling torque), the power dissipated by creep `sum Q . v_disp` \[W\], the largest
     /// loop gain, and how many registered colliders had their hook on.
-    pub fn counts(&self) -> StepCounts {
-        self.counts
+    pub fn counts(&self) -> &StepCounts {
+        &self.counts
     }
 
     /// Number of Rapier steps the plugin has taken part in.
@@ -266,7 +374,8 @@ impl CreepFriction {
         self.steps
     }
 
-    /// The warnings given so far (each also logged once with `warn!`).
+    /// The warnings given so far, in order (each also given once with `warn!`, or on standard
+    /// error when no log subscriber listens).
     pub fn warnings(&self) -> &[CreepWarning] {
         &self.warnings
     }
@@ -308,10 +417,16 @@ impl CreepFriction {
         }
     }
 
-    /// Records and logs a warning, once per key.
+    /// Records and gives a warning that is given once by construction (creep-rapier's).
+    pub(crate) fn give(&mut self, warning: CreepWarning) {
+        emit(&warning);
+        self.warnings.push(warning);
+    }
+
+    /// Records and gives a warning ([`emit`]), once per key.
     pub(crate) fn warn(&mut self, key: WarnKey, warning: CreepWarning) {
         if self.warned.insert(key) {
-            warn!("{warning}");
+            emit(&warning);
             self.warnings.push(warning);
         }
     }

@@ -351,3 +351,139 @@ fn compliant_regime_errors_warn_and_stay_coulomb() {
         "{t:?}"
     );
 }
+
+/// Set in the child process of [`warnings_reach_stderr_without_log_plugin`].
+const CHILD: &str = "CREEP_BEVY_WARNINGS_CHILD";
+
+#[test]
+fn warnings_reach_stderr_without_log_plugin() {
+    if std::env::var_os(CHILD).is_some() {
+        // The child: `MinimalPlugins` (no `LogPlugin`, no tracing subscriber) and a misuse.
+        let mut app = default_app();
+        app.world_mut().spawn((Transform::default(), creep_steel()));
+        run(&mut app, 3);
+        assert_eq!(state(&app).warnings().len(), 1);
+        return;
+    }
+    // This test again, alone, in a child process whose output is not captured.
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args([
+            "--exact",
+            "warnings_reach_stderr_without_log_plugin",
+            "--nocapture",
+            "--test-threads=1",
+        ])
+        .env(CHILD, "1")
+        .output()
+        .expect("the test binary runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("WARN creep-friction:"))
+        .collect();
+    assert_eq!(lines.len(), 1, "{stderr}");
+    assert!(
+        lines[0].contains("has a CreepMaterial but no Collider"),
+        "{stderr}"
+    );
+}
+
+/// A rubber floor (top face at y = 0) and a rubber cylinder on it as a wheel (axis along z,
+/// rolling along x at 0.5 m/s), with `material`; returns the wheel.
+fn spawn_wheel(app: &mut App, material: CreepMaterial) -> Entity {
+    app.world_mut().spawn((
+        RigidBody::Fixed,
+        Transform::from_xyz(0.0, -0.5, 0.0),
+        Collider::cuboid(100.0, 0.5, 10.0),
+        Friction::coefficient(0.9),
+        CreepMaterial::rubber().with_fidelity(Fidelity::Creep),
+    ));
+    let wheel = app
+        .world_mut()
+        .spawn((
+            RigidBody::Dynamic,
+            Transform::from_xyz(0.0, 0.05, 0.0),
+            Sleeping::disabled(),
+            Velocity {
+                linear: Vec3::new(0.5, 0.0, 0.0),
+                angular: Vec3::new(0.0, 0.0, -10.0),
+            },
+            // Only the rotation about the axle and the travel are free (no joint here).
+            LockedAxes::ROTATION_LOCKED_X | LockedAxes::ROTATION_LOCKED_Y,
+        ))
+        .id();
+    app.world_mut().spawn((
+        Collider::cylinder(0.01, 0.05),
+        Transform::from_rotation(Quat::from_rotation_x(std::f32::consts::FRAC_PI_2)),
+        Friction::coefficient(0.9),
+        material,
+        ChildOf(wheel),
+    ));
+    wheel
+}
+
+fn level_app() -> App {
+    app(
+        1.0 / 240.0,
+        Vec3::new(0.0, -9.81, 0.0),
+        CreepFrictionPlugin::default(),
+    )
+}
+
+#[test]
+fn a_cylinder_is_a_wheel_with_or_without_a_crown() {
+    // On the incline (gravity tilted 20 degrees along x): the wheel rolls down, driven by its
+    // contact's tangential force, and creeps.
+    for crown in [None, Some(0.1)] {
+        let mut app = default_app();
+        let m = CreepMaterial::rubber().with_fidelity(Fidelity::Creep);
+        spawn_wheel(&mut app, crown.map_or(m, |c| m.with_crown(c)));
+        set_physics_active(&mut app, true);
+        run(&mut app, 60);
+        let s = state(&app);
+        assert!(s.warnings().is_empty(), "{crown:?}: {:?}", s.warnings());
+        let c = s.counts();
+        assert!(c.creep > 0, "{crown:?}: {c:?}");
+        assert_eq!(c.coulomb_unsupported, 0, "{crown:?}: {c:?}");
+    }
+}
+
+#[test]
+fn a_bad_crown_or_a_crown_on_a_ball_warns() {
+    // A crown radius that is not > 0: that wheel alone stays Coulomb, the step goes on.
+    let mut app = level_app();
+    spawn_wheel(&mut app, CreepMaterial::rubber().with_crown(-1.0));
+    set_physics_active(&mut app, true);
+    run(&mut app, 30);
+    let s = state(&app);
+    assert!(
+        has(&app, |w| matches!(w, CreepWarning::InvalidMaterial { .. })),
+        "{:?}",
+        s.warnings()
+    );
+    assert_eq!(s.warnings().len(), 1, "{:?}", s.warnings());
+    assert_eq!(s.steps(), 30, "the plugin kept stepping");
+    assert!(s.warnings()[0].to_string().contains("stays Coulomb"));
+
+    // A crown on a ball is ignored, with a word.
+    let mut app = default_app();
+    let p = incline();
+    let (_, ball) = spawn_incline(
+        &mut app,
+        &p,
+        Some(creep_steel()),
+        Some(creep_steel().with_crown(0.2)),
+    );
+    run(&mut app, 30);
+    let s = state(&app);
+    assert!(
+        s.warnings().iter().any(|w| matches!(
+            w,
+            CreepWarning::CrownIgnored { entity, shape } if *entity == ball && shape.contains("Ball")
+        )),
+        "{:?}",
+        s.warnings()
+    );
+    assert!(s.counts().creep > 0, "{:?}", s.counts());
+}
