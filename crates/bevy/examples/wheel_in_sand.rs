@@ -1,4 +1,4 @@
-//! `wheel_in_sand`: a driven rigid wheel digging into a granular bed (issue #19), the scene of
+//! `wheel_in_sand`: a driven rigid wheel digging into a granular bed, the scene of
 //! `creep run wheel-on-sand` (`creep_scenes::bed`, i.e. creep-bed's `wheel`: a creep-dem bed
 //! in a slice periodic along the wheel's axis, the wheel a Rapier cylinder coupled both ways,
 //! its spin and forward speed prescribed, its sinkage free) stepped on a thread one game step

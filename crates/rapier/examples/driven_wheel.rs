@@ -29,7 +29,11 @@ fn run(rubber: Material, share: f64, fidelity: Fidelity) -> Result<(f64, f64, f6
     let mat = CreepMaterial::new(rubber).with_fidelity(fidelity);
     let mu = rubber.friction() as f32;
     let floor = RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0));
-    world.insert(floor, ColliderBuilder::cuboid(1e3, 0.5, 1e3).friction(mu), Some(mat));
+    world.insert(
+        floor,
+        ColliderBuilder::cuboid(1e3, 0.5, 1e3).friction(mu),
+        Some(mat),
+    );
     let (r, v) = (R as f32, SPEED);
     let body = RigidBodyBuilder::dynamic()
         .translation(Vector::new(0.0, r, 0.0))
@@ -46,7 +50,10 @@ fn run(rubber: Material, share: f64, fidelity: Fidelity) -> Result<(f64, f64, f6
         .lock_rotations();
     let (chassis, _) = world.insert(chassis, ColliderBuilder::cuboid(0.02, 0.01, 0.01), None);
     let axle = RevoluteJointBuilder::new(Vector::Z).contacts_enabled(false);
-    world.physics.impulse_joints.insert(chassis, wheel, axle, true);
+    world
+        .physics
+        .impulse_joints
+        .insert(chassis, wheel, axle, true);
     let mass = f64::from(world.physics.bodies[wheel].mass() + world.physics.bodies[chassis].mass());
     let torque = share * rubber.friction() * mass * 9.81 * R;
     world.physics.bodies[wheel].add_torque(Vector::new(0.0, 0.0, -torque as f32), true);
