@@ -360,7 +360,9 @@ fn build_on_joint(params: &WheelParams, fidelity: Fidelity) -> Result<WheelWorld
     })
 }
 
-/// [`driven`] with the wheel of the documented recipe ([`build_on_joint`]'s docs): the drive
+/// [`driven`] with the wheel of the documented recipe (creep-rapier's crate docs, "Wheels": a
+/// cylinder on its own body, a revolute joint to a chassis whose rotations are locked, the
+/// plugin's defaults and nothing else): the drive
 /// torque `T = share mu (m_w + m_c) g R` on the wheel, the holding force `T/R` on the chassis.
 pub fn driven_on_joint(params: &WheelParams, share: f64) -> Result<DrivenRow, SceneError> {
     if !(share.is_finite() && (0.0..1.0).contains(&share)) {
