@@ -194,28 +194,49 @@ pub fn csv_line(p: &Point) -> String {
     )
 }
 
-/// Parses the table (lines starting with `#` and the header are skipped).
-pub fn read_csv(text: &str) -> Result<Vec<Point>, RefError> {
-    let bad = |_| RefError::InvalidParameter {
-        name: "steady3d table",
-        value: f64::NAN,
-        expected: "numbers as written by csv_line",
-    };
-    let mut v = Vec::new();
+/// The data rows of a table this crate writes: blank lines, lines starting with `#` and the
+/// header (starting `ab,`) skipped, each row split at its commas and checked to have `columns`
+/// fields ([`RefError::InvalidGrid`] naming `name` otherwise).
+pub(crate) fn table_rows<'a>(
+    text: &'a str,
+    name: &'static str,
+    columns: usize,
+) -> Result<Vec<Vec<&'a str>>, RefError> {
+    let mut rows = Vec::new();
     for line in text.lines() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') || line.starts_with("ab,") {
             continue;
         }
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 12 {
+        if f.len() != columns {
             return Err(RefError::InvalidGrid {
-                name: "steady3d table columns",
+                name,
                 value: f.len(),
-                expected: "12",
+                expected: "the table's column count",
             });
         }
-        let n = |i: usize| f[i].parse::<f64>().map_err(bad);
+        rows.push(f);
+    }
+    Ok(rows)
+}
+
+/// A number of a row of [`table_rows`]; [`RefError::InvalidParameter`] naming `name` otherwise.
+pub(crate) fn table_number(field: &str, name: &'static str) -> Result<f64, RefError> {
+    field
+        .parse::<f64>()
+        .map_err(|_| RefError::InvalidParameter {
+            name,
+            value: f64::NAN,
+            expected: "numbers as this crate writes them",
+        })
+}
+
+/// Parses the table (lines starting with `#` and the header are skipped).
+pub fn read_csv(text: &str) -> Result<Vec<Point>, RefError> {
+    let mut v = Vec::new();
+    for f in table_rows(text, "steady3d table columns", 12)? {
+        let n = |i: usize| table_number(f[i], "steady3d table");
         v.push(Point {
             ab: n(0)?,
             nu: n(1)?,

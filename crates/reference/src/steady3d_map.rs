@@ -36,7 +36,7 @@
 
 use crate::bem::{EllipticContact, EllipticSteadySolver, SolverOptions};
 use crate::error::RefError;
-use crate::steady3d::default_grid;
+use crate::steady3d::{default_grid, table_number, table_rows};
 
 /// Axis ratios `a/b` of the map.
 pub const MAP_RATIOS: [f64; 9] = [0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0];
@@ -193,26 +193,9 @@ pub fn map_csv_line(p: &MapPoint) -> String {
 
 /// Parses a map table (lines starting with `#` and the header skipped).
 pub fn read_map_csv(text: &str) -> Result<Vec<MapPoint>, RefError> {
-    let bad = |_| RefError::InvalidParameter {
-        name: "steady3d map table",
-        value: f64::NAN,
-        expected: "numbers as written by map_csv_line",
-    };
     let mut v = Vec::new();
-    for line in text.lines() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') || line.starts_with("ab,") {
-            continue;
-        }
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 11 {
-            return Err(RefError::InvalidGrid {
-                name: "steady3d map columns",
-                value: f.len(),
-                expected: "11",
-            });
-        }
-        let n = |i: usize| f[i].parse::<f64>().map_err(bad);
+    for f in table_rows(text, "steady3d map columns", 11)? {
+        let n = |i: usize| table_number(f[i], "steady3d map table");
         v.push(MapPoint {
             ab: n(0)?,
             nu: n(1)?,
