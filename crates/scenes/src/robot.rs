@@ -450,7 +450,6 @@ impl Robot {
             records: &records,
             handles: self.handles(),
             params: &self.params,
-            overlap: OverlapReading::ManifoldPoint,
         }
         .sample(self.t, self.params.dt, 0.0)
         .expect("a robot's handles name bodies of its own world")
@@ -489,19 +488,6 @@ pub struct RobotHandles {
     pub floor_collider: ColliderHandle,
 }
 
-/// Where [`RobotProbe`] reads a contact's overlap `delta` (which places the rolling point
-/// `R - delta/2` below a body's centre).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum OverlapReading {
-    /// The manifold point each solver contact names ([`Robot`]'s reading). A wheel's patch
-    /// contact (creep-rapier's wheel module) names a point elsewhere on the cylinder, whose
-    /// distance the narrow phase may leave stale.
-    #[default]
-    ManifoldPoint,
-    /// The solver contacts' own distances (for a wheel's patch contact, the patch's).
-    SolverContact,
-}
-
 /// The robot's measurement over what any host of its Rapier world has: the bodies, the narrow
 /// phase, the creep hooks' contact records, the parameters and the parts' handles. [`Robot`]
 /// and an ECS host (creep-bevy's robot) both measure through it (frames, signs and formulas
@@ -518,8 +504,6 @@ pub struct RobotProbe<'a> {
     pub handles: RobotHandles,
     /// The robot's parameters (its wheel and caster radii).
     pub params: &'a RobotParams,
-    /// Where contacts' overlaps are read.
-    pub overlap: OverlapReading,
 }
 
 impl RobotProbe<'_> {
@@ -674,8 +658,11 @@ impl RobotProbe<'_> {
         })
     }
 
-    /// The mean overlap \[m\] (>= 0) of a collider's solver contacts with the floor, read as
-    /// [`RobotProbe::overlap`] says.
+    /// The mean overlap \[m\] (>= 0) of a collider's solver contacts with the floor, read from
+    /// the solver contacts' own distances: a wheel's patch contact (creep-rapier's wheel
+    /// module) carries the patch's, while the manifold point it names lies elsewhere on the
+    /// cylinder, whose distance the narrow phase may leave stale (turning on the spot it once
+    /// read 0.46 m).
     fn overlap(&self, collider: ColliderHandle) -> f64 {
         let Some(pair) = self
             .narrow_phase
@@ -686,17 +673,7 @@ impl RobotProbe<'_> {
         let (mut sum, mut count) = (0.0, 0.0);
         for m in pair.manifolds() {
             for sc in &m.data.solver_contacts {
-                let dist = match self.overlap {
-                    OverlapReading::ManifoldPoint => {
-                        let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
-                        let Some(pt) = m.points.get(cid) else {
-                            continue;
-                        };
-                        pt.dist
-                    }
-                    OverlapReading::SolverContact => sc.dist,
-                };
-                sum += f64::from(-dist).max(0.0);
+                sum += f64::from(-sc.dist).max(0.0);
                 count += 1.0;
             }
         }

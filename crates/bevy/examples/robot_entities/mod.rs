@@ -29,7 +29,7 @@ use bevy::prelude::*;
 use bevy_rapier3d::prelude::*;
 use creep_bevy::prelude::*;
 use creep_scenes::robot::{
-    OverlapReading, PGS_ITERATIONS, RobotHandles, RobotParams, RobotProbe, RobotSample, WheelSpeeds,
+    PGS_ITERATIONS, RobotHandles, RobotParams, RobotProbe, RobotSample, WheelSpeeds,
 };
 
 /// The robot's entities.
@@ -279,9 +279,6 @@ impl RobotView<'_, '_> {
             records: &records,
             handles,
             params,
-            // A wheel's patch contact's own overlap (the manifold point it names may be stale:
-            // in one step of the turn on the spot here it read 0.46 m).
-            overlap: OverlapReading::SolverContact,
         }
         .sample(t, dt, self.creep.counts().creep_power)
     }
