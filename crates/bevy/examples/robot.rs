@@ -354,11 +354,12 @@ fn record(view: RobotView, scene: Option<ResMut<Scene>>, stepping: Res<Stepping>
     let Some(mut scene) = scene else {
         return;
     };
-    let dt = scene.params.dt;
+    let params = scene.params;
+    let dt = params.dt;
     // `Stepping::steps` counts the steps before this one.
     let t = (stepping.steps + 1) as f64 * dt;
     for lane in &mut scene.lanes {
-        let Some(s) = view.sample(&lane.robot, t, dt) else {
+        let Some(s) = view.sample(&lane.robot, &params, t, dt) else {
             continue;
         };
         lane.dissipated += s.power() * dt;

@@ -15,7 +15,7 @@ use creep_scenes::robot::{self, RobotParams, RobotSummary, WheelSpeeds};
 mod robot_entities;
 use robot_entities::{
     RobotEntities, RobotView, robot_parameters, spawn_caster, spawn_chassis, spawn_floor,
-    spawn_wheel, summarize,
+    spawn_wheel,
 };
 
 /// Pauses or resumes the Rapier pipeline of the (only) context.
@@ -91,14 +91,14 @@ fn bevy_run(params: &RobotParams, speeds: WheelSpeeds, fidelity: Fidelity) -> Ro
         let s = view
             .get(app.world())
             .expect("the plugin's resource and the default context")
-            .sample(&robot, (i + 1) as f64 * params.dt, params.dt)
+            .sample(&robot, params, (i + 1) as f64 * params.dt, params.dt)
             .expect("the robot's bodies exist after the first step");
         samples.push(s);
     }
     let creep = app.world().resource::<CreepFriction>();
     assert!(creep.warnings().is_empty(), "{:?}", creep.warnings());
     assert_eq!(creep.steps() - before, steps as u64);
-    summarize(&samples, params)
+    robot::summarize(&samples, params)
 }
 
 fn print(name: &str, s: &RobotSummary) {

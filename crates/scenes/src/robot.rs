@@ -84,7 +84,7 @@ use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::{Material, Surface, Vec3};
 /// The fidelity a robot's contacts run at (re-exported for the robot's users).
 pub use creep_rapier::Fidelity;
-use creep_rapier::{ContactRecord, CreepMaterial, CreepSettings, CreepWorld};
+use creep_rapier::{ContactKey, ContactRecord, CreepMaterial, CreepSettings, CreepWorld};
 use rapier3d::prelude::*;
 
 use crate::measure::{SceneError, positive};
@@ -441,10 +441,79 @@ impl Robot {
     }
 
     /// The robot's state and contacts now (the contacts of the last step; `hook_creep_power`
-    /// is left at 0: [`Robot::step`] fills it).
+    /// is left at 0: [`Robot::step`] fills it), measured by [`RobotProbe::sample`].
     pub fn sample(&self) -> RobotSample {
-        let bodies = &self.world.physics.bodies;
-        let ch = &bodies[self.chassis];
+        let records = self.world.hooks.records();
+        RobotProbe {
+            bodies: &self.world.physics.bodies,
+            narrow_phase: &self.world.physics.narrow_phase,
+            records: &records,
+            handles: self.handles(),
+            params: &self.params,
+        }
+        .sample(self.t, self.params.dt, 0.0)
+        .expect("a robot's handles name bodies of its own world")
+    }
+
+    /// The Rapier handles of the robot's parts.
+    pub fn handles(&self) -> RobotHandles {
+        RobotHandles {
+            chassis: self.chassis,
+            wheels: self.wheels,
+            wheel_colliders: self.wheel_colliders,
+            caster: self.caster,
+            caster_collider: self.caster_collider,
+            floor: self.floor,
+            floor_collider: self.floor_collider,
+        }
+    }
+}
+
+/// The Rapier handles of a robot's parts, in whichever Rapier world holds them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RobotHandles {
+    /// The chassis (its origin: the axle midpoint).
+    pub chassis: RigidBodyHandle,
+    /// The wheels (left, right).
+    pub wheels: [RigidBodyHandle; 2],
+    /// The wheels' colliders (left, right).
+    pub wheel_colliders: [ColliderHandle; 2],
+    /// The caster ball.
+    pub caster: RigidBodyHandle,
+    /// The caster ball's collider.
+    pub caster_collider: ColliderHandle,
+    /// The floor.
+    pub floor: RigidBodyHandle,
+    /// The floor's collider.
+    pub floor_collider: ColliderHandle,
+}
+
+/// The robot's measurement over what any host of its Rapier world has: the bodies, the narrow
+/// phase, the creep hooks' contact records, the parameters and the parts' handles. [`Robot`]
+/// and an ECS host (creep-bevy's robot) both measure through it (frames, signs and formulas
+/// in the module docs).
+#[derive(Clone, Copy)]
+pub struct RobotProbe<'a> {
+    /// The rigid bodies.
+    pub bodies: &'a RigidBodySet,
+    /// The narrow phase of the last step (its contact impulses and overlaps).
+    pub narrow_phase: &'a NarrowPhase,
+    /// The creep hooks' records of the last step (`CreepHooks::records`).
+    pub records: &'a [(ContactKey, ContactRecord)],
+    /// The robot's parts.
+    pub handles: RobotHandles,
+    /// The robot's parameters (its wheel and caster radii).
+    pub params: &'a RobotParams,
+}
+
+impl RobotProbe<'_> {
+    /// The robot's state and contacts after the last step at time `t` \[s\], its time step `dt`
+    /// \[s\] (impulses over `dt` are forces), with `hook_creep_power` \[W\] the hook's creep power
+    /// of the step (`StepCounts::creep_power`); `None` if a handle names no body.
+    pub fn sample(&self, t: f64, dt: f64, hook_creep_power: f64) -> Option<RobotSample> {
+        let h = &self.handles;
+        let bodies = self.bodies;
+        let ch = bodies.get(h.chassis)?;
         let rot = *ch.rotation();
         let heading = v3(rot * Vector::X);
         let axle = v3(rot * Vector::Z);
@@ -453,7 +522,7 @@ impl Robot {
         let mut rim = [0.0; 2];
         let mut wheels = [ContactSample::default(); 2];
         for i in 0..2 {
-            let wb = &bodies[self.wheels[i]];
+            let wb = bodies.get(h.wheels[i])?;
             rim[i] = -r * (v3(wb.angvel()) - w_ch).dot(axle);
             // The wheel's angular velocity as its joint holds it: the chassis' plus the
             // wheel's own turn about the axle. The plugin applies the wheel's spin-creep moment
@@ -462,36 +531,38 @@ impl Robot {
             // angular velocity in between is not the motion the step made.
             let w_joint = w_ch + axle * (v3(wb.angvel()) - w_ch).dot(axle);
             wheels[i] = self.contact(
-                self.wheels[i],
-                self.wheel_colliders[i],
+                h.wheels[i],
+                h.wheel_colliders[i],
                 r,
                 Some((heading, w_joint)),
-            );
+                dt,
+            )?;
         }
         let caster = self.contact(
-            self.caster,
-            self.caster_collider,
+            h.caster,
+            h.caster_collider,
             self.params.caster_radius,
             None,
-        );
-        let kinetic_energy = [self.chassis, self.wheels[0], self.wheels[1], self.caster]
-            .iter()
-            .map(|h| f64::from(bodies[*h].kinetic_energy()))
-            .sum();
-        let h = rot * Vector::X;
-        RobotSample {
-            t: self.t,
+            dt,
+        )?;
+        let mut kinetic_energy = 0.0;
+        for b in [h.chassis, h.wheels[0], h.wheels[1], h.caster] {
+            kinetic_energy += f64::from(bodies.get(b)?.kinetic_energy());
+        }
+        let hx = rot * Vector::X;
+        Some(RobotSample {
+            t,
             position: v3(ch.translation()),
             // A turn to the left (about +y) takes x towards -z.
-            yaw: f64::from(-h.z).atan2(f64::from(h.x)),
+            yaw: f64::from(-hx.z).atan2(f64::from(hx.x)),
             speed: v3(ch.linvel()).dot(heading),
             yaw_rate: w_ch.y,
             rim_speeds: rim,
             wheels,
             caster,
-            hook_creep_power: 0.0,
+            hook_creep_power,
             kinetic_energy,
-        }
+        })
     }
 
     /// One body's contact with the floor (module docs): for a wheel, its heading (its `x` is
@@ -503,10 +574,11 @@ impl Robot {
         collider: ColliderHandle,
         radius: f64,
         wheel: Option<(Vec3, Vec3)>,
-    ) -> ContactSample {
+        dt: f64,
+    ) -> Option<ContactSample> {
         let heading = wheel.map(|(h, _)| h);
-        let w = &self.world;
-        let rb = &w.physics.bodies[body];
+        let rb = self.bodies.get(body)?;
+        let fl = self.bodies.get(self.handles.floor)?;
         let centre = v3(rb.translation());
         let n = Vec3::new(0.0, -1.0, 0.0);
         // Rapier rolls a body about the point midway between the surfaces (docs/ARCHITECTURE.md
@@ -519,7 +591,6 @@ impl Robot {
             angular_velocity: wheel.map_or(v3(rb.angvel()), |(_, w)| w),
             surface: Surface::Sphere(radius),
         };
-        let fl = &w.physics.bodies[self.floor];
         let q_motion = BodyMotion {
             position: v3(fl.translation()),
             velocity: v3(fl.linvel()),
@@ -542,7 +613,7 @@ impl Robot {
         };
         let y = n.cross(x);
         let speed = rates.v_roll.dot(x).abs();
-        let (p, force) = self.impulses(collider);
+        let (p, force) = self.impulses(collider, dt);
         // The contact's power at the point Rapier applied its impulses: a wheel's one patch
         // contact (creep-rapier's wheel module) and a ball's contact both act at `point`. The
         // manifold point a wheel's patch contact names (for its impulses) lies elsewhere on the
@@ -553,7 +624,7 @@ impl Robot {
         // The creep law's twisting moment on the body (the plugin applies it after the step)
         // and the hook's booked power, from the pair's records.
         let (mut mz, mut hook_power, mut target) = (0.0, 0.0, Vec3::ZERO);
-        for rec in pair_records(w, collider, self.floor_collider) {
+        for rec in self.pair_records(collider) {
             let (on_body, sign) = if rec.bodies.0 == Some(body) {
                 (-rec.spin_torque, 1.0)
             } else {
@@ -569,7 +640,7 @@ impl Robot {
         let spin_power = mz * (q_motion.angular_velocity - p_motion.angular_velocity).dot(n);
         hook_power += spin_power.max(0.0);
         let inv_v = if speed > 0.0 { 1.0 / speed } else { 0.0 };
-        ContactSample {
+        Some(ContactSample {
             p,
             force,
             fx: force.dot(x),
@@ -584,27 +655,26 @@ impl Robot {
             target: [target.dot(x), target.dot(y)],
             power: power + spin_power,
             hook_power,
-        }
+        })
     }
 
-    /// The mean overlap \[m\] (>= 0) of a collider's solver contacts with the floor.
+    /// The mean overlap \[m\] (>= 0) of a collider's solver contacts with the floor, read from
+    /// the solver contacts' own distances: a wheel's patch contact (creep-rapier's wheel
+    /// module) carries the patch's, while the manifold point it names lies elsewhere on the
+    /// cylinder, whose distance the narrow phase may leave stale (turning on the spot it once
+    /// read 0.46 m).
     fn overlap(&self, collider: ColliderHandle) -> f64 {
         let Some(pair) = self
-            .world
-            .physics
             .narrow_phase
-            .contact_pair(collider, self.floor_collider)
+            .contact_pair(collider, self.handles.floor_collider)
         else {
             return 0.0;
         };
         let (mut sum, mut count) = (0.0, 0.0);
         for m in pair.manifolds() {
             for sc in &m.data.solver_contacts {
-                let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
-                if let Some(pt) = m.points.get(cid) {
-                    sum += f64::from(-pt.dist).max(0.0);
-                    count += 1.0;
-                }
+                sum += f64::from(-sc.dist).max(0.0);
+                count += 1.0;
             }
         }
         if count > 0.0 { sum / count } else { 0.0 }
@@ -612,13 +682,10 @@ impl Robot {
 
     /// Normal force and the floor's tangential force on the body \[N\] over the solver
     /// contacts of the last step (Rapier's impulses over `dt`).
-    fn impulses(&self, collider: ColliderHandle) -> (f64, Vec3) {
-        let w = &self.world;
-        let dt = self.params.dt;
-        let Some(pair) = w
-            .physics
+    fn impulses(&self, collider: ColliderHandle, dt: f64) -> (f64, Vec3) {
+        let Some(pair) = self
             .narrow_phase
-            .contact_pair(collider, self.floor_collider)
+            .contact_pair(collider, self.handles.floor_collider)
         else {
             return (0.0, Vec3::ZERO);
         };
@@ -642,18 +709,17 @@ impl Robot {
         }
         (p, q)
     }
-}
 
-/// The contact records of a collider pair (either order).
-fn pair_records(w: &CreepWorld, a: ColliderHandle, b: ColliderHandle) -> Vec<ContactRecord> {
-    w.hooks
-        .records()
-        .into_iter()
-        .filter(|(k, _)| {
-            (k.collider1 == a && k.collider2 == b) || (k.collider1 == b && k.collider2 == a)
-        })
-        .map(|(_, r)| r)
-        .collect()
+    /// The contact records of a collider's pair with the floor (either order).
+    fn pair_records(&self, a: ColliderHandle) -> impl Iterator<Item = &ContactRecord> {
+        let b = self.handles.floor_collider;
+        self.records
+            .iter()
+            .filter(move |(k, _)| {
+                (k.collider1 == a && k.collider2 == b) || (k.collider1 == b && k.collider2 == a)
+            })
+            .map(|(_, r)| r)
+    }
 }
 
 fn v3(v: Vector) -> Vec3 {
@@ -776,7 +842,18 @@ pub fn run(
     for _ in 0..steps {
         samples.push(robot.step()?);
     }
-    let half = &samples[steps / 2..];
+    Ok(RobotRun {
+        fidelity,
+        speeds,
+        summary: summarize(&samples, params),
+        samples,
+    })
+}
+
+/// A run's means over the second half of `samples` (one per step of `params.dt`), next to the
+/// closed forms of the module docs: what [`run`] reports.
+pub fn summarize(samples: &[RobotSample], params: &RobotParams) -> RobotSummary {
+    let half = &samples[samples.len() / 2..];
     let k = 1.0 / half.len().max(1) as f64;
     let mut s = RobotSummary::default();
     for x in half {
@@ -803,10 +880,5 @@ pub fn run(
     } else {
         f64::INFINITY
     };
-    Ok(RobotRun {
-        fidelity,
-        speeds,
-        samples,
-        summary: s,
-    })
+    s
 }
