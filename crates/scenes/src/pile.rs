@@ -134,23 +134,29 @@ pub fn dropped_lattice(n: usize) -> Result<CreepWorld, SceneError> {
     let mut w = CreepWorld::new(DT, CreepSettings::default().with_rapier_solver())?;
     let mat = CreepMaterial::new(Material::glass());
     add_box(&mut w, mat, 0.9, 0.9, 4.0);
+    for p in pour_lattice(n) {
+        add_sphere(&mut w, mat, p);
+    }
+    Ok(w)
+}
+
+/// The centres of an `n x n x n` lattice of spheres of [`RADIUS`] above the floor, 10 % apart,
+/// with a small deterministic jitter so that the lattice collapses into a pile.
+fn pour_lattice(n: usize) -> impl Iterator<Item = Vector> {
     let spacing = 2.0 * RADIUS * 1.1;
     let offset = -(n as f32 - 1.0) * spacing / 2.0;
-    for i in 0..n {
-        for j in 0..n {
-            for k in 0..n {
-                // A small deterministic jitter so the lattice collapses into a pile.
+    (0..n).flat_map(move |i| {
+        (0..n).flat_map(move |j| {
+            (0..n).map(move |k| {
                 let jit = ((i * 7 + j * 13 + k * 29) % 11) as f32 * 1e-3;
-                let p = Vector::new(
+                Vector::new(
                     offset + i as f32 * spacing + jit,
                     RADIUS + 0.01 + j as f32 * spacing,
                     offset + k as f32 * spacing - jit,
-                );
-                add_sphere(&mut w, mat, p);
-            }
-        }
-    }
-    Ok(w)
+                )
+            })
+        })
+    })
 }
 
 /// Spheres of the stacked packing with `n` spheres per side of its full layers and `layers`
@@ -457,26 +463,14 @@ pub fn sleeping_lattice(n: usize, fidelity: Option<Fidelity>) -> Result<CreepWor
             mat,
         );
     }
-    let spacing = 2.0 * RADIUS * 1.1;
-    let offset = -(n as f32 - 1.0) * spacing / 2.0;
-    for i in 0..n {
-        for j in 0..n {
-            for k in 0..n {
-                let jit = ((i * 7 + j * 13 + k * 29) % 11) as f32 * 1e-3;
-                let p = Vector::new(
-                    offset + i as f32 * spacing + jit,
-                    RADIUS + 0.01 + j as f32 * spacing,
-                    offset + k as f32 * spacing - jit,
-                );
-                w.insert(
-                    RigidBodyBuilder::dynamic().translation(p),
-                    ColliderBuilder::ball(RADIUS)
-                        .density(steel.density() as f32)
-                        .friction(mu),
-                    mat,
-                );
-            }
-        }
+    for p in pour_lattice(n) {
+        w.insert(
+            RigidBodyBuilder::dynamic().translation(p),
+            ColliderBuilder::ball(RADIUS)
+                .density(steel.density() as f32)
+                .friction(mu),
+            mat,
+        );
     }
     Ok(w)
 }
