@@ -18,9 +18,9 @@ use creep_law::steady3d::Steady3d;
 use creep_reference::bem::{EllipticContact, EllipticSteadySolver, SolverOptions};
 use creep_reference::steady3d::default_grid;
 use creep_reference::steady3d_map::{
-    MAP_HEADER, MAP_POISSON, MAP_RATIOS, MapError, Set, VALIDATION_CASES, full_slip_loads,
-    grade_steady3d, grade_steady3d_as_is, map_csv_line, map_table, read_map_csv, solve_map_case,
-    solve_validation, validation_table, worst,
+    MAP_HEADER, MAP_POISSON, MAP_RATIOS, MapError, MapPoint, Set, VALIDATION_CASES,
+    full_slip_loads, grade_steady3d, grade_steady3d_as_is, map_csv_line, map_table, read_map_csv,
+    solve_map_case, solve_validation, validation_table, worst,
 };
 use plotters::prelude::*;
 use std::time::Instant;
@@ -196,35 +196,13 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
     };
     let errors = grade_steady3d(&points)?;
     std::fs::create_dir_all(&out)?;
-    let mut csv = String::from(
-        "ab,nu,set,xi_n,eta_n,phi_n,fx_bem,fy_bem,mz_bem,fx_law,fy_law,mz_law,err_fx,err_fy,err_mz_c,err_mz_a\n",
-    );
-    for e in &errors {
-        let p = &e.point;
-        csv.push_str(&format!(
-            "{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
-            p.ab,
-            p.nu,
-            if Set::of(p.ab, p.nu) == Set::Fit {
-                "fit"
-            } else {
-                "validation"
-            },
-            p.creepage[0],
-            p.creepage[1],
-            p.creepage[2],
-            p.load[0],
-            p.load[1],
-            p.load[2],
-            e.law[0],
-            e.law[1],
-            e.law[2],
-            e.fx,
-            e.fy,
-            e.mz_c,
-            e.mz_a
-        ));
-    }
+    let csv = errors_csv(&errors, |p| {
+        Some(if Set::of(p.ab, p.nu) == Set::Fit {
+            "fit"
+        } else {
+            "validation"
+        })
+    });
     std::fs::write(out.join("steady3d_map_errors.csv"), csv)?;
     // Worst per (a/b, nu).
     println!(
@@ -281,30 +259,7 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let val = grade_steady3d_as_is(&validation_table()?)?;
-    let mut vcsv = String::from(
-        "ab,nu,xi_n,eta_n,phi_n,fx_bem,fy_bem,mz_bem,fx_law,fy_law,mz_law,err_fx,err_fy,err_mz_c,err_mz_a\n",
-    );
-    for e in &val {
-        let p = &e.point;
-        vcsv.push_str(&format!(
-            "{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
-            p.ab,
-            p.nu,
-            p.creepage[0],
-            p.creepage[1],
-            p.creepage[2],
-            p.load[0],
-            p.load[1],
-            p.load[2],
-            e.law[0],
-            e.law[1],
-            e.law[2],
-            e.fx,
-            e.fy,
-            e.mz_c,
-            e.mz_a
-        ));
-    }
+    let vcsv = errors_csv(&val, |_| None);
     std::fs::write(out.join("steady3d_map_validation_errors.csv"), vcsv)?;
     if !val.is_empty() {
         println!(
@@ -344,6 +299,39 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
     plots(&errors, &out)?;
     println!("\nplots and per-point CSV in {}", out.display());
     Ok(())
+}
+
+/// The graded points as CSV: the point, the boundary elements' and the law's loads and the four
+/// errors, with a `set` column (fit or validation) where `set` names one.
+fn errors_csv(errors: &[MapError], set: impl Fn(&MapPoint) -> Option<&'static str>) -> String {
+    let with_set = errors.first().is_some_and(|e| set(&e.point).is_some());
+    let mut csv = format!(
+        "ab,nu,{}xi_n,eta_n,phi_n,fx_bem,fy_bem,mz_bem,fx_law,fy_law,mz_law,err_fx,err_fy,err_mz_c,err_mz_a\n",
+        if with_set { "set," } else { "" }
+    );
+    for e in errors {
+        let p = &e.point;
+        let set = set(p).map(|s| format!("{s},")).unwrap_or_default();
+        csv.push_str(&format!(
+            "{},{},{set}{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n",
+            p.ab,
+            p.nu,
+            p.creepage[0],
+            p.creepage[1],
+            p.creepage[2],
+            p.load[0],
+            p.load[1],
+            p.load[2],
+            e.law[0],
+            e.law[1],
+            e.law[2],
+            e.fx,
+            e.fy,
+            e.mz_c,
+            e.mz_a
+        ));
+    }
+    csv
 }
 
 /// The law far in full slip (every direction of the map's signed points, scaled to a largest
