@@ -23,7 +23,7 @@ use crate::neighbour::{Carry, half_neighbours_of};
 use crate::step::{APART, CHUNK, WallOut, WindowOut, add_partial, tally_block, tally_wall, weight};
 use crate::{Dem, DemCounts, DemEnergy, DemError, ExternalForces, tally};
 use creep_law::Vec3;
-use creep_law::pair::{ContactHistory, PairForces, SphereForces, TangentialLaw};
+use creep_law::pair::{ContactHistory, TangentialLaw};
 use rayon::prelude::*;
 
 /// One task of the contact loop.
@@ -252,7 +252,7 @@ impl<T: TangentialLaw> Dem<T> {
                                     } else {
                                         tally_block(&mut c, &mut e, f);
                                         c.contacts += 1;
-                                        entry_block(p as usize == i, f)
+                                        entry(p as usize == i, f.force_p, f.torque_p, f.torque_q)
                                     };
                                 }
                             }
@@ -268,7 +268,7 @@ impl<T: TangentialLaw> Dem<T> {
                                 Ok((p, _, f)) => {
                                     tally(&mut c, &mut e, &f);
                                     c.contacts += 1;
-                                    entry(p == i, &f)
+                                    entry(p == i, f.force_p, f.torque_p, f.torque_q)
                                 }
                                 Err(released) => {
                                     e.slip += released;
@@ -461,38 +461,21 @@ impl<T: TangentialLaw> Dem<T> {
     }
 }
 
-/// The entry of a pair whose owner is p (`owner_is_p`) or q.
+/// The entry of a pair whose owner is p (`owner_is_p`) or q, from the force on p and the two
+/// torques (a `PairForces`' or a window's `SphereForces`').
 #[inline]
-fn entry(owner_is_p: bool, f: &PairForces) -> Entry {
+fn entry(owner_is_p: bool, force_p: Vec3, torque_p: Vec3, torque_q: Vec3) -> Entry {
     if owner_is_p {
         Entry {
-            force_i: f.force_p,
-            torque_i: f.torque_p,
-            torque_j: f.torque_q,
+            force_i: force_p,
+            torque_i: torque_p,
+            torque_j: torque_q,
         }
     } else {
         Entry {
-            force_i: -f.force_p,
-            torque_i: f.torque_q,
-            torque_j: f.torque_p,
-        }
-    }
-}
-
-/// [`entry`] of a window entry's outputs.
-#[inline]
-fn entry_block(owner_is_p: bool, f: &SphereForces) -> Entry {
-    if owner_is_p {
-        Entry {
-            force_i: f.force_p,
-            torque_i: f.torque_p,
-            torque_j: f.torque_q,
-        }
-    } else {
-        Entry {
-            force_i: -f.force_p,
-            torque_i: f.torque_q,
-            torque_j: f.torque_p,
+            force_i: -force_p,
+            torque_i: torque_q,
+            torque_j: torque_p,
         }
     }
 }
