@@ -36,7 +36,7 @@
 
 use crate::bem::{EllipticContact, EllipticSteadySolver, SolverOptions};
 use crate::error::RefError;
-use crate::steady3d::{default_grid, table_number, table_rows};
+use crate::steady3d::{default_grid, extrapolate, table_number, table_rows};
 
 /// Axis ratios `a/b` of the map.
 pub const MAP_RATIOS: [f64; 9] = [0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0];
@@ -109,7 +109,7 @@ pub fn solve_map_case(ab: f64, nu: f64, grid: usize) -> Result<Vec<MapPoint>, Re
                     ab,
                     nu,
                     creepage: [xi, eta, phi],
-                    load: [2.0 * q.0 - p.0, 2.0 * q.1 - p.1, 2.0 * q.2 - p.2],
+                    load: extrapolate(q, p),
                     fine: [q.0, q.1, q.2],
                 });
             }
@@ -391,7 +391,7 @@ pub fn solve_validation(k: usize) -> Result<Vec<MapPoint>, RefError> {
             ab,
             nu,
             creepage: c,
-            load: [2.0 * q.0 - p.0, 2.0 * q.1 - p.1, 2.0 * q.2 - p.2],
+            load: extrapolate(q, p),
             fine: [q.0, q.1, q.2],
         });
     }

@@ -43,7 +43,7 @@ fn map_table_is_complete_within_friction_and_reproducible() {
         s32.reset();
         let a = s16.solve_normalised(cr[0], cr[1], cr[2]).unwrap();
         let b = s32.solve_normalised(cr[0], cr[1], cr[2]).unwrap();
-        let live = [2.0 * b.0 - a.0, 2.0 * b.1 - a.1, 2.0 * b.2 - a.2];
+        let live = creep_reference::steady3d::extrapolate(b, a);
         let q = t
             .iter()
             .find(|q| q.ab == 1.0 && q.nu == 0.3 && q.creepage == cr)
