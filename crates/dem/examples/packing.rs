@@ -242,6 +242,8 @@ fn threads_cpu_and_delay() -> Option<(f64, f64)> {
 
 /// What one timing measured.
 struct Timing {
+    /// Digest of the final state's bits.
+    digest: u64,
     /// Mean CPU seconds per step (the thread's for one thread, the process's for more; the
     /// wall clock where the system does not report it).
     cpu: f64,
@@ -297,7 +299,20 @@ fn time<T: TangentialLaw>(p: &Packing, steps: usize, threads: usize) -> Res<Timi
         };
         let n = d.len() as f64;
         let counts = d.counts();
+        // A digest of the final state (FNV-1a of the positions', velocities' and forces' bits,
+        // in the engine's order):
+        // two builds that step to the same bits print the same digest.
+        let mut digest: u64 = 0xcbf2_9ce4_8422_2325;
+        for i in 0..d.len() {
+            let (x, v, f) = (d.positions()[i], d.velocities()[i], d.particle_forces()[i]);
+            for v in [x, v, f] {
+                for c in [v.x, v.y, v.z] {
+                    digest = (digest ^ c.to_bits()).wrapping_mul(0x0100_0000_01b3);
+                }
+            }
+        }
         Ok(Timing {
+            digest,
             cpu: cpu / steps as f64,
             wall: wall / steps as f64,
             neighbours: counts.neighbours as f64 / n,
@@ -377,7 +392,7 @@ fn main() -> Res<()> {
                     };
                     let n = p.particles.len() as f64;
                     println!(
-                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0} rebuilds {} median-step {:.4e} s {:.4e} particle-steps/s run-delay {:.1} us/step",
+                        "round {round} dem-{tier} {:.4e} s/step {:.4e} particle-steps/s wall {:.4e} s/step {:.4e} particle-steps/s particles {n} threads {th} neighbours/particle {:.3} contacts/particle {:.3} bytes/particle {:.0} rebuilds {} median-step {:.4e} s {:.4e} particle-steps/s run-delay {:.1} us/step state {:016x}",
                         t.cpu,
                         n / t.cpu,
                         t.wall,
@@ -388,7 +403,8 @@ fn main() -> Res<()> {
                         t.rebuilds,
                         t.step_median,
                         n / t.step_median,
-                        t.run_delay * 1e6
+                        t.run_delay * 1e6,
+                        t.digest
                     );
                     let v = if th > 1 { n / t.wall } else { n / t.cpu };
                     let key = (tier, k, th);

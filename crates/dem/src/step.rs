@@ -255,21 +255,22 @@ impl<T: TangentialLaw> Dem<T> {
         outs: &mut WindowOut,
     ) {
         let base = self.nl_start[w0] as usize;
-        outs.f.clear();
+        // Every entry is written below (a touching pair's outputs, or `APART` and the energy
+        // its history released): the buffers are only sized, not cleared.
         outs.f.resize(hist.len(), SphereForces::default());
-        outs.pq.clear();
         outs.pq.resize(hist.len(), [APART, 0]);
         let mut pend = Pending::default();
         for i in w0..w1 {
             let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
-            for k in a..b {
-                let j = self.nl_j[k] as usize;
+            let (xi, ri, id_i) = (self.x[i], self.r[i], self.id[i]);
+            for (k, &j) in (a..b).zip(&self.nl_j[a..b]) {
+                let j = j as usize;
                 let o = k - base;
-                let d = self.grid.min_image(self.x[j] - self.x[i]);
-                let rs = self.r[i] + self.r[j];
+                let d = self.grid.min_image(self.x[j] - xi);
+                let rs = ri + self.r[j];
                 let h = &mut hist[o];
                 if d.dot(d) < rs * rs && !h.is_virgin() {
-                    let (p, q, dpq) = if self.id[i] < self.id[j] {
+                    let (p, q, dpq) = if id_i < self.id[j] {
                         (i, j, d)
                     } else {
                         (j, i, -d)

@@ -67,9 +67,11 @@ pub struct SphereLanes {
 }
 
 impl SphereLanes {
-    /// Sets lane `l` (< [`LANES`]) to the pair `s`.
+    /// Sets lane `l` (< [`LANES`]; panics otherwise) to the pair `s`.
     #[inline(always)]
     pub fn set(&mut self, l: usize, s: &SpherePair) {
+        // One check here instead of one per store below.
+        assert!(l < LANES, "lane {l} of {LANES}");
         let put = |a: &mut [[f64; LANES]; 3], v: Vec3| {
             a[0][l] = v.x;
             a[1][l] = v.y;
