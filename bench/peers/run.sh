@@ -7,7 +7,8 @@
 #   bench/peers/run.sh                 # installs the peers if missing, runs, writes RESULTS.md
 #   ROUNDS=7 PEER_STEPS=5000 bench/peers/run.sh
 #
-# Environment: N_SIDE (16: 16^3 spheres; 8 for a quick smoke run), ROUNDS (5), PEER_STEPS (2000 steps per peer run), OUR_STEPS (400 steps per
+# Environment: N_SIDE (16: 16^3 spheres; 8 for a quick smoke run), NATIVE (0; 1: ours built
+# with -C target-cpu=native), ROUNDS (5), PEER_STEPS (2000 steps per peer run), OUR_STEPS (400 steps per
 # variant and round), WORK (target/peers: logs, the exported packing), RESULTS
 # (bench/peers/RESULTS.md).
 set -euo pipefail
@@ -101,10 +102,21 @@ LMP_HELP="$(lmp -h 2>&1 || true)"
 grep -qw granular <<<"$LMP_HELP" \
   || die "this LAMMPS has no pair_style granular (GRANULAR package)"
 
-# 2. This project, release build, single thread (no `parallel` feature).
-echo "== cargo build --release -p creep-cli"
-(cd "$ROOT" && cargo build --release -p creep-cli)
-CREEP="$ROOT/target/release/creep"
+# 2. This project, release build, single thread (no `parallel` feature). NATIVE=1: built for
+#    this machine's CPU (`-C target-cpu=native`, in target/native so that the ordinary build
+#    stays), as HPC builds of the peers usually are (Debian's are generic x86-64): the cheap
+#    tier's block kernel then runs its four lanes in one AVX register instead of two SSE2 ones.
+#    Same bits either way (no fused multiply-add is formed without fast-math).
+if [[ "${NATIVE:-0}" == 1 ]]; then
+  echo "== RUSTFLAGS='-C target-cpu=native' cargo build --release -p creep-cli (target/native)"
+  (cd "$ROOT" && RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$ROOT/target/native" \
+    cargo build --release -p creep-cli)
+  CREEP="$ROOT/target/native/release/creep"
+else
+  echo "== cargo build --release -p creep-cli"
+  (cd "$ROOT" && cargo build --release -p creep-cli)
+  CREEP="$ROOT/target/release/creep"
+fi
 
 # 3. Compact once, export the packing, then ROUNDS rounds of ours, each followed by one run
 #    of every peer (interleaved: the machine's load drifts hit all alike).
@@ -143,6 +155,9 @@ sci() { awk -v a="$1" 'BEGIN { printf "%.3e", a }'; }
 LMP_VERSION="$(head -1 "$WORK/logs/lammps-sds-round1.log" | sed 's/^LAMMPS (\(.*\))$/\1/') (Debian $(dpkg-query -W -f='${Version}' lammps 2>/dev/null || echo '?'))"
 LIG_VERSION="$(grep -m1 -o 'LIGGGHTS-PUBLIC [0-9.]*' "$WORK/logs/liggghts-cdt-round1.log" || echo '?') (Debian $(dpkg-query -W -f='${Version}' liggghts 2>/dev/null || echo '?'))"
 OUR_VERSION="creep-friction $(cd "$ROOT" && git rev-parse --short HEAD 2>/dev/null || echo '?')$(cd "$ROOT" && git diff --quiet HEAD -- crates 2>/dev/null || echo '+local changes'), rapier3d 0.36"
+if [[ "${NATIVE:-0}" == 1 ]]; then
+  OUR_VERSION="$OUR_VERSION, built with -C target-cpu=native"
+fi
 CPU="$(lscpu 2>/dev/null | awk -F: '/Model name/ { gsub(/^ +/, "", $2); print $2; exit }')"
 
 LAMMPS_ROUNDS=$(peer_ps lammps sds)
