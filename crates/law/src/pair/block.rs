@@ -235,6 +235,18 @@ impl F {
 }
 
 impl M {
+    /// Whether some lane is set.
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.0.iter().any(|&m| bits(m) != 0)
+    }
+    /// The lanes of `self` not set in `o`.
+    #[inline(always)]
+    fn and_not(self, o: M) -> M {
+        M(std::array::from_fn(|l| {
+            f64::from_bits(bits(self.0[l]) & !bits(o.0[l]))
+        }))
+    }
     #[inline(always)]
     fn and(self, o: M) -> M {
         M(std::array::from_fn(|l| {
@@ -387,13 +399,22 @@ pub fn cheap_sphere_block(
     let l2 = t.dot(t);
     // `renormalize`: one Newton step near 1, else `try_normalize`.
     let near = lanes!(l => (l2.0[l] - 1.0).abs()).lt(F::splat(1e-8));
-    let len = l2.sqrt();
-    ok = ok.and(M(std::array::from_fn(|l| {
-        f64::from_bits(
-            bits(near.0[l]) | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
-        )
-    })));
-    let t1 = near.sel_v(t * (F::splat(1.5) - l2 * 0.5), t * (F::splat(1.0) / len));
+    let newton = t * (F::splat(1.5) - l2 * 0.5);
+    // The square root and the division only where some lane needs them (every lane near 1 is
+    // the rule): the selects below give the same bits either way.
+    let far = M(std::array::from_fn(|l| f64::from_bits(!bits(near.0[l])))).any();
+    let t1 = if far {
+        let len = l2.sqrt();
+        ok = ok.and(M(std::array::from_fn(|l| {
+            f64::from_bits(
+                bits(near.0[l])
+                    | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
+            )
+        })));
+        near.sel_v(newton, t * (F::splat(1.0) / len))
+    } else {
+        newton
+    };
     let t2 = n.cross(t1);
 
     // Normal force: Hertz + Tsuji, never attractive.
@@ -470,7 +491,13 @@ pub fn cheap_sphere_block(
     let den_s = gc * q_abs;
     let num = below.sel(num_b, num_s);
     let den = below.sel(den_b, den_s);
-    let f = (num * k).lt(den).sel(num / den, F::splat(1.0) / k);
+    let uncapped = (num * k).lt(den);
+    // `1/k` only where a creeping lane is capped by it (the others' `f` is not used).
+    let f = if creep_in.and_not(uncapped).any() {
+        uncapped.sel(num / den, F::splat(1.0) / k)
+    } else {
+        num / den
+    };
     let creep_use = creep_in.and(f.gt(zero)).and(f.finite());
     let fc = creep_use.sel(f, zero);
     let (cx, cy) = (creep_use.sel(qx * fc, zero), creep_use.sel(qy * fc, zero));
@@ -479,12 +506,19 @@ pub fn cheap_sphere_block(
     let trial_y = qy + (duy - cy) * k;
     let tr2 = trial_x * trial_x + trial_y * trial_y;
     let slide = tr2.gt(mu_p * mu_p);
-    let scale = mu_p / tr2.sqrt();
-    let (sx, sy) = (trial_x * scale, trial_y * scale);
-    let slip_s = (sx * (trial_x - sx) + sy * (trial_y - sy)) / k;
-    let q_x = slide.sel(sx, trial_x);
-    let q_y = slide.sel(sy, trial_y);
-    let slip = slide.sel(slip_s, zero);
+    // The rescale onto the Coulomb limit only where some lane slides.
+    let (q_x, q_y, slip) = if slide.any() {
+        let scale = mu_p / tr2.sqrt();
+        let (sx, sy) = (trial_x * scale, trial_y * scale);
+        let slip_s = (sx * (trial_x - sx) + sy * (trial_y - sy)) / k;
+        (
+            slide.sel(sx, trial_x),
+            slide.sel(sy, trial_y),
+            slide.sel(slip_s, zero),
+        )
+    } else {
+        (trial_x, trial_y, zero)
+    };
 
     // Outputs.
     let q_world = t1 * q_x + t2 * q_y;
