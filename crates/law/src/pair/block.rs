@@ -407,8 +407,7 @@ pub fn cheap_sphere_block(
         let len = l2.sqrt();
         ok = ok.and(M(std::array::from_fn(|l| {
             f64::from_bits(
-                bits(near.0[l])
-                    | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
+                bits(near.0[l]) | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
             )
         })));
         near.sel_v(newton, t * (F::splat(1.0) / len))
