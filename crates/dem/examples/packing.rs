@@ -28,7 +28,8 @@
 //! leaves the rebuild steps out when most steps have none: the tiled packings' seams, as
 //! dense as a wall, push apart at first and rebuild the list often), the time per step the
 //! process's threads waited for a CPU (`run-delay`, from schedstat: what other jobs took; a
-//! wall-clock timing on more than one thread means something only where it is near 0); and
+//! wall-clock timing on more than one thread means something only where it is near 0), a
+//! digest of the final state's bits (`state`: two builds that step alike print the same); and
 //! the medians over the rounds (CPU time; wall clock for more than one thread).
 
 use std::collections::HashMap;

@@ -8,8 +8,12 @@
 //! correctly rounded lane by lane; no fused multiply-add is introduced). The branches of the
 //! one-contact kernel become masks: both sides are evaluated and each lane keeps its own
 //! (the Coulomb limit, the creep term, the spin of the basis, the renormalisation of the
-//! carried tangent); the cube root of the creep term and the sine of a spin beyond 1e-3 rad
-//! per step are taken lane by lane with the one-contact kernel's functions. The cases the
+//! carried tangent), except that the rare sides with a square root or a division (the
+//! rescale onto the Coulomb limit, the creep term's cap at `1/k`, the full renormalisation
+//! of a tangent whose length is not within 1e-8 of 1) are evaluated only when some lane of
+//! the block takes them; the cube root of the creep term and the sine of a spin beyond 1e-3 rad
+//! per step are taken lane by lane with the one-contact kernel's functions. Built for a CPU
+//! with AVX (`-C target-cpu=native`), the four lanes fit one register: the same bits. The cases the
 //! block does not take, a lane's rare branches (a virgin or opening contact, a normal that
 //! turned beyond 45 degrees, a carried tangent of length zero, a non-finite value), leave
 //! that lane untouched and clear its bit of the returned mask: the host runs the one-contact
