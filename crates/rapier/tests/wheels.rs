@@ -30,10 +30,10 @@ fn a_cylinder_on_a_box_is_a_wheel() {
             Some(rubber),
         );
         assert!(matches!(
-            world.hooks.set_wheel_crown(wheel, Some(-1.0)),
+            world.hooks_mut().set_wheel_crown(wheel, Some(-1.0)),
             Err(PluginError::Setting { .. })
         ));
-        world.hooks.set_wheel_crown(wheel, crown).unwrap();
+        world.hooks_mut().set_wheel_crown(wheel, crown).unwrap();
         world.physics.bodies[body].add_torque(Vector::new(0.0, 0.0, -0.005), true);
         let mut creep_steps = 0;
         for _ in 0..60 {
@@ -160,7 +160,7 @@ fn a_wheel_sliding_sideways_keeps_its_contact_on_a_flat_floor() {
             let f = world.insert(floor_body, floor_shape.friction(0.9), Some(rubber));
             (world.insert(wheel_body, wheel_shape, Some(rubber)), f)
         };
-        world.hooks.set_wheel_crown(wheel, Some(0.2)).unwrap();
+        world.hooks_mut().set_wheel_crown(wheel, Some(0.2)).unwrap();
         let mg = world.physics.bodies[body].mass() * 9.81;
         world.physics.bodies[body].add_force(Vector::new(0.0, 0.0, 1.5 * 0.9 * mg), true);
         let (mut lost, mut caught) = (0, true);

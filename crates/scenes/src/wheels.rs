@@ -151,7 +151,7 @@ pub(crate) fn contact_forces(
     for m in pair.manifolds() {
         POINTS.with(|c| c.set(c.get() + m.points.len()));
         let n = v3(m.data.normal);
-        let (t1, t2) = creep_rapier::solver_tangents(n);
+        let (t1, t2) = creep_rapier::diagnostics::solver_tangents(n);
         // Only the points the solver used this step (a wheel's manifold is solved as one
         // patch contact; its other points keep no impulse of this step).
         for sc in &m.data.solver_contacts {
@@ -231,7 +231,7 @@ fn build(
         ColliderBuilder::cylinder(0.5 * params.width as f32, r).friction(mu),
         Some(mat),
     );
-    w.hooks.set_wheel_crown(wheel_co, params.crown)?;
+    w.hooks_mut().set_wheel_crown(wheel_co, params.crown)?;
     Ok(WheelWorld {
         w,
         wheel,
