@@ -6,10 +6,10 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 
 use bevy::prelude::*;
-use creep_rapier::ContactRecord;
+use creep_rapier::diagnostics::{ContactKey, ContactRecord};
 use creep_rapier::{
-    CompliantCounts, CompliantRegime, CompliantSettings, ContactKey, CreepHooks, CreepPipeline,
-    CreepSettings, MaterialRegistry, PluginError, StepCounts,
+    CompliantCounts, CompliantRegime, CompliantSettings, CreepHooks, CreepPipeline, CreepSettings,
+    MaterialRegistry, PluginError, StepCounts,
 };
 use rapier3d::prelude::{ColliderHandle, ColliderSet};
 

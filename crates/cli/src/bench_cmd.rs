@@ -399,7 +399,7 @@ fn export_packing(s: &Specimen, dir: &Path) -> Result<Exported, Box<dyn std::err
     // the peers' rolling springs are set to.
     let mut kt_sum = 0.0;
     let (mut ball_ball, mut ball_wall) = (0usize, 0usize);
-    for (&(c1, c2), rec) in s.world().compliant.contacts() {
+    for (&(c1, c2), rec) in s.world().compliant().contacts() {
         // Force on p (collider 1) from q.
         let f = rec.tangential_force - rec.normal * rec.normal_force;
         let f = [f.x, f.y, f.z];

@@ -11,7 +11,8 @@
 //! `cargo run --release -p creep-rapier --example contact_state`
 
 use creep_law::Vec3;
-use creep_rapier::{prelude::*, solver_tangents};
+use creep_rapier::diagnostics::solver_tangents;
+use creep_rapier::prelude::*;
 use rapier3d::prelude::*;
 
 const THETA: f64 = 20.0 * std::f64::consts::PI / 180.0;
@@ -72,7 +73,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             counts.creep,
             counts.creep_power
         );
-        for (key, rec) in world.hooks.records() {
+        for (key, rec) in world.hooks().records() {
             let Some(&(body, name)) = balls
                 .iter()
                 .find(|(b, _)| rec.bodies.1 == Some(*b) || rec.bodies.0 == Some(*b))

@@ -68,7 +68,7 @@ fn run(rubber: Material, share: f64, fidelity: Fidelity) -> Result<(f64, f64, f6
             let v = f64::from(b.linvel().x);
             let u = v + f64::from(b.angvel().z) * f64::from(b.translation().y);
             (xi, n) = (xi - u / (v - 0.5 * u), n + 1.0);
-            for (_, rec) in world.hooks.records() {
+            for (_, rec) in world.hooks().records() {
                 (q, p) = (q + rec.q_used.length(), p + rec.p);
             }
         }

@@ -48,7 +48,7 @@ fn run(torque: f64, fidelity: Fidelity) -> Result<(f64, f64, f64), PluginError> 
         if i >= STEPS / 2 {
             a_in += turned(r_in, *world.physics.bodies[input].rotation());
             a_out -= turned(r_out, *world.physics.bodies[output].rotation());
-            for (_, rec) in world.hooks.records() {
+            for (_, rec) in world.hooks().records() {
                 (q, p, n) = (q + rec.q_used.length(), p + rec.p, n + 1.0);
             }
         }

@@ -59,7 +59,7 @@ fn run(fidelity: Fidelity) -> Result<Run, PluginError> {
             (x0, angle) = (f64::from(b.translation().x), 0.0);
         } else if i > STEPS / 2 {
             angle += turned(rot, *b.rotation(), Vector::Z);
-            for (_, rec) in world.hooks.records() {
+            for (_, rec) in world.hooks().records() {
                 (q, p, n) = (q + rec.q_used.length(), p + rec.p, n + 1.0);
             }
         }

@@ -109,14 +109,11 @@
 #![forbid(unsafe_code)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-mod ball_hook;
 pub mod compliant;
 mod convert;
-mod creep3d;
 mod error;
 mod gap;
 mod hooks;
-mod pair_cache;
 mod pipeline;
 mod registry;
 mod rigid;
@@ -124,8 +121,6 @@ mod rolling;
 mod shape;
 mod store;
 mod warning;
-mod wheel;
-mod wheel_hook;
 mod world;
 
 pub use compliant::{
@@ -133,17 +128,22 @@ pub use compliant::{
 };
 pub use error::PluginError;
 pub use pipeline::{CreepPipeline, RapierStep};
-pub use registry::{
-    CreepMaterial, Fidelity, MaterialRegistry, RollingResistance, rigid_surface_of, surface_of,
-};
+pub use registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
 pub use rigid::{
     CreepHooks, CreepSettings, ROLLING_PGS_ITERATIONS, SolverPreset, StepCounts, check_parameters,
-    configure_parameters, configure_parameters_for, solver_tangents,
+    configure_parameters, configure_parameters_for,
 };
 pub use shape::{FlatShape, SUPPORTED_SHAPES, SupportedShape, supported_shape};
-pub use store::{ContactKey, ContactRecord, ContactStore, KeyHasher};
 pub use warning::{CreepWarning, ROTATION_GAP_TURN};
 pub use world::{CreepWorld, clone_physics};
+
+/// What the plugin keeps per contact and the basis Rapier's friction impulses are in: for
+/// scenes, tests and tools that read the rigid regime's state
+/// ([`CreepHooks::records`], [`CreepHooks::record`]) or Rapier's impulses directly.
+pub mod diagnostics {
+    pub use crate::convert::solver_tangents;
+    pub use crate::store::{ContactKey, ContactRecord};
+}
 
 /// What a user of the plugin needs, in one `use creep_rapier::prelude::*;` (with
 /// `rapier3d::prelude::*` for Rapier's own types).

@@ -2,8 +2,8 @@
 //! `user_data`, which bevy_rapier uses for its `Entity`), so the same core serves plain Rapier
 //! and Bevy.
 
-use creep_law::{Material, Surface};
-use rapier3d::prelude::{Collider, ColliderHandle};
+use creep_law::Material;
+use rapier3d::prelude::ColliderHandle;
 
 /// The fidelity a collider (or pair) asks for.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -206,18 +206,14 @@ pub(crate) fn check_friction(
     }
 }
 
-/// The contact surface a collider presents to the compliant regime (a ball a sphere, a cuboid
-/// or half-space a plane), or `None`: [`crate::supported_shape`]'s
-/// [`crate::SupportedShape::compliant_surface`].
-pub fn surface_of(collider: &Collider) -> Option<Surface> {
-    crate::shape::supported_shape(collider).and_then(|s| s.compliant_surface())
-}
-
-/// The contact surface a collider presents to the rigid regime's Hertz contact (a ball a
-/// sphere; a cuboid, half-space, triangle mesh, heightfield or convex polyhedron a plane), or
-/// `None` (a cylinder, whose wheel contact is its own, or an unsupported shape):
-/// [`crate::supported_shape`]'s [`crate::SupportedShape::rigid_surface`]. To ask whether
-/// the plugin models a collider at all (wheels included), use [`crate::supported_shape`].
-pub fn rigid_surface_of(collider: &Collider) -> Option<Surface> {
-    crate::shape::supported_shape(collider).and_then(|s| s.rigid_surface())
+/// The lower of two fidelities (Coulomb < Auto < Creep), except that a `Compliant` collider
+/// makes the pair compliant (it takes part in no Rapier contact solve).
+pub(crate) fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
+    use Fidelity::*;
+    match (a, b) {
+        (Coulomb, _) | (_, Coulomb) => Coulomb,
+        (Auto, _) | (_, Auto) => Auto,
+        (Compliant, _) | (_, Compliant) => Compliant,
+        _ => Creep,
+    }
 }

@@ -1,14 +1,15 @@
 //! Headless stepping in one value: a Rapier `PhysicsWorld` and its [`CreepPipeline`], stepped
 //! together. Rapier stays fully visible (`world.physics` is the plain `PhysicsWorld`); a user
-//! with their own loop uses a [`CreepPipeline`] directly. The pipeline's fields (`hooks`,
-//! `compliant`) read through a `CreepWorld` (`world.hooks.counts()`).
+//! with their own loop uses a [`CreepPipeline`] directly. The rigid hooks, the registry and the
+//! compliant regime read through [`CreepWorld::hooks`], [`CreepWorld::registry`] and
+//! [`CreepWorld::compliant`] (`world.hooks().counts()`).
 
 use rapier3d::prelude::*;
 
-use crate::compliant::CompliantSettings;
+use crate::compliant::{CompliantRegime, CompliantSettings};
 use crate::error::PluginError;
 use crate::pipeline::CreepPipeline;
-use crate::registry::CreepMaterial;
+use crate::registry::{CreepMaterial, MaterialRegistry};
 use crate::rigid::{CreepHooks, CreepSettings, StepCounts, configure_parameters_for};
 
 /// A Rapier world stepped with creep-friction.
@@ -19,20 +20,31 @@ pub struct CreepWorld {
     pub pipeline: CreepPipeline,
 }
 
-impl std::ops::Deref for CreepWorld {
-    type Target = CreepPipeline;
-    fn deref(&self) -> &CreepPipeline {
-        &self.pipeline
-    }
-}
-
-impl std::ops::DerefMut for CreepWorld {
-    fn deref_mut(&mut self) -> &mut CreepPipeline {
-        &mut self.pipeline
-    }
-}
-
 impl CreepWorld {
+    /// The rigid regime's hooks (records, counts, settings, wheel crowns).
+    pub fn hooks(&self) -> &CreepHooks {
+        &self.pipeline.hooks
+    }
+    /// The rigid regime's hooks, mutably.
+    pub fn hooks_mut(&mut self) -> &mut CreepHooks {
+        &mut self.pipeline.hooks
+    }
+    /// The material registry.
+    pub fn registry(&self) -> &MaterialRegistry {
+        self.pipeline.registry()
+    }
+    /// The material registry, to add or remove colliders.
+    pub fn registry_mut(&mut self) -> &mut MaterialRegistry {
+        self.pipeline.registry_mut()
+    }
+    /// The compliant regime (its settings, counts and energy).
+    pub fn compliant(&self) -> &CompliantRegime {
+        &self.pipeline.compliant
+    }
+    /// The compliant regime, mutably.
+    pub fn compliant_mut(&mut self) -> &mut CompliantRegime {
+        &mut self.pipeline.compliant
+    }
     /// An empty world with gravity `(0, -9.81, 0)` m/s^2, time step `dt` \[s\], and the
     /// integration parameters the plugin needs with those of `settings.solver`
     /// ([`crate::configure_parameters_for`]: by default one solver substep, what rolling balls
@@ -76,7 +88,7 @@ impl CreepWorld {
         }
         let (b, c) = self.physics.insert(body, collider);
         if let Some(m) = material {
-            self.hooks.registry_mut().insert(c, m);
+            self.pipeline.hooks.registry_mut().insert(c, m);
         }
         (b, c)
     }
@@ -90,7 +102,7 @@ impl CreepWorld {
             .map(|rb| rb.colliders().to_vec())
             .unwrap_or_default();
         for c in colliders {
-            self.hooks.registry_mut().remove(c);
+            self.pipeline.hooks.registry_mut().remove(c);
         }
         let w = &mut self.physics;
         w.bodies.remove(

@@ -170,7 +170,7 @@ fn elastic_normal_impact_of_two_spheres() {
     // No contact can start unseen: the step's largest displacement is far below the
     // prediction distance that the broad phase adds.
     let prediction = f64::from(w.physics.integration_parameters.prediction_distance());
-    assert!(2.0 * w.compliant.counts().max_step_displacement < prediction);
+    assert!(2.0 * w.compliant().counts().max_step_displacement < prediction);
     let va = f64::from(w.physics.bodies[a].linvel().x);
     let vb = f64::from(w.physics.bodies[b].linvel().x);
     println!(
@@ -202,14 +202,14 @@ fn run(w: &mut CreepWorld, max_steps: usize) -> Impact {
         let before = velocities(w);
         w.step().expect("step");
         out.steps += 1;
-        let en = w.compliant.energy();
+        let en = w.compliant().energy();
         let total = kinetic_between(&before, &velocities(w)) + en.elastic() + diss_before;
         diss_before = en.dissipated();
         out.energy_error = out.energy_error.max((total - e0).abs() / e0);
-        if w.compliant.counts().contacts > 0 {
+        if w.compliant().counts().contacts > 0 {
             touched = true;
             out.duration += dt;
-            for (_, k) in w.compliant.contacts() {
+            for (_, k) in w.compliant().contacts() {
                 out.peak_force = out.peak_force.max(k.normal_force);
             }
         } else if touched {
@@ -296,7 +296,7 @@ fn restitution_sweep() {
         let (mut w, h, _) = sphere_on_wall(&al, r, v, 0.0, e, 0.3, 500.0);
         let imp = run(&mut w, 20_000);
         let got = f64::from(w.physics.bodies[h].linvel().y) / v;
-        let en = w.compliant.energy();
+        let en = w.compliant().energy();
         let ke0 = 0.5 * f64::from(w.physics.bodies[h].mass()) * v * v;
         let balance = (kinetic(&w) + en.dissipated()) / ke0 - 1.0;
         println!(
@@ -389,7 +389,7 @@ fn oblique_impact_gross_sliding_and_sticking() {
         let jt = mu * 2.0 * m * v_n;
         let vt_expect = v_t - jt / m;
         let om_expect = -jt * r / (0.4 * m * r * r);
-        let en = w.compliant.energy();
+        let en = w.compliant().energy();
         println!(
             "oblique, sliding: v_t/v_n = {ratio}: v_t' = {vt:.5} (Coulomb {vt_expect:.5}, {:+.3} %), \
              w' = {om:.3} rad/s (Coulomb {om_expect:.3}, {:+.3} %), tangential restitution \
@@ -461,14 +461,14 @@ fn rayleigh_time_step_is_checked() {
             Err(e) => panic!("unexpected error {e}"),
         }
         // As a warning instead.
-        w.compliant
+        w.compliant_mut()
             .set_settings(CompliantSettings {
                 rayleigh_check: RayleighCheck::Warn,
                 ..CompliantSettings::default()
             })
             .unwrap();
         w.step().unwrap();
-        assert_eq!(w.compliant.counts().rayleigh_exceeded, !ok);
+        assert_eq!(w.compliant().counts().rayleigh_exceeded, !ok);
     }
 }
 
@@ -500,7 +500,7 @@ fn user_forces_are_restored_exactly() {
     let mut touched = false;
     for _ in 0..2000 {
         w.step().unwrap();
-        touched |= w.compliant.counts().contacts > 0;
+        touched |= w.compliant().counts().contacts > 0;
         assert_eq!(w.physics.bodies[h].user_force(), f);
         assert_eq!(w.physics.bodies[h].user_torque(), tq);
     }
@@ -523,7 +523,7 @@ fn zero_restitution_is_a_typed_error() {
     assert!(matches!(err, Some(PluginError::Restitution(_))), "{err:?}");
     // Refused at the first step, before any contact state moved.
     assert_eq!(steps, 1);
-    assert_eq!(w.compliant.contacts().count(), 0);
+    assert_eq!(w.compliant().contacts().count(), 0);
 }
 
 /// f32 positions: the per-step displacement `v dt` against the f32 spacing (ulp) of the
@@ -578,7 +578,7 @@ fn driven_rolling_creeps_at_kalkers_rate() {
     for (s, creep) in [(0.3, true), (0.7, true), (0.7, false)] {
         let mut w = world(0.1 * t_r);
         w.physics.gravity = Vector::new(0.0, -9.81, 0.0);
-        w.compliant
+        w.compliant_mut()
             .set_settings(CompliantSettings {
                 creep,
                 ..CompliantSettings::default()
@@ -608,7 +608,7 @@ fn driven_rolling_creeps_at_kalkers_rate() {
                 let rb = &w.physics.bodies[h];
                 let (vx, wz) = (f64::from(rb.linvel().x), f64::from(rb.angvel().z));
                 let c = w
-                    .compliant
+                    .compliant()
                     .contacts()
                     .next()
                     .map(|(_, c)| c.overlap)
@@ -691,7 +691,7 @@ fn forces_equal_a_direct_kernel_call() {
     for _ in 0..20 {
         w.step().unwrap();
     }
-    let before: Vec<_> = w.compliant.contacts().map(|(k, c)| (*k, *c)).collect();
+    let before: Vec<_> = w.compliant().contacts().map(|(k, c)| (*k, *c)).collect();
     assert_eq!(before.len(), 2, "both contacts closed");
     let body = |w: &CreepWorld, c: ColliderHandle| {
         let co = &w.physics.colliders[c];
@@ -738,7 +738,7 @@ fn forces_equal_a_direct_kernel_call() {
     // velocities at the start of the step, as the direct calls above).
     w.step().unwrap();
     let after: std::collections::HashMap<_, _> =
-        w.compliant.contacts().map(|(k, c)| (*k, *c)).collect();
+        w.compliant().contacts().map(|(k, c)| (*k, *c)).collect();
     for (key, f, h) in direct {
         let rec = after[&key];
         let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;

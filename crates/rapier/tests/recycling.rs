@@ -54,7 +54,7 @@ fn a_pair_whose_hooks_go_off_keeps_no_stale_target() {
     }
     // Rolling under a load: the hook writes the creep target.
     assert!(max_target(&w) > 0.0, "{}", max_target(&w));
-    assert!(w.hooks.live_contacts() > 0);
+    assert!(w.hooks().live_contacts() > 0);
     // The ball stops (and is no longer pushed): below the activation speed, both sides quiet.
     let rb = w.physics.bodies.get_mut(ball).unwrap();
     rb.reset_forces(true);
@@ -82,7 +82,7 @@ fn a_pair_whose_hooks_go_off_keeps_no_stale_target() {
                 .contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
         );
     }
-    assert_eq!(w.hooks.live_contacts(), 0);
+    assert_eq!(w.hooks().live_contacts(), 0);
     // Set rolling (and pushed) again: the hook comes back on and writes targets again.
     let rb = w.physics.bodies.get_mut(ball).unwrap();
     rb.add_force(Vector::new(PUSH, 0.0, 0.0), true);
@@ -92,7 +92,7 @@ fn a_pair_whose_hooks_go_off_keeps_no_stale_target() {
         w.step().unwrap();
     }
     assert!(max_target(&w) > 0.0);
-    assert!(w.hooks.live_contacts() > 0);
+    assert!(w.hooks().live_contacts() > 0);
 }
 
 #[test]
@@ -103,7 +103,7 @@ fn records_follow_their_manifolds_across_steps() {
     let mut last = None;
     for step in 0..30 {
         w.step().unwrap();
-        let recs = w.hooks.records();
+        let recs = w.hooks().records();
         assert_eq!(recs.len(), 1, "step {step}");
         let (k, r) = recs[0];
         assert!(k.collider1 == co || k.collider2 == co);
@@ -111,7 +111,7 @@ fn records_follow_their_manifolds_across_steps() {
         if let Some(k0) = last {
             assert_eq!(k, k0, "the contact's identity is stable");
         }
-        assert_eq!(w.hooks.record(&k), Some(r));
+        assert_eq!(w.hooks().record(&k), Some(r));
         last = Some(k);
     }
 }

@@ -41,7 +41,7 @@ fn anchor_drift_correction_stops_the_sinking() {
         };
         let (mut w, ball) = incline(1.0 / 60.0, 20f64.to_radians(), Fidelity::Coulomb);
         w.physics.integration_parameters.num_solver_iterations = substeps;
-        w.hooks = CreepHooks::new(w.hooks.registry().clone(), settings).unwrap();
+        *w.hooks_mut() = CreepHooks::new(w.hooks().registry().clone(), settings).unwrap();
         for _ in 0..60 {
             w.step().unwrap();
         }
@@ -164,36 +164,15 @@ fn wrong_integration_parameters_are_a_clear_error() {
 }
 
 #[test]
-fn contact_records_stay_bounded_over_a_million_create_destroy_cycles() {
-    // Each cycle a new contact appears and the previous one ends: the sweep keeps memory flat.
-    let mut store = ContactStore::default();
-    let h = |i: u32| ColliderHandle::from_raw_parts(i, 0);
-    for i in 0..1_000_000u32 {
-        store.begin_step();
-        store.touch(ContactKey {
-            collider1: h(i),
-            collider2: h(i + 1),
-            feature1: i,
-            feature2: 0,
-        });
-        store.sweep();
-        assert!(store.len() <= 1);
-    }
-    store.begin_step();
-    store.sweep();
-    assert!(store.is_empty());
-}
-
-#[test]
 fn records_are_dropped_when_a_body_is_removed() {
     let (mut w, ball) = incline(1.0 / 60.0, 0.3, Fidelity::Creep);
     for _ in 0..10 {
         w.step().unwrap();
     }
-    assert_eq!(w.hooks.live_contacts(), 1);
+    assert_eq!(w.hooks().live_contacts(), 1);
     w.remove_body(ball);
     w.step().unwrap();
-    assert_eq!(w.hooks.live_contacts(), 0);
+    assert_eq!(w.hooks().live_contacts(), 0);
 }
 
 #[test]
@@ -204,7 +183,7 @@ fn quiet_bodies_switch_their_hooks_off_and_moving_ones_on() {
     for _ in 0..120 {
         w.step().unwrap();
     }
-    assert_eq!(w.hooks.counts().hooks_on, 0);
+    assert_eq!(w.hooks().counts().hooks_on, 0);
     let collider = w.physics.bodies[ball].colliders()[0];
     assert!(
         !w.physics.colliders[collider]
@@ -213,7 +192,7 @@ fn quiet_bodies_switch_their_hooks_off_and_moving_ones_on() {
     );
     w.physics.bodies[ball].set_linvel(Vector::new(1.0, 0.0, 0.0), true);
     w.step().unwrap();
-    assert_eq!(w.hooks.counts().hooks_on, 1);
+    assert_eq!(w.hooks().counts().hooks_on, 1);
     assert!(
         w.physics.colliders[collider]
             .active_hooks()

@@ -30,10 +30,10 @@ fn a_cylinder_on_a_box_is_a_wheel() {
             Some(rubber),
         );
         assert!(matches!(
-            world.hooks.set_wheel_crown(wheel, Some(-1.0)),
+            world.hooks_mut().set_wheel_crown(wheel, Some(-1.0)),
             Err(PluginError::Setting { .. })
         ));
-        world.hooks.set_wheel_crown(wheel, crown).unwrap();
+        world.hooks_mut().set_wheel_crown(wheel, crown).unwrap();
         world.physics.bodies[body].add_torque(Vector::new(0.0, 0.0, -0.005), true);
         let mut creep_steps = 0;
         for _ in 0..60 {
@@ -85,7 +85,7 @@ fn wheel_contact(
 /// cuboid (half-extents 1000 x 0.5 x 1000 m, as creep-scenes' floors, upright or turned
 /// upside down and about the vertical) and on a half-space it keeps one solver contact on
 /// every step, with the floor's face normal to f32 rounding and the normal force within 5 % of
-/// `m g` (the hook's patch contact on a flat face, module `wheel_hook`'s `ExactPatch`).
+/// `m g` (the hook's patch contact on a flat face, the rigid regime's `ExactPatch`).
 /// Without it Rapier's narrow phase lost the cylinder on the big cuboid on some steps (a
 /// wrong normal, no solver contact) and stopped it with impacts of 2-7 `m g dt`.
 ///
@@ -160,7 +160,7 @@ fn a_wheel_sliding_sideways_keeps_its_contact_on_a_flat_floor() {
             let f = world.insert(floor_body, floor_shape.friction(0.9), Some(rubber));
             (world.insert(wheel_body, wheel_shape, Some(rubber)), f)
         };
-        world.hooks.set_wheel_crown(wheel, Some(0.2)).unwrap();
+        world.hooks_mut().set_wheel_crown(wheel, Some(0.2)).unwrap();
         let mg = world.physics.bodies[body].mass() * 9.81;
         world.physics.bodies[body].add_force(Vector::new(0.0, 0.0, 1.5 * 0.9 * mg), true);
         let (mut lost, mut caught) = (0, true);

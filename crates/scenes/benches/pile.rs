@@ -36,10 +36,10 @@ fn bench_4096(c: &mut Criterion) {
         p.settle_steps,
         p.settle_seconds,
         p.max_speed,
-        p.world.hooks.live_contacts()
+        p.world.hooks().live_contacts()
     );
     let w = &p.world;
-    let settings = *w.hooks.settings();
+    let settings = *w.hooks().settings();
     let copy = |f: Fidelity, s: CreepSettings| pile::with_fidelity(w, f, s).expect("copy");
     let mut plain = pile::plain(w);
     let mut flag_only = creep_rapier::clone_physics(&w.physics);

@@ -144,7 +144,7 @@ fn run_one(p: &DriveParams, torque: f64, fidelity: Fidelity) -> Result<Measured,
             m_out = RollingMeter::default();
         }
         if i > steps / 2 {
-            for (_, rec) in w.hooks.records() {
+            for (_, rec) in w.hooks().records() {
                 q_sum += rec.q_used.length();
                 p_sum += rec.p;
                 n += 1;

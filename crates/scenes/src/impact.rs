@@ -104,7 +104,7 @@ pub fn run(p: &ImpactParams) -> Result<ImpactResult, SceneError> {
     w.physics.gravity = Vector::ZERO;
     // One solver iteration: symplectic Euler for the contact forces (the regime's requirement).
     w.physics.integration_parameters.num_solver_iterations = 1;
-    w.compliant.set_settings(CompliantSettings {
+    w.compliant_mut().set_settings(CompliantSettings {
         rayleigh_fraction: p
             .dt_over_rayleigh
             .max(CompliantSettings::default().rayleigh_fraction),
@@ -158,14 +158,14 @@ pub fn run(p: &ImpactParams) -> Result<ImpactResult, SceneError> {
         } else if t_in.is_some() && g > 0.0 && g_prev <= 0.0 {
             t_out = Some(crossing);
         }
-        if w.compliant.counts().contacts > 0 {
+        if w.compliant().counts().contacts > 0 {
             contact_steps += 1;
-            for (_, c) in w.compliant.contacts() {
+            for (_, c) in w.compliant().contacts() {
                 peak = peak.max(c.normal_force);
             }
         }
         g_prev = g;
-        if t_out.is_some() && w.compliant.counts().contacts == 0 {
+        if t_out.is_some() && w.compliant().counts().contacts == 0 {
             break;
         }
     }

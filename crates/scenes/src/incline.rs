@@ -164,7 +164,7 @@ fn run_one(p: &InclineParams, fidelity: Fidelity) -> Result<InclineRun, SceneErr
         }
         meter.update(*b.rotation(), Vector::Z);
         if i > steps / 2 {
-            for (_, rec) in w.hooks.records() {
+            for (_, rec) in w.hooks().records() {
                 q_sum += rec.q_used.length();
                 p_sum += rec.p;
                 n += 1;

@@ -227,7 +227,7 @@ pub fn with_fidelity(
 ) -> Result<CreepWorld, SceneError> {
     let mut reg = MaterialRegistry::new();
     for (h, _) in w.physics.colliders.iter() {
-        if let Some(m) = w.hooks.registry().get(h) {
+        if let Some(m) = w.hooks().registry().get(h) {
             reg.insert(h, m.with_fidelity(fidelity));
         }
     }

@@ -11,7 +11,7 @@
 //! (positive forward) is what its motor sets; the chassis' **yaw rate** `Omega = w . y`
 //! (positive: turning left).
 //!
-//! Each contact is measured in the frame of creep-rapier's `creep3d` (Kalker 1967; Kalker
+//! Each contact is measured in the frame of `creep_law::rigid` (Kalker 1967; Kalker
 //! 1990, §1.2) with the rolling body as p and the floor as q (`n` from p to q, downwards):
 //! Kuhn & Bagi's rolling velocity `v_roll` at the point Rapier rolls the body about (under its
 //! centre, midway between the surfaces: `R - delta/2` below it, `delta` the overlap),
@@ -84,7 +84,8 @@ use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::{Material, Surface, Vec3};
 /// The fidelity a robot's contacts run at (re-exported for the robot's users).
 pub use creep_rapier::Fidelity;
-use creep_rapier::{ContactKey, ContactRecord, CreepMaterial, CreepSettings, CreepWorld};
+use creep_rapier::diagnostics::{ContactKey, ContactRecord, solver_tangents};
+use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld};
 use rapier3d::prelude::*;
 
 use crate::measure::{SceneError, positive};
@@ -360,7 +361,7 @@ impl Robot {
                     .friction(mu),
                 Some(mat),
             );
-            w.hooks.set_wheel_crown(wc, Some(crown))?;
+            w.hooks_mut().set_wheel_crown(wc, Some(crown))?;
             let joint = RevoluteJointBuilder::new(Vector::Z)
                 .local_anchor1(anchor)
                 .local_anchor2(Vector::ZERO)
@@ -443,7 +444,7 @@ impl Robot {
     /// The robot's state and contacts now (the contacts of the last step; `hook_creep_power`
     /// is left at 0: [`Robot::step`] fills it), measured by [`RobotProbe::sample`].
     pub fn sample(&self) -> RobotSample {
-        let records = self.world.hooks.records();
+        let records = self.world.hooks().records();
         RobotProbe {
             bodies: &self.world.physics.bodies,
             narrow_phase: &self.world.physics.narrow_phase,
@@ -696,7 +697,7 @@ impl RobotProbe<'_> {
         };
         let (mut p, mut q) = (0.0, Vec3::ZERO);
         for m in pair.manifolds() {
-            let (t1, t2) = creep_rapier::solver_tangents(v3(m.data.normal));
+            let (t1, t2) = solver_tangents(v3(m.data.normal));
             for sc in &m.data.solver_contacts {
                 let cid = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
                 let Some(pt) = m.points.get(cid) else {

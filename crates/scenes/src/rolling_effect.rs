@@ -494,7 +494,7 @@ impl RollingEffect {
         let mut world = CreepWorld::new(dt32, CreepSettings::default().with_rapier_solver())?;
         world.physics.gravity = Vector::ZERO;
         world.physics.integration_parameters.num_solver_iterations = 1;
-        world.compliant.set_settings(CompliantSettings {
+        world.compliant_mut().set_settings(CompliantSettings {
             creep: true,
             creep_model: CreepModel::Kuhn,
             ..CompliantSettings::default()
@@ -535,7 +535,7 @@ impl RollingEffect {
         // to the lower along x, |v_roll|, P). The regime's p is the narrow phase's collider1,
         // either ball: its tangential force (on p) and v_disp (q relative to p) flip with it.
         let read = |world: &CreepWorld, step: usize| {
-            let mut it = world.compliant.contacts();
+            let mut it = world.compliant().contacts();
             match (it.next(), it.next()) {
                 (Some((key, rec)), None) => {
                     let s = if key.0 == coll_a { 1.0 } else { -1.0 };
@@ -548,7 +548,7 @@ impl RollingEffect {
                 }
                 _ => Err(RollingEffectError::EngineContact {
                     step,
-                    contacts: world.compliant.contacts().count(),
+                    contacts: world.compliant().contacts().count(),
                 }),
             }
         };

@@ -86,11 +86,11 @@ pub(super) fn pair_mu(w: &CreepWorld, c1: ColliderHandle, c2: ColliderHandle) ->
 pub(super) fn coulomb_hooks(w: &CreepWorld) -> Result<CreepHooks, SceneError> {
     let mut reg = MaterialRegistry::new();
     for (h, _) in w.physics.colliders.iter() {
-        if let Some(m) = w.hooks.registry().get(h) {
+        if let Some(m) = w.hooks().registry().get(h) {
             reg.insert(h, m.with_fidelity(Fidelity::Coulomb));
         }
     }
-    Ok(CreepHooks::new(reg, *w.hooks.settings())?)
+    Ok(CreepHooks::new(reg, *w.hooks().settings())?)
 }
 
 /// Whether a body's state is finite.
@@ -169,7 +169,7 @@ pub(super) fn run(
         t.creep_contacts += counts.creep;
         t.creep_energy += counts.creep_power * dt;
         // |Q| <= mu P for the force the plugin used.
-        for (k, r) in s.w.hooks.records() {
+        for (k, r) in s.w.hooks().records() {
             if !(r.q_used.x.is_finite() && r.q_used.y.is_finite() && r.q_used.z.is_finite()) {
                 t.broken = Some(format!("non-finite q_used at step {step}"));
             } else if r.p > 0.0 {

@@ -425,9 +425,9 @@ impl Host for Specimen {
         }
         // The shears' step, and the compliant regime's Rayleigh check at its fraction.
         s.world.physics.integration_parameters.dt = s.params.shear_time_step() as f32;
-        let settings = *s.world.compliant.settings();
+        let settings = *s.world.compliant().settings();
         s.world
-            .compliant
+            .compliant_mut()
             .set_settings(creep_rapier::CompliantSettings {
                 rayleigh_fraction: s.params.shear_rayleigh_fraction,
                 ..settings
@@ -435,10 +435,10 @@ impl Host for Specimen {
         Ok(s)
     }
     fn reset_energy(&mut self) {
-        self.world.compliant.reset_energy();
+        self.world.compliant_mut().reset_energy();
     }
     fn dissipation(&self) -> (f64, f64) {
-        let e = self.world.compliant.energy();
+        let e = self.world.compliant().energy();
         (e.creep, e.slip)
     }
 }

@@ -46,7 +46,7 @@ impl Specimen {
         // unit keeps it at 4e-6 m here, still far above a step's relative motion (checked each
         // step, see `Specimen::step`).
         world.physics.integration_parameters.length_unit = params.mean_diameter() as f32;
-        world.compliant.set_settings(CompliantSettings {
+        world.compliant_mut().set_settings(CompliantSettings {
             rayleigh_fraction: params.rayleigh_fraction,
             rayleigh_check: RayleighCheck::Error,
             creep: false,
@@ -169,7 +169,7 @@ impl Specimen {
         self.steps += 1;
         // A contact cannot start unseen while two bodies close in by less than the prediction
         // distance in a step (compliant regime docs).
-        let moved = self.world.compliant.counts().max_step_displacement;
+        let moved = self.world.compliant().counts().max_step_displacement;
         let prediction = f64::from(
             self.world
                 .physics
@@ -200,13 +200,13 @@ impl Specimen {
     /// shears start from the same packing.
     pub(super) fn clone_fresh(&self, creep: bool) -> Result<Self, SceneError> {
         let hooks = CreepHooks::new(
-            self.world.hooks.registry().clone(),
-            *self.world.hooks.settings(),
+            self.world.hooks().registry().clone(),
+            *self.world.hooks().settings(),
         )?;
         let mut world = CreepWorld::from_parts(clone_physics(&self.world.physics), hooks)?;
-        world.compliant = CompliantRegime::new(CompliantSettings {
+        *world.compliant_mut() = CompliantRegime::new(CompliantSettings {
             creep,
-            ..*self.world.compliant.settings()
+            ..*self.world.compliant().settings()
         })?;
         Ok(Self {
             world,

@@ -44,7 +44,7 @@ impl Specimen {
                 .map(|x| [f64::from(x.x), f64::from(x.y), f64::from(x.z)])
                 .unwrap_or_default()
         };
-        for (&(c1, c2), rec) in self.world.compliant.contacts() {
+        for (&(c1, c2), rec) in self.world.compliant().contacts() {
             // Force on p (collider1) from q.
             let f = rec.tangential_force - rec.normal * rec.normal_force;
             let f = [f.x, f.y, f.z];
@@ -130,7 +130,7 @@ impl Specimen {
     pub(super) fn contact_shares(&self) -> (usize, usize, usize, usize) {
         let is_wall = |c: ColliderHandle| self.walls.iter().any(|w| w.collider == c);
         let (mut n, mut sliding, mut rolling, mut creeping) = (0, 0, 0, 0);
-        for (&(c1, c2), rec) in self.world.compliant.contacts() {
+        for (&(c1, c2), rec) in self.world.compliant().contacts() {
             if is_wall(c1) || is_wall(c2) {
                 continue;
             }
