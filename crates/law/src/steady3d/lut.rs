@@ -93,20 +93,15 @@ pub fn nodes() -> &'static [LutNode] {
     &super::lut_data::NODES
 }
 
-/// Tolerance on `ln(a/b)` and on `nu` within which a contact is taken at a node.
+/// Tolerance on `ln(a/b)` and on `nu` within which a contact is taken at a node's `a/b` and `nu`.
 pub const SNAP: f64 = 1e-3;
 
-/// Whether the table at `(a/b, nu)` interpolates across `a/b` between computed rows (`false`:
-/// only at a computed `a/b`, within [`SNAP`]).
-pub const ACROSS_AB: bool = false;
-
-/// The tables around `(a/b, nu)` with their weights (up to four: linear in `nu` between the
-/// computed nodes of a row, and, with [`ACROSS_AB`], in `ln(a/b)` between rows), or `None`
-/// where the computed nodes do not surround it.
+/// The tables at `(a/b, nu)` with their weights: one at a computed node (within [`SNAP`]), two
+/// between two computed `nu` of one computed `a/b` (linear in `nu`).
 #[derive(Clone, Copy)]
 pub struct Lut {
-    tables: [&'static Table; 4],
-    w: [f64; 4],
+    tables: [&'static Table; 2],
+    w: [f64; 2],
     n: usize,
 }
 
@@ -152,31 +147,11 @@ impl Lut {
         if !(ab.is_finite() && ab > 0.0 && nu.is_finite()) {
             return None;
         }
-        let parts = match row_at(ab, nu) {
-            Some(p) => p,
-            None if ACROSS_AB => {
-                let mut rows: Vec<f64> = nodes().iter().map(|n| n.ab).collect();
-                rows.sort_by(f64::total_cmp);
-                rows.dedup();
-                let hi = rows.iter().position(|&r| r > ab)?;
-                if hi == 0 {
-                    return None;
-                }
-                let (r0, r1) = (rows[hi - 1], rows[hi]);
-                let w = (ab / r0).ln() / (r1 / r0).ln();
-                let mut v = row_at(r0, nu)?;
-                v.iter_mut().for_each(|p| p.1 *= 1.0 - w);
-                let mut u = row_at(r1, nu)?;
-                u.iter_mut().for_each(|p| p.1 *= w);
-                v.extend(u);
-                v
-            }
-            None => return None,
-        };
+        let parts = row_at(ab, nu)?;
         let first = parts[0].0;
         let mut lut = Lut {
-            tables: [first; 4],
-            w: [0.0; 4],
+            tables: [first; 2],
+            w: [0.0; 2],
             n: parts.len(),
         };
         for (i, (t, w)) in parts.into_iter().enumerate() {
@@ -190,8 +165,8 @@ impl Lut {
     /// it is emitted; [`super::Steady3d::new`] finds the nodes itself).
     pub fn of_table(table: &'static Table) -> Lut {
         Lut {
-            tables: [table; 4],
-            w: [1.0, 0.0, 0.0, 0.0],
+            tables: [table; 2],
+            w: [1.0, 0.0],
             n: 1,
         }
     }
