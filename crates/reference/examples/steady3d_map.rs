@@ -302,9 +302,7 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
     );
     let tab: Vec<&MapError> = errors
         .iter()
-        .filter(|e| {
-            Steady3d::new(e.point.ab, e.point.nu).is_ok_and(|l| l.tabulated())
-        })
+        .filter(|e| Steady3d::new(e.point.ab, e.point.nu).is_ok_and(|l| l.tabulated()))
         .collect();
     let within_a = tab
         .iter()

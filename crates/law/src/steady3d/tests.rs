@@ -125,10 +125,7 @@ fn tiny_creepages_are_the_linear_theory_without_a_seam() {
     // A vanishing translation next to a finite spin (at a row and between rows): the spin's
     // loads, not full slip of the translation (the shared division's products underflow
     // below |t0|^2 = 1e-140; before, e came out as 1 there).
-    for law in [
-        fitted(0.5, 0.25).unwrap(),
-        fitted(0.7, 0.3).unwrap(),
-    ] {
+    for law in [fitted(0.5, 0.25).unwrap(), fitted(0.7, 0.3).unwrap()] {
         let (a, b) = (law.loads(1e-100, 0.0, 0.5), law.loads(0.0, 0.0, 0.5));
         assert!(
             (a.mz - b.mz).abs() < 1e-12 && (a.fy - b.fy).abs() < 1e-12,
@@ -143,10 +140,7 @@ fn tiny_creepages_are_the_linear_theory_without_a_seam() {
     // Every scale of a vanishing translation next to a finite spin, at a row and between
     // rows: finite, and the spin's loads (1e-40 ... 1e-70 gave NaN while the threshold of the
     // linear translation was |t0|^2 = 1e-140: the divisor q r^4 |t0|^2 underflowed).
-    for law in [
-        fitted(0.5, 0.25).unwrap(),
-        fitted(0.7, 0.3).unwrap(),
-    ] {
+    for law in [fitted(0.5, 0.25).unwrap(), fitted(0.7, 0.3).unwrap()] {
         let b = law.loads(0.0, 0.0, 0.5);
         for k in 20..=160 {
             let x = 10f64.powi(-k);
@@ -853,7 +847,11 @@ fn table_reproduces_its_nodes_and_blends_in_nu() {
         );
         assert!(lm.tabulated());
         for c in [[0.3, -0.5, 0.7], [-1.1, 0.05, -2.0], [0.01, 0.002, 0.3]] {
-            let (p, q, m) = (la.loads(c[0], c[1], c[2]), lb.loads(c[0], c[1], c[2]), lm.loads(c[0], c[1], c[2]));
+            let (p, q, m) = (
+                la.loads(c[0], c[1], c[2]),
+                lb.loads(c[0], c[1], c[2]),
+                lm.loads(c[0], c[1], c[2]),
+            );
             assert!((m.fx - (0.3 * p.fx + 0.7 * q.fx)).abs() < 1e-12);
             assert!((m.fy - (0.3 * p.fy + 0.7 * q.fy)).abs() < 1e-12);
             assert!((m.mz - (0.3 * p.mz + 0.7 * q.mz)).abs() < 1e-12);
@@ -875,14 +873,44 @@ fn table_is_kalkers_linear_theory_at_small_creepage() {
         let e = 1e-3;
         let rel = |got: f64, want: f64| (got / want - 1.0).abs();
         let l = law.loads(e, 0.0, 0.0);
-        assert!(rel(l.fx / e, c.c11) < 0.015, "{} {}: C11 {}", n.ab, n.nu, l.fx / e);
+        assert!(
+            rel(l.fx / e, c.c11) < 0.015,
+            "{} {}: C11 {}",
+            n.ab,
+            n.nu,
+            l.fx / e
+        );
         let l = law.loads(0.0, e, 0.0);
-        assert!(rel(l.fy / e, c.c22) < 0.015, "{} {}: C22 {}", n.ab, n.nu, l.fy / e);
-        assert!(rel(-l.mz / e, c.c23) < 0.03, "{} {}: C23 {}", n.ab, n.nu, -l.mz / e);
+        assert!(
+            rel(l.fy / e, c.c22) < 0.015,
+            "{} {}: C22 {}",
+            n.ab,
+            n.nu,
+            l.fy / e
+        );
+        assert!(
+            rel(-l.mz / e, c.c23) < 0.03,
+            "{} {}: C23 {}",
+            n.ab,
+            n.nu,
+            -l.mz / e
+        );
         let l = law.loads(0.0, 0.0, e);
-        assert!(rel(l.fy / e, c.c23) < 0.03, "{} {}: C23 {}", n.ab, n.nu, l.fy / e);
+        assert!(
+            rel(l.fy / e, c.c23) < 0.03,
+            "{} {}: C23 {}",
+            n.ab,
+            n.nu,
+            l.fy / e
+        );
         let tol33 = if n.grid >= 32 { 0.015 } else { 0.03 };
-        assert!(rel(l.mz / e, c.c33) < tol33, "{} {}: C33 {}", n.ab, n.nu, l.mz / e);
+        assert!(
+            rel(l.mz / e, c.c33) < tol33,
+            "{} {}: C33 {}",
+            n.ab,
+            n.nu,
+            l.mz / e
+        );
         // Below the first node too (and no seam at the linear theory of the rare inputs).
         let l = law.loads(1e-20, 0.0, 0.0);
         assert!(rel(l.fx / 1e-20, c.c11) < 0.015);
@@ -911,10 +939,16 @@ fn table_has_the_exact_symmetries_and_stays_within_friction() {
         // Continuous through eta = 0 and xi = 0 (the symmetries' seams).
         let a = law.loads(0.3, 1e-12, 0.5);
         let b = law.loads(0.3, -1e-12, 0.5);
-        assert!((a.fx - b.fx).abs() < 1e-9 && (a.fy - b.fy).abs() < 1e-9 && (a.mz - b.mz).abs() < 1e-9);
+        assert!(
+            (a.fx - b.fx).abs() < 1e-9 && (a.fy - b.fy).abs() < 1e-9 && (a.mz - b.mz).abs() < 1e-9
+        );
         // Beyond the box the creepage's direction: scaling it changes nothing.
         let (f, g) = (law.loads(4.0, 1.0, 2.0), law.loads(40.0, 10.0, 20.0));
-        assert!((f.fx - g.fx).abs() < 1e-12 && (f.fy - g.fy).abs() < 1e-12 && (f.mz - g.mz).abs() < 1e-12);
+        assert!(
+            (f.fx - g.fx).abs() < 1e-12
+                && (f.fy - g.fy).abs() < 1e-12
+                && (f.mz - g.mz).abs() < 1e-12
+        );
         // Far in full slip of one creepage, Coulomb's bound.
         assert!(law.loads(1e5, 0.0, 0.0).fx > 0.97);
         assert_eq!(law.loads(f64::NAN, 0.1, 0.0), Loads::default());
@@ -927,7 +961,10 @@ fn table_falls_back_to_the_fitted_law_outside_its_coverage() {
     for (ab, nu) in [(0.3, 0.25), (4.0, 0.1)] {
         let law = Steady3d::new(ab, nu).unwrap();
         if !law.tabulated() {
-            assert_eq!(law.loads(0.2, 0.3, 0.4), law.without_table().loads(0.2, 0.3, 0.4));
+            assert_eq!(
+                law.loads(0.2, 0.3, 0.4),
+                law.without_table().loads(0.2, 0.3, 0.4)
+            );
         }
     }
     assert!(!Steady3d::new(0.123, 0.2).unwrap().tabulated());
