@@ -174,10 +174,7 @@ fn table_meets_the_bounds_where_it_covers_the_map() {
                 continue;
             }
             covered += 1;
-            let w = worst(
-                map.iter()
-                    .filter(|e| e.point.ab == ab && e.point.nu == nu),
-            );
+            let w = worst(map.iter().filter(|e| e.point.ab == ab && e.point.nu == nu));
             assert!(
                 w[0] <= 0.02 && w[1] <= 0.02 && w[3] <= 0.03,
                 "a/b={ab} nu={nu}: Fx {:.4}, Fy {:.4}, Mz/(mu P a) {:.4}",
@@ -188,7 +185,15 @@ fn table_meets_the_bounds_where_it_covers_the_map() {
         }
     }
     assert!(covered > 0, "the table covers no map case");
-    let val = grade_steady3d_as_is(&validation_table().unwrap()).unwrap();
+    let mut val = grade_steady3d_as_is(&validation_table().unwrap()).unwrap();
+    // Between computed nu of one a/b (the blend in nu): random signed creepages at a/b = 1,
+    // nu = 0.4 and 0.45 (`steady3d_lut -- validate 1 0.4 1 0.45`).
+    let between = creep_reference::steady3d_map::read_map_csv(include_str!(
+        "../data/steady3d_lut_validation.csv"
+    ))
+    .unwrap();
+    assert_eq!(between.len(), 80);
+    val.extend(grade_steady3d_as_is(&between).unwrap());
     for e in val.iter().filter(|e| {
         creep_law::steady3d::Steady3d::new(e.point.ab, e.point.nu)
             .unwrap()
