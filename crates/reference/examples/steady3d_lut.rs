@@ -379,6 +379,8 @@ fn emit() -> Result<(), Box<dyn std::error::Error>> {
         "//! The computed nodes of the tabulated 3-D steady law (module `lut`). DO NOT EDIT: written by\n\
          //! `cargo run --release -p creep-reference --example steady3d_lut -- emit` from the boundary-element\n\
          //! tables `crates/reference/data/steady3d_lut/*.csv` (each solved by `-- solve AB NU GRID`).\n\n\
+         // Measured loads, not approximations of named constants.\n\
+         #![allow(clippy::approx_constant)]\n\n\
          use super::lut::{LutNode, Table};\n\n",
     );
     out.push_str(&format!(

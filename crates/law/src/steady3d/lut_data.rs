@@ -2,6 +2,9 @@
 //! `cargo run --release -p creep-reference --example steady3d_lut -- emit` from the boundary-element
 //! tables `crates/reference/data/steady3d_lut/*.csv` (each solved by `-- solve AB NU GRID`).
 
+// Measured loads, not approximations of named constants.
+#![allow(clippy::approx_constant)]
+
 use super::lut::{LutNode, Table};
 
 /// The computed nodes, by `a/b` then `nu`.
