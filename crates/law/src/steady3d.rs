@@ -29,7 +29,9 @@
 //! box along its direction (deep in full slip the loads depend on the direction only: the
 //! traction is `mu p` along the rigid slip). Between two computed `nu` of one `a/b` the two
 //! tables' loads are blended linearly in `nu`. Elsewhere (an `a/b` not computed, or a `nu`
-//! outside the computed ones) the fitted law below. The inverse at zero spin,
+//! outside the computed ones) the fitted law below. **Computed**: `a/b = 1` at `nu = 0.25, 0.3,
+//! 0.5` and `a/b = 0.5` at `nu = 0.25, 0.5`, so the table covers those two axis ratios (within
+//! 0.1 %) at `0.25 <= nu <= 0.5`. The inverse at zero spin,
 //! [`Steady3d::creepages_for_force`], is the fitted law's everywhere.
 //!
 //! Regenerate a node with `cargo run --release -p creep-reference --example steady3d_lut --
