@@ -11,7 +11,35 @@
 //! force, the dissipation `Q . v_disp` is positive); [`Steady3d::loads_kalker`] the signs of
 //! Kalker and CONTACT (a positive creepage gives a negative force: every output negated).
 //!
-//! # The law (a fit to the project's boundary elements)
+//! # The table (where the boundary elements are computed)
+//!
+//! Where creep-reference's boundary elements are computed for the contact's `(a/b, nu)`
+//! ([`lut::nodes`]; [`Steady3d::tabulated`] says whether a contact is covered), [`Steady3d::loads`]
+//! interpolates them ([`lut`]): per node, the loads `(Fx/(mu P), Fy/(mu P), Mz/(mu P c))` of
+//! Kalker's exact theory (boundary elements on grids `N/2` and `N`, extrapolated `2 f(N) -
+//! f(N/2)`) on the quarter `xi_n, eta_n >= 0` of a grid [`lut::LUT_XI`] x [`lut::LUT_XI`] x
+//! [`lut::LUT_PHI`] (`0 ... 2` and `-4 ... 4`; geometric below `0.1`, so that the slope at
+//! small creepage is Kalker's linear theory's within about 0.5 %; dense where the loads curve:
+//! the onset of full slip, and a lateral creepage against the spin), `f32`. The other signs by
+//! the exact symmetries of the theory (quasi-identical bodies, a contact symmetric about the
+//! rolling direction): `xi -> -xi` negates `Fx`; `(eta, phi) -> -(eta, phi)` negates `Fy` and
+//! `Mz`. Within the grid the loads are trilinear in `(xi_n, eta_n, phi_n)` (a convex combination
+//! of the eight corners: `|F| <= mu P` holds since it holds at every node, where the
+//! extrapolation's excess is scaled onto it); beyond it the creepage is scaled onto the grid's
+//! box along its direction (deep in full slip the loads depend on the direction only: the
+//! traction is `mu p` along the rigid slip). Between two computed `nu` of one `a/b` the two
+//! tables' loads are blended linearly in `nu`. Elsewhere (an `a/b` not computed, or a `nu`
+//! outside the computed ones) the fitted law below. **Computed**: `a/b = 1` at `nu = 0.25, 0.3,
+//! 0.5` and `a/b = 0.5` at `nu = 0.25, 0.5`, so the table covers those two axis ratios (within
+//! 0.1 %) at `0.25 <= nu <= 0.5`. The inverse at zero spin,
+//! [`Steady3d::creepages_for_force`], is the fitted law's everywhere.
+//!
+//! Regenerate a node with `cargo run --release -p creep-reference --example steady3d_lut --
+//! solve AB NU [N]` (resumable; the CSV in `crates/reference/data/steady3d_lut/`) and the data
+//! module with `... -- emit` (`steady3d/lut_data.rs`). The accuracy and the coverage:
+//! docs/CREEP3D.md ("The table").
+//!
+//! # The fitted law (where the table does not cover the contact)
 //!
 //! Linear part: Kalker's theory with the coefficients of [`crate::kalker3d`] (Kalker 1967/1990),
 //! `Fx = C11 xi_n`, `Fy = C22 eta_n + C23 phi_n`, `Mz = -C23 eta_n + C33 phi_n` (normalised,
@@ -111,7 +139,7 @@
 //! KB with the table); [`Steady3d::loads`] evaluates one row's spin terms and one
 //! translation at a row of the table, the table and one translation between rows.
 //!
-//! # Accuracy
+//! # Accuracy of the fitted law
 //!
 //! See the error tables of crate creep-reference (`cargo run --release -p creep-reference
 //! --example steady3d_errors`, and with `-- --table crates/reference/data/steady3d_bem_validation.csv`
@@ -131,7 +159,7 @@
 //!   (`phi_n = 0.025-0.075`) the spin force within 3.1 %. The constants of `a/b = 2, 5` are
 //!   fitted with boundary-element points below the table and from the previous `nu` node.
 //!
-//! **Over the whole creepage space the law is far off.** Graded on creep-reference's error map
+//! **Over the whole creepage space the fitted law is far off.** Graded on creep-reference's error map
 //! (module `steady3d_map`: every sign combination of the three creepages from full slip to
 //! full slip, `a/b = 0.2 ... 5`, `nu = 0 ... 0.5`; `cargo run --release -p creep-reference
 //! --example steady3d_map -- grade`), it is within 2 % of `mu P` and 3 % of `mu P c` at 13 % of
@@ -142,7 +170,18 @@
 //! and 3.0 % of `mu P c` on the whole map; with spin only pure creepages (the tables above)
 //! are graded well. docs/CREEP3D.md ("The error map") has the tables.
 //!
-//! # Cost
+//! # Accuracy and cost of the table
+//!
+//! Where the table covers the contact, every signed point of the error map is within
+//! 1.4 % of `mu P` in each force and 2.1 % of `mu P a` in the moment (`a/b = 1`, `0.5` at
+//! `nu = 0.25, 0.3, 0.5`; `cargo run --release -p creep-reference --example steady3d_map --
+//! grade`) (2 % of `mu P` in each force and 3 % of `mu P a` in the moment at every covered
+//! case; creep-reference's test `table_meets_the_bounds_where_it_covers_the_map`). An
+//! evaluation costs the fitted law's or less: 317 instructions at a node, 399 blending two
+//! (`valgrind --tool=callgrind` on the bench's `--count` mode; the fitted law 320-328), 22.4 /
+//! 28.8 ns (the bench's `--time` mode, a loaded machine; the fitted law 31.9 ns).
+//!
+//! # Cost of the fitted law
 //!
 //! No `powf`, no logarithm. Without spin one translation (two square roots, two divisions);
 //! with spin at a row one division for the row's spin utilisation and spin-force shape (a
@@ -351,6 +390,9 @@ pub struct Steady3d {
     /// Between rows: the tabulated spin terms with the pure-spin correction (module
     /// documentation, "Between nodes"); off at a row and in [`Steady3d::two_row_blend`].
     corr: correction::SpinCorrection,
+    /// The boundary-element table where it covers `(a/b, nu)` (module documentation, "The
+    /// table"); `None`: the fitted law above.
+    lut: Option<lut::Lut>,
 }
 
 /// Normalised loads `(Fx/(mu P), Fy/(mu P), Mz/(mu P c))`.
@@ -468,6 +510,7 @@ impl Steady3d {
             // correction that makes its pure spin the blend's (module documentation).
             law.corr = correction::SpinCorrection::build(&law);
         }
+        law.lut = lut::Lut::at(ab, nu);
         Ok(law)
     }
 
@@ -498,7 +541,20 @@ impl Steady3d {
             turn: c.c22 / c.c11 - 1.0,
             rows: [row, SpinRow { w: 0.0, ..row }],
             corr: correction::SpinCorrection::OFF,
+            lut: None,
         })
+    }
+
+    /// Whether the boundary-element table covers this contact (module documentation, "The
+    /// table"): then [`Steady3d::loads`] interpolates it; otherwise the fitted law.
+    pub fn tabulated(&self) -> bool {
+        self.lut.is_some()
+    }
+
+    /// The fitted law at this contact, without the table (as [`Steady3d::new`] where the table
+    /// does not cover the contact).
+    pub fn without_table(&self) -> Steady3d {
+        Steady3d { lut: None, ..*self }
     }
 
     /// Kalker's coefficients in use.
@@ -569,6 +625,9 @@ impl Steady3d {
     /// [`Steady3d::loads`] for finite creepages within the clamp, not all tiny.
     #[inline(always)]
     fn loads_in_range(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+        if let Some(t) = &self.lut {
+            return t.loads(xi_n, eta_n, phi_n);
+        }
         let c = &self.c;
         let tx0 = c.c11 * xi_n;
         let ty0 = c.c22 * eta_n;
@@ -846,6 +905,8 @@ fn turn_weight(beta: f64, x: f64, s: f64) -> f64 {
 
 mod between;
 mod correction;
+pub mod lut;
+mod lut_data;
 mod row;
 
 use row::{SpinRow, SpinTerms};

@@ -210,9 +210,9 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
         errors.len()
     );
     println!(
-        "| a/b | nu | set | Fx | Fy | Mz/(mu P c) | Mz/(mu P a) | worst Fy at (xi, eta, phi) |"
+        "| a/b | nu | set | law | Fx | Fy | Mz/(mu P c) | Mz/(mu P a) | worst Fy at (xi, eta, phi) |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let mut keys: Vec<(f64, f64)> = Vec::new();
     for e in &errors {
         if !keys.contains(&(e.point.ab, e.point.nu)) {
@@ -231,11 +231,16 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
             .map(|e| e.point.creepage)
             .unwrap_or_default();
         println!(
-            "| {ab} | {nu} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:?} |",
+            "| {ab} | {nu} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:?} |",
             if Set::of(*ab, *nu) == Set::Fit {
                 "fit"
             } else {
                 "val"
+            },
+            if Steady3d::new(*ab, *nu)?.tabulated() {
+                "table"
+            } else {
+                "fitted"
             },
             100.0 * w[0],
             100.0 * w[1],
@@ -294,6 +299,22 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "points within 2 % / 3 % (mu P c): {within} of {}",
         errors.len()
+    );
+    let tab: Vec<&MapError> = errors
+        .iter()
+        .filter(|e| Steady3d::new(e.point.ab, e.point.nu).is_ok_and(|l| l.tabulated()))
+        .collect();
+    let within_a = tab
+        .iter()
+        .filter(|e| e.fx <= 0.02 && e.fy <= 0.02 && e.mz_a <= 0.03)
+        .count();
+    let w = worst(tab.iter().copied());
+    println!(
+        "where the table covers: {within_a} of {} points within 2 % / 3 % (mu P a); worst Fx {:.2} %, Fy {:.2} %, Mz {:.2} % of mu P a",
+        tab.len(),
+        100.0 * w[0],
+        100.0 * w[1],
+        100.0 * w[3]
     );
     far_field(&errors)?;
     plots(&errors, &out)?;
