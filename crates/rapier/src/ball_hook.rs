@@ -24,13 +24,13 @@ use rapier3d::geometry::NEW_CONTACT_BIT;
 use rapier3d::prelude::*;
 
 use crate::convert::{body_motion, inverse_mass_of, v3, vf};
-use crate::creep3d::{RollFrame, solve_translation};
 use crate::gap::rotation_gap_correction;
-use crate::pair_cache::PairConsts;
 use crate::registry::Fidelity;
 use crate::rigid::{CreepSettings, StepCounts, solver_tangents};
 use crate::rolling::rolling_torque;
 use crate::store::{ContactKey, ContactStore};
+use creep_law::rigid::RigidPair as PairConsts;
+use creep_law::rigid::{RollFrame, solve_translation};
 
 /// Rounding ulps of the bodies' angular speeds below which a relative spin about the normal is
 /// taken as f32 noise (no spin creep): the solver resolves angular velocities to about

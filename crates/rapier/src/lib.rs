@@ -112,11 +112,9 @@
 mod ball_hook;
 pub mod compliant;
 mod convert;
-mod creep3d;
 mod error;
 mod gap;
 mod hooks;
-mod pair_cache;
 mod pipeline;
 mod registry;
 mod rigid;

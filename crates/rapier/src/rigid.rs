@@ -107,16 +107,16 @@ use rapier3d::prelude::*;
 
 use crate::ball_hook::{BallManifold, ball_manifold};
 use crate::convert::{body_motion, v3, vf};
-use crate::creep3d::LawCache;
 use crate::error::PluginError;
 use crate::gap::rotation_gap_correction;
-use crate::pair_cache::PairCache;
 use crate::registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
 use crate::rolling::apply_rolling_impulse;
 use crate::store::{ContactKey, ContactRecord, ContactStore};
 use crate::warning::{CreepWarning, ROTATION_GAP_TURN, WarnedSet};
 use crate::wheel::Crowns;
 use crate::wheel_hook::{WheelCtx, wheel_manifold};
+use creep_law::rigid::LawCache;
+use creep_law::rigid::RigidPairCache as PairCache;
 
 /// Checks that Rapier's integration parameters suit the plugin.
 pub fn check_parameters(params: &IntegrationParameters) -> Result<(), PluginError> {

@@ -11,13 +11,13 @@ use rapier3d::prelude::*;
 
 use crate::ball_hook::SPIN_NOISE_ULPS;
 use crate::convert::{inverse_mass, motion, v3, vf};
-use crate::creep3d::{LawCache, RollFrame, solve_translation};
 use crate::gap::rotation_gap_correction;
-use crate::pair_cache::PairConsts;
 use crate::registry::Fidelity;
 use crate::rigid::{CreepSettings, StepCounts, pair_fidelity, solver_tangents};
 use crate::store::{ContactKey, ContactStore};
 use crate::wheel::{Crowns, WheelContact, carter_creepage, line_half_width};
+use creep_law::rigid::RigidPair as PairConsts;
+use creep_law::rigid::{LawCache, RollFrame, solve_translation};
 
 /// What the wheel path needs of the hook's call.
 pub(crate) struct WheelCtx<'a> {
