@@ -5,7 +5,7 @@
 //! and tangential forces from the plugin's record ([`crate::CreepState`], filled after the
 //! solver from Avian's contact constraints), the two bodies' motion at the contact and the
 //! effective mass along the force, and sets the manifold's `tangent_velocity` to the creep slip
-//! target (crate `kernel`). Avian's solver then drives the relative surface velocity at the
+//! target (creep-law's rigid kernel, `creep_law::rigid::ball_creep`). Avian's solver then drives the relative surface velocity at the
 //! contact, `v2 - v1`, to `-tangent_velocity` within the Coulomb limit `friction * P` of each
 //! substep: creep slip within Coulomb friction's budget.
 //!
@@ -16,10 +16,9 @@ use avian3d::parry::shape::ShapeType;
 use avian3d::prelude::*;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
+use creep_law::Surface;
 use creep_law::kinematics::BodyMotion;
-use creep_law::{PairMaterial, SteadyLaw, Surface};
-
-use crate::kernel::{BallContact, BallOutcome, PairLaw, ball_contact};
+use creep_law::rigid::{RigidContact, RigidPair, ball_creep};
 use crate::material::{CreepMaterial, Fidelity};
 use crate::state::{CreepState, CreepWarning, Inner, PairRecord, PointRecord};
 
@@ -176,21 +175,18 @@ impl CollisionHooks for CreepHooks<'_, '_> {
             Some(r) if r.colliders == (e1, e2) && r.key == key
         );
         if !slot_ok {
-            let law = PairMaterial::new(&m1.material, &m2.material, s1, s2)
-                .and_then(|p| p.with_friction(f64::from(first.friction)))
-                .map(|pair| PairLaw {
-                    pair,
-                    law: SteadyLaw::with_c11(settings.creep_model, pair.nu, pair.c11),
-                });
-            let law = match law {
-                Ok(l) => Some(l),
-                Err(why) => {
-                    inner.warn(CreepWarning::InvalidMaterial(e1, why.to_string()));
-                    None
-                }
-            };
+            let mu = f64::from(first.friction);
+            let law = RigidPair::new(&m1.material, &m2.material, mu, settings.creep_model)
+                .and_then(|consts| Some((consts.pair_for(s1, s2)?, consts)));
+            if law.is_none() {
+                inner.warn(CreepWarning::InvalidMaterial(
+                    e1,
+                    format!("friction {mu}, surfaces {s1:?} and {s2:?}"),
+                ));
+            }
             *inner.slot(contacts.contact_id) = Some(PairRecord {
                 colliders: (e1, e2),
+                bodies: (contacts.body1, contacts.body2),
                 key,
                 law,
                 points: Vec::new(),
@@ -203,7 +199,7 @@ impl CollisionHooks for CreepHooks<'_, '_> {
         let Some(Some(rec)) = inner.records.get_mut(contacts.contact_id.0 as usize) else {
             return true;
         };
-        let Some(law) = rec.law else {
+        let Some((pair, consts)) = rec.law else {
             counts.coulomb_setup += points;
             inner.counts = counts;
             return true;
@@ -227,44 +223,32 @@ impl CollisionHooks for CreepHooks<'_, '_> {
                 surface: s,
             };
             let (p, q) = (motion(&b1, a1, s1), motion(&b2, a2, s2));
-            let probe = (prev.q_meas + prev.target)
-                .reject(n)
-                .try_normalize()
-                .or_else(|| (q.velocity_at(c) - p.velocity_at(c)).reject(n).try_normalize())
-                .unwrap_or_else(|| n.tangent_basis().0);
-            let inv_mass = inverse_mass_along(&b1, a1, &b2, a2, vf(probe));
-            let input = BallContact {
+            let contact = RigidContact {
                 normal: n,
-                p_force: prev.p,
-                q_meas: prev.q_meas,
-                tau_prev: prev.target,
+                point: c,
                 p,
                 q,
-                point: c,
-                inv_mass,
+                normal_impulse: prev.p * dt,
+                tangent_impulse: prev.q_meas * dt,
+                last_target: prev.target,
                 dt,
                 auto_tolerance,
             };
-            match ball_contact(&law, &input) {
-                BallOutcome::Creep {
-                    target,
-                    q_used,
-                    power,
-                    gain,
-                } => {
-                    counts.creep += 1;
-                    counts.creep_power += power;
-                    counts.max_loop_gain = counts.max_loop_gain.max(gain);
-                    prev.target = target;
-                    prev.q_used = q_used;
-                    // Avian drives v2 - v1 to -tangent_velocity.
-                    manifold.tangent_velocity = -vf(target);
-                }
-                BallOutcome::Coulomb(_) => {
-                    counts.coulomb_auto += 1;
-                    prev.target = creep_law::Vec3::ZERO;
-                    prev.q_used = creep_law::Vec3::ZERO;
-                }
+            let out = ball_creep(&pair, &consts, &contact, |d| {
+                inverse_mass_along(&b1, a1, &b2, a2, vf(d))
+            });
+            prev.target = out.target;
+            prev.q_used = out.force;
+            prev.moment = out.moment;
+            prev.normal = n;
+            if out.creeps() {
+                counts.creep += 1;
+                counts.creep_power += out.power;
+                counts.max_loop_gain = counts.max_loop_gain.max(out.loop_gain);
+                // Avian drives v2 - v1 to -tangent_velocity.
+                manifold.tangent_velocity = -vf(out.target);
+            } else {
+                counts.coulomb_auto += 1;
             }
         }
         inner.counts = counts;

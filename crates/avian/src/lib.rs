@@ -14,14 +14,14 @@
 //! - [`CreepState`]: settings, per-contact records, per-step [`StepCounts`], warnings.
 //!
 //! Supported: balls on balls and on flat colliders (cuboids, half-spaces, meshes, height
-//! fields, convex hulls). Other shapes are left to Coulomb with a warning. Spin creep is not
-//! modelled (contacts are solved as circular and spin-free).
+//! fields, convex hulls). Other shapes are left to Coulomb with a warning.
 //!
-//! The law, per contact: crate-private `kernel` module (sources in its docs). SI units
+//! The law, per contact, is creep-law's rigid kernel (`creep_law::rigid::ball_creep`: Kalker's
+//! steady creepage at Hertz's contact radius, Kalker's lateral coefficient, spin creep and its
+//! twisting moment, the implicit solve; equations and sources in its docs). SI units
 //! throughout.
 
 mod hooks;
-mod kernel;
 mod material;
 mod plugin;
 pub mod scenes;

@@ -10,7 +10,7 @@
 use core::time::Duration;
 
 use avian3d::prelude::*;
-use bevy::math::DQuat;
+use bevy::math::{DQuat, DVec3};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use creep_law::{CreepModel, Material, PairMaterial, SteadyLaw, Surface, hertz};
@@ -79,12 +79,12 @@ fn creep_material(material: Material, run: Run) -> Option<CreepMaterial> {
 }
 
 /// Spawns `bundle` with the run's creep material.
+/// (In one spawn: Avian reads a collider's `ActiveCollisionHooks` when the collider is added.)
 fn spawn_with(app: &mut App, bundle: impl Bundle, material: Option<CreepMaterial>) -> Entity {
-    let mut e = app.world_mut().spawn(bundle);
-    if let Some(m) = material {
-        e.insert(m);
+    match material {
+        Some(m) => app.world_mut().spawn((bundle, m)).id(),
+        None => app.world_mut().spawn(bundle).id(),
     }
-    e.id()
 }
 
 /// The rotation of a body about an axis, accumulated step by step in f64 from its

@@ -8,11 +8,12 @@
 
 use std::sync::{Mutex, MutexGuard};
 
-use avian3d::prelude::ContactId;
+use avian3d::collision::contact_types::ContactId;
 use bevy::prelude::*;
 use creep_law::{CreepModel, Material, Vec3};
 
-use crate::kernel::PairLaw;
+use creep_law::PairMaterial;
+use creep_law::rigid::RigidPair;
 
 /// The plugin's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -132,6 +133,15 @@ pub(crate) struct PointRecord {
     pub target: Vec3,
     /// The force the target was built from \[N\].
     pub q_used: Vec3,
+    /// Spin creep's twisting moment on collider 2's body \[N m\] (applied after the step).
+    pub moment: Vec3,
+    /// The contact normal of the step (from collider 1 to collider 2).
+    pub normal: Vec3,
+    /// The step's normal impulse so far, summed over its substeps \[N s\].
+    pub acc_normal: f64,
+    /// The step's friction impulse on collider 2's body so far, summed over its substeps
+    /// \[N s\].
+    pub acc_tangent: Vec3,
 }
 
 /// One contact pair's record.
@@ -139,10 +149,12 @@ pub(crate) struct PointRecord {
 pub(crate) struct PairRecord {
     /// The pair's colliders (a reused `ContactId` is told apart by them).
     pub colliders: (Entity, Entity),
+    /// Their bodies.
+    pub bodies: (Option<Entity>, Option<Entity>),
     /// The materials and friction the law was built from.
     pub key: (Material, Material, f32, f32, f32),
-    /// The laws (`None`: invalid, Coulomb).
-    pub law: Option<PairLaw>,
+    /// The contact's pair and the pair's constants, built once (`None`: invalid, Coulomb).
+    pub law: Option<(PairMaterial, RigidPair)>,
     /// Per manifold, its first point.
     pub points: Vec<PointRecord>,
     /// Harvested in the step that just ran.
