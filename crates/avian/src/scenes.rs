@@ -116,19 +116,12 @@ impl RollingMeter {
     }
 }
 
-/// Mean of the creep contacts' normal force and measured tangential force \[N\] after a step
-/// (`None` without a record).
-fn contact_loads(app: &App) -> Option<(f64, f64)> {
+/// The first creep contact's normal force \[N\] and measured tangential force \[N\] after a
+/// step (`None` without a record).
+fn contact_loads(app: &App) -> Option<(f64, creep_law::Vec3)> {
     let state = app.world().get_resource::<CreepState>()?;
     let c = state.contacts();
-    if c.is_empty() {
-        return None;
-    }
-    let n = c.len() as f64;
-    Some((
-        c.iter().map(|c| c.p).sum::<f64>() / n,
-        c.iter().map(|c| c.q_meas.length()).sum::<f64>() / n,
-    ))
+    c.first().map(|c| (c.p, c.q_meas))
 }
 
 /// Kalker's steady creepage `F_ss(Q/(mu P))` \[-\] (Kalker 2000; Kuhn 2011, eq. 1) of a
@@ -214,7 +207,7 @@ pub struct InclineRun {
     pub slip: f64,
     /// Mean normal force of the creep contact over the second half (0 without records) \[N\].
     pub p: f64,
-    /// Mean tangential force it transmitted (idem) \[N\].
+    /// Magnitude of the mean tangential force it transmitted (idem) \[N\].
     pub q: f64,
     /// The plugin's counts of the last step.
     pub counts: StepCounts,
@@ -271,7 +264,7 @@ pub fn incline_run(p: &InclineParams, run: Run) -> InclineRun {
     let steps = (p.duration / p.dt).round() as usize;
     let mut meter = RollingMeter::default();
     let mut x0 = 0.0;
-    let (mut q_sum, mut p_sum, mut n) = (0.0, 0.0, 0usize);
+    let (mut q_sum, mut p_sum, mut n) = (creep_law::Vec3::ZERO, 0.0, 0usize);
     for i in 0..steps {
         step(&mut app);
         let rot = app.world().get::<Rotation>(ball).map_or(Quat::IDENTITY, |r| r.0);
@@ -302,7 +295,7 @@ pub fn incline_run(p: &InclineParams, run: Run) -> InclineRun {
         acceleration: v / (steps as f64 * p.dt),
         slip: (dx + meter.angle * p.radius) / dx,
         p: p_sum / n,
-        q: q_sum / n,
+        q: q_sum.length() / n,
         counts,
     }
 }
@@ -381,7 +374,7 @@ pub struct DriveRun {
     pub creepage: f64,
     /// Mean normal force of the creep contact (0 without records) \[N\].
     pub p: f64,
-    /// Mean tangential force transmitted (idem) \[N\].
+    /// Magnitude of the mean tangential force transmitted (idem) \[N\].
     pub q: f64,
 }
 
@@ -409,11 +402,7 @@ pub fn drive_run(p: &DriveParams, torque: f64, run: Run) -> DriveRun {
             ColliderDensity(p.material.density() as f32),
             Friction::new(mu),
             Position(Vec3::new(0.0, 2.0 * r, 0.0)),
-            LockedAxes::new()
-                .lock_translation_x()
-                .lock_translation_z()
-                .lock_rotation_x()
-                .lock_rotation_y(),
+            LockedAxes::new().lock_translation_x().lock_translation_z(),
             // The output counter-rotates; the brake opposes it.
             AngularVelocity(Vec3::new(0.0, 0.0, -p.omega as f32)),
             ConstantTorque(Vec3::new(0.0, 0.0, torque as f32)),
@@ -423,7 +412,7 @@ pub fn drive_run(p: &DriveParams, torque: f64, run: Run) -> DriveRun {
     );
     let steps = (p.duration / p.dt).round() as usize;
     let (mut m_in, mut m_out) = (RollingMeter::default(), RollingMeter::default());
-    let (mut q_sum, mut p_sum, mut n) = (0.0, 0.0, 0usize);
+    let (mut q_sum, mut p_sum, mut n) = (creep_law::Vec3::ZERO, 0.0, 0usize);
     for i in 0..steps {
         step(&mut app);
         if i == steps / 2 {
@@ -446,7 +435,7 @@ pub fn drive_run(p: &DriveParams, torque: f64, run: Run) -> DriveRun {
     DriveRun {
         creepage: (a_in - a_out) / (0.5 * (a_in + a_out)),
         p: p_sum / n,
-        q: q_sum / n,
+        q: q_sum.length() / n,
     }
 }
 
