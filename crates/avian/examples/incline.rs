@@ -19,7 +19,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         p.substeps,
         p.duration
     );
-    println!("  transmitted P = {pn:.3} N, Q = {q:.3} N, Q/(mu P) = {:.4}", r.q_over_mu_p);
+    println!(
+        "  transmitted P = {pn:.3} N, Q = {q:.3} N, Q/(mu P) = {:.4}",
+        r.q_over_mu_p
+    );
     println!(
         "  acceleration: creep {:.4} m/s^2, Coulomb {:.4} m/s^2, (5/7) g sin(theta) = {:.4} m/s^2",
         r.creep.acceleration,

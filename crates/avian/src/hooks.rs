@@ -12,6 +12,8 @@
 //! Anything else (no material, another shape, an invalid material, `Fidelity::Coulomb`) is left
 //! to Avian's Coulomb friction, with a warning for a bad setup.
 
+use crate::material::{CreepMaterial, Fidelity};
+use crate::state::{CreepState, CreepWarning, Inner, PairRecord, PointRecord};
 use avian3d::parry::shape::ShapeType;
 use avian3d::prelude::*;
 use bevy::ecs::system::SystemParam;
@@ -19,8 +21,6 @@ use bevy::prelude::*;
 use creep_law::Surface;
 use creep_law::kinematics::BodyMotion;
 use creep_law::rigid::{RigidContact, RigidPair, ball_creep};
-use crate::material::{CreepMaterial, Fidelity};
-use crate::state::{CreepState, CreepWarning, Inner, PairRecord, PointRecord};
 
 /// creep-law's vector from Avian's.
 #[inline]
@@ -149,7 +149,8 @@ impl CollisionHooks for CreepHooks<'_, '_> {
             for manifold in contacts.manifolds.iter_mut() {
                 let n = manifold.normal;
                 for point in manifold.points.iter_mut() {
-                    let gap = mean_rotation_gap(&b1, point.anchor1, &b2, point.anchor2, n, dt, substeps);
+                    let gap =
+                        mean_rotation_gap(&b1, point.anchor1, &b2, point.anchor2, n, dt, substeps);
                     point.penetration += gap as f32;
                 }
             }
@@ -205,7 +206,8 @@ impl CollisionHooks for CreepHooks<'_, '_> {
             return true;
         };
         if rec.points.len() < contacts.manifolds.len() {
-            rec.points.resize(contacts.manifolds.len(), PointRecord::default());
+            rec.points
+                .resize(contacts.manifolds.len(), PointRecord::default());
         }
         for (manifold, prev) in contacts.manifolds.iter_mut().zip(rec.points.iter_mut()) {
             // Balls: one point per manifold. Further points (none for a ball) stay Coulomb.
@@ -273,7 +275,11 @@ fn mean_rotation_gap(
 ) -> f64 {
     let h = dt / f64::from(substeps);
     let turn = |b: &Body, r: Vec3, t: f64| {
-        let w = bevy::math::DVec3::new(b.angular_velocity.x, b.angular_velocity.y, b.angular_velocity.z);
+        let w = bevy::math::DVec3::new(
+            b.angular_velocity.x,
+            b.angular_velocity.y,
+            b.angular_velocity.z,
+        );
         let r = r.as_dvec3();
         bevy::math::DQuat::from_scaled_axis(w * t) * r - r
     };

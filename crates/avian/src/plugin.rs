@@ -155,7 +155,12 @@ fn add_missing_hook_flags(
 /// angular impulse, scaled down so that it never reverses the bodies' relative spin about `n`
 /// (the creep moment resists the spin; it cannot drive it past zero).
 fn apply_moment(
-    bodies: &mut Query<(&RigidBody, &mut AngularVelocity, &ComputedAngularInertia, &Rotation)>,
+    bodies: &mut Query<(
+        &RigidBody,
+        &mut AngularVelocity,
+        &ComputedAngularInertia,
+        &Rotation,
+    )>,
     (b1, b2): (Option<Entity>, Option<Entity>),
     m: creep_law::Vec3,
     n: creep_law::Vec3,
@@ -167,8 +172,12 @@ fn apply_moment(
         let Some(Ok((rb, w, i, rot))) = b.map(|e| bodies.get(e)) else {
             return (Vec3::ZERO, 0.0);
         };
-        let (rb, w, i, rot): (&RigidBody, &AngularVelocity, &ComputedAngularInertia, &Rotation) =
-            (rb, w, i, rot);
+        let (rb, w, i, rot): (
+            &RigidBody,
+            &AngularVelocity,
+            &ComputedAngularInertia,
+            &Rotation,
+        ) = (rb, w, i, rot);
         if !rb.is_dynamic() {
             return (Vec3::ZERO, w.0.dot(n));
         }
@@ -212,7 +221,8 @@ fn accumulate_substep(graph: Res<ConstraintGraph>, state: Res<CreepState>) {
             let Some(Some(rec)) = inner.records.get_mut(c.contact_id.0 as usize) else {
                 continue;
             };
-            let (Some(prev), Some(point)) = (rec.points.get_mut(c.manifold_index), c.points.first())
+            let (Some(prev), Some(point)) =
+                (rec.points.get_mut(c.manifold_index), c.points.first())
             else {
                 continue;
             };
@@ -233,7 +243,12 @@ fn accumulate_substep(graph: Res<ConstraintGraph>, state: Res<CreepState>) {
 /// the counts.
 fn harvest(
     graph: Res<ConstraintGraph>,
-    mut bodies: Query<(&RigidBody, &mut AngularVelocity, &ComputedAngularInertia, &Rotation)>,
+    mut bodies: Query<(
+        &RigidBody,
+        &mut AngularVelocity,
+        &ComputedAngularInertia,
+        &Rotation,
+    )>,
     state: Res<CreepState>,
     time: Res<Time>,
 ) {

@@ -30,6 +30,9 @@ pub enum Run {
     Plain,
     /// The plugin installed, every collider at this fidelity.
     Plugin(Fidelity),
+    /// The plugin with its rotation-gap correction on
+    /// ([`crate::CreepSettings::rotation_gap_correction`]), every collider at this fidelity.
+    GapCorrected(Fidelity),
 }
 
 /// A headless app stepping physics once per update at `dt` with `substeps` substeps.
@@ -40,10 +43,11 @@ pub fn headless_app(dt: f64, substeps: u32, gravity: Vec3, run: Run) -> App {
         Run::Plain => {
             app.add_plugins(PhysicsPlugins::new(PostUpdate));
         }
-        Run::Plugin(_) => {
+        Run::Plugin(_) | Run::GapCorrected(_) => {
             app.add_plugins((
                 PhysicsPlugins::new(PostUpdate).with_collision_hooks::<CreepHooks>(),
-                CreepAvianPlugin::default(),
+                CreepAvianPlugin::default()
+                    .with_rotation_gap_correction(matches!(run, Run::GapCorrected(_))),
             ));
         }
     }
@@ -74,7 +78,9 @@ pub fn step(app: &mut App) {
 fn creep_material(material: Material, run: Run) -> Option<CreepMaterial> {
     match run {
         Run::Plain => None,
-        Run::Plugin(f) => Some(CreepMaterial::new(material).with_fidelity(f)),
+        Run::Plugin(f) | Run::GapCorrected(f) => {
+            Some(CreepMaterial::new(material).with_fidelity(f))
+        }
     }
 }
 
@@ -230,11 +236,7 @@ pub struct InclineResult {
 
 /// One incline run.
 pub fn incline_run(p: &InclineParams, run: Run) -> InclineRun {
-    let gravity = Vec3::new(
-        (G * p.theta.sin()) as f32,
-        (-G * p.theta.cos()) as f32,
-        0.0,
-    );
+    let gravity = Vec3::new((G * p.theta.sin()) as f32, (-G * p.theta.cos()) as f32, 0.0);
     let mut app = headless_app(p.dt, p.substeps, gravity, run);
     let mat = creep_material(p.material, run);
     let mu = p.material.friction() as f32;
@@ -267,7 +269,10 @@ pub fn incline_run(p: &InclineParams, run: Run) -> InclineRun {
     let (mut q_sum, mut p_sum, mut n) = (creep_law::Vec3::ZERO, 0.0, 0usize);
     for i in 0..steps {
         step(&mut app);
-        let rot = app.world().get::<Rotation>(ball).map_or(Quat::IDENTITY, |r| r.0);
+        let rot = app
+            .world()
+            .get::<Rotation>(ball)
+            .map_or(Quat::IDENTITY, |r| r.0);
         let x = app.world().get::<Position>(ball).map_or(0.0, |p| p.0.x);
         if i == steps / 2 {
             x0 = f64::from(x);
@@ -283,7 +288,11 @@ pub fn incline_run(p: &InclineParams, run: Run) -> InclineRun {
         }
     }
     let x = f64::from(app.world().get::<Position>(ball).map_or(0.0, |p| p.0.x));
-    let v = f64::from(app.world().get::<LinearVelocity>(ball).map_or(0.0, |v| v.0.x));
+    let v = f64::from(
+        app.world()
+            .get::<LinearVelocity>(ball)
+            .map_or(0.0, |v| v.0.x),
+    );
     let dx = x - x0;
     let counts = app
         .world()
@@ -419,7 +428,11 @@ pub fn drive_run(p: &DriveParams, torque: f64, run: Run) -> DriveRun {
             m_in = RollingMeter::default();
             m_out = RollingMeter::default();
         }
-        let rot = |e: Entity| app.world().get::<Rotation>(e).map_or(Quat::IDENTITY, |r| r.0);
+        let rot = |e: Entity| {
+            app.world()
+                .get::<Rotation>(e)
+                .map_or(Quat::IDENTITY, |r| r.0)
+        };
         m_in.update(rot(driver), DVec3::Z);
         m_out.update(rot(out), DVec3::Z);
         if i > steps / 2
@@ -731,13 +744,16 @@ pub fn fast_matrix() -> Vec<FastCase> {
     v
 }
 
-/// One case run with the plugin (`Fidelity::Creep`) and with plain Avian.
+/// One case run with the plugin (`Fidelity::Creep`), with the plugin and its rotation-gap
+/// correction, and with plain Avian.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FastOutcome {
     /// The case.
     pub case: FastCase,
     /// The plugin.
     pub plugin: Summary,
+    /// The plugin with the rotation-gap correction.
+    pub corrected: Summary,
     /// Plain Avian.
     pub plain: Summary,
 }
@@ -755,6 +771,7 @@ pub fn fast_case(case: FastCase, duration: f64, substeps: u32) -> Option<FastOut
     Some(FastOutcome {
         case,
         plugin: ball.run(Run::Plugin(Fidelity::Creep), |_, _| {}),
+        corrected: ball.run(Run::GapCorrected(Fidelity::Creep), |_, _| {}),
         plain: ball.run(Run::Plain, |_, _| {}),
     })
 }

@@ -104,7 +104,10 @@ impl std::fmt::Display for CreepWarning {
                 "collider {e}: shape not modelled by creep-friction (balls and flat shapes are): Coulomb friction"
             ),
             Self::InvalidMaterial(e, why) => {
-                write!(f, "collider {e}: invalid creep material ({why}): Coulomb friction")
+                write!(
+                    f,
+                    "collider {e}: invalid creep material ({why}): Coulomb friction"
+                )
             }
             Self::HooksNotInstalled => write!(
                 f,

@@ -25,7 +25,10 @@ fn drive_transmits_the_brake_torque_from_02_to_09_mu_p() {
             p.normal_force()
         );
         assert!((r.q_over_mu_p - s).abs() < 0.02 * s, "{r:?}");
-        assert!((r.creep.p - p.normal_force()).abs() < 0.02 * p.normal_force(), "{r:?}");
+        assert!(
+            (r.creep.p - p.normal_force()).abs() < 0.02 * p.normal_force(),
+            "{r:?}"
+        );
     }
 }
 

@@ -28,7 +28,11 @@ fn free_rolling_gains_no_energy_from_the_plugin() {
         };
         let (creep, e0) = energies(&ball, Run::Plugin(Fidelity::Creep));
         let (twin, _) = energies(&ball, Run::Plugin(Fidelity::Coulomb));
-        let gain = |e: &[f64]| e.iter().map(|e| (e - e0) / e0).fold(f64::NEG_INFINITY, f64::max);
+        let gain = |e: &[f64]| {
+            e.iter()
+                .map(|e| (e - e0) / e0)
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
         let loss = |e: &[f64]| (e0 - e.last().copied().unwrap_or(e0)) / e0;
         let (g_creep, g_twin) = (gain(&creep), gain(&twin));
         println!(

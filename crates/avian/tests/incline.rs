@@ -20,15 +20,27 @@ fn incline_creep_slip_is_kalkers_within_two_percent() {
     // The creep run gave its contact a target every step; the twin none.
     assert_eq!(r.creep.counts.creep, 1, "{:?}", r.creep.counts);
     assert_eq!(r.coulomb.counts.creep, 0, "{:?}", r.coulomb.counts);
-    assert_eq!(r.coulomb.counts.coulomb_requested, 1, "{:?}", r.coulomb.counts);
+    assert_eq!(
+        r.coulomb.counts.coulomb_requested, 1,
+        "{:?}",
+        r.coulomb.counts
+    );
     // The transmitted loads are rolling's, (m g cos(theta), (2/7) m g sin(theta)): P within
     // 0.3 % (the ball bobs with Avian's rotation gap), Q within 1 %.
     let (pn, q) = p.rolling_loads();
-    assert!((r.creep.p - pn).abs() < 3e-3 * pn, "P {} vs {pn}", r.creep.p);
+    assert!(
+        (r.creep.p - pn).abs() < 3e-3 * pn,
+        "P {} vs {pn}",
+        r.creep.p
+    );
     assert!((r.creep.q - q).abs() < 1e-2 * q, "Q {} vs {q}", r.creep.q);
     // Both accelerate at (5/7) g sin(theta) within 1 %.
     let a = 5.0 / 7.0 * 9.81 * p.theta.sin();
     for run in [r.creep, r.coulomb] {
-        assert!((run.acceleration - a).abs() < 1e-2 * a, "{} vs {a}", run.acceleration);
+        assert!(
+            (run.acceleration - a).abs() < 1e-2 * a,
+            "{} vs {a}",
+            run.acceleration
+        );
     }
 }
