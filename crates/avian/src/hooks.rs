@@ -138,7 +138,7 @@ impl CollisionHooks for CreepHooks<'_, '_> {
         };
         if s1 == Surface::Plane && s2 == Surface::Plane {
             // Two flat shapes: no rolling contact to creep (a box on a box).
-            inner.counts.coulomb_setup += points;
+            inner.current.coulomb_setup += points;
             return true;
         }
         let (b1, b2) = (self.body(contacts.body1), self.body(contacts.body2));
@@ -156,7 +156,7 @@ impl CollisionHooks for CreepHooks<'_, '_> {
             }
         }
         if m1.fidelity.min(m2.fidelity) == Fidelity::Coulomb {
-            inner.counts.coulomb_requested += points;
+            inner.current.coulomb_requested += points;
             return true;
         }
         let Some(first) = contacts.manifolds.first() else {
@@ -196,13 +196,13 @@ impl CollisionHooks for CreepHooks<'_, '_> {
         }
         let auto_tolerance =
             (m1.fidelity.min(m2.fidelity) == Fidelity::Auto).then_some(settings.auto_tolerance);
-        let mut counts = inner.counts;
+        let mut counts = inner.current;
         let Some(Some(rec)) = inner.records.get_mut(contacts.contact_id.0 as usize) else {
             return true;
         };
         let Some((pair, consts)) = rec.law else {
             counts.coulomb_setup += points;
-            inner.counts = counts;
+            inner.current = counts;
             return true;
         };
         if rec.points.len() < contacts.manifolds.len() {
@@ -253,7 +253,7 @@ impl CollisionHooks for CreepHooks<'_, '_> {
                 counts.coulomb_auto += 1;
             }
         }
-        inner.counts = counts;
+        inner.current = counts;
         true
     }
 }
@@ -296,6 +296,6 @@ fn mean_rotation_gap(
 /// Leaves a pair to Coulomb for a bad setup: warns once, counts its points.
 fn setup(inner: &mut Inner, w: CreepWarning, points: usize) -> bool {
     inner.warn(w);
-    inner.counts.coulomb_setup += points;
+    inner.current.coulomb_setup += points;
     true
 }

@@ -44,19 +44,10 @@ use crate::state::{CreepSettings, CreepState, CreepWarning};
 ///   never panics, on: a collider touching a creep collider without a material, a shape other
 ///   than a ball or a flat one, an invalid material, invalid settings, the creep hooks not
 ///   installed as Avian's narrow-phase hooks.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct CreepAvianPlugin {
     settings: CreepSettings,
     keep_recycling: bool,
-}
-
-impl Default for CreepAvianPlugin {
-    fn default() -> Self {
-        Self {
-            settings: CreepSettings::default(),
-            keep_recycling: false,
-        }
-    }
 }
 
 impl CreepAvianPlugin {
@@ -127,10 +118,10 @@ impl Plugin for CreepAvianPlugin {
         {
             config.recycle_distance = 0.0;
         }
-        if !app.is_plugin_added::<NarrowPhasePlugin<Collider, CreepHooks>>() {
-            if let Some(state) = app.world().get_resource::<CreepState>() {
-                state.lock().warn(CreepWarning::HooksNotInstalled);
-            }
+        if !app.is_plugin_added::<NarrowPhasePlugin<Collider, CreepHooks>>()
+            && let Some(state) = app.world().get_resource::<CreepState>()
+        {
+            state.lock().warn(CreepWarning::HooksNotInstalled);
         }
     }
 }
@@ -202,7 +193,7 @@ fn apply_moment(
 /// Starts a step's counts.
 fn begin_step(state: Res<CreepState>) {
     let mut inner = state.lock();
-    inner.counts = Default::default();
+    inner.current = Default::default();
     inner.hook_calls = 0;
 }
 
@@ -287,5 +278,5 @@ fn harvest(
             }
         }
     }
-    inner.last = inner.counts;
+    inner.last_step = inner.current;
 }

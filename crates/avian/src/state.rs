@@ -169,8 +169,8 @@ pub(crate) struct PairRecord {
 pub(crate) struct Inner {
     pub settings: CreepSettings,
     pub records: Vec<Option<PairRecord>>,
-    pub counts: StepCounts,
-    pub last: StepCounts,
+    pub current: StepCounts,
+    pub last_step: StepCounts,
     pub hook_calls: u64,
     pub steps: u64,
     pub warned: Vec<(Option<Entity>, u8)>,
@@ -257,7 +257,7 @@ impl CreepState {
 
     /// What the hooks did in the last physics step.
     pub fn counts(&self) -> StepCounts {
-        self.lock().last
+        self.lock().last_step
     }
 
     /// Physics steps seen.
