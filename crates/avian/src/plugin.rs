@@ -1,0 +1,282 @@
+//! [`CreepAvianPlugin`]: the resource, the hook flags and the per-step bookkeeping.
+
+use avian3d::dynamics::solver::constraint_graph::ConstraintGraph;
+use avian3d::dynamics::solver::schedule::{SolverSystems, SubstepSchedule, SubstepSolverSystems};
+use avian3d::prelude::*;
+use bevy::prelude::*;
+use creep_law::CreepModel;
+
+use crate::hooks::{CreepHooks, v3};
+use crate::material::CreepMaterial;
+use crate::state::{CreepSettings, CreepState, CreepWarning};
+
+/// Creep-friction for Avian. Install [`crate::CreepHooks`] as Avian's collision hooks, add this
+/// plugin, and give colliders a [`CreepMaterial`]:
+///
+/// ```no_run
+/// use avian3d::prelude::*;
+/// use bevy::prelude::*;
+/// use creep_avian::prelude::*;
+/// App::new()
+///     .add_plugins((MinimalPlugins, TransformPlugin))
+///     .add_plugins((
+///         PhysicsPlugins::default().with_collision_hooks::<CreepHooks>(),
+///         CreepAvianPlugin::default(),
+///     ))
+///     .add_systems(Startup, |mut commands: Commands| {
+///         commands.spawn((RigidBody::Dynamic, Collider::sphere(0.1), CreepMaterial::steel()));
+///     })
+///     .run();
+/// ```
+///
+/// What it does:
+/// - inserts [`CreepState`] (settings, records, counts, warnings);
+/// - turns Avian's contact recycling off (`NarrowPhaseConfig::recycle_distance = 0`): a
+///   recycled contact skips the hook, so its slip target would not follow its load
+///   ([`CreepAvianPlugin::with_contact_recycling`] keeps it);
+/// - gives each `CreepMaterial` collider `ActiveCollisionHooks::MODIFY_CONTACTS` (a required
+///   component; an existing `ActiveCollisionHooks` without the flag gets it, with a warning);
+/// - after Avian's solver has stored its impulses, reads each creep contact's normal and
+///   tangential impulses from Avian's contact constraints into the records (the hook runs
+///   before Avian copies last step's impulses into the new manifolds, so it cannot read them
+///   there), and closes the step's counts;
+/// - warns (Bevy `warn!`, and [`CreepState::warnings`]) and leaves the contact to Coulomb,
+///   never panics, on: a collider touching a creep collider without a material, a shape other
+///   than a ball or a flat one, an invalid material, invalid settings, the creep hooks not
+///   installed as Avian's narrow-phase hooks.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CreepAvianPlugin {
+    settings: CreepSettings,
+    keep_recycling: bool,
+}
+
+impl CreepAvianPlugin {
+    /// The plugin with these settings (validated when the plugin is built: invalid settings
+    /// draw a warning and the defaults are used).
+    pub fn with_settings(mut self, settings: CreepSettings) -> Self {
+        self.settings = settings;
+        self
+    }
+    /// Keeps Avian's contact recycling (off by default: the plugin sets
+    /// `NarrowPhaseConfig::recycle_distance` to 0). A recycled contact skips the narrow phase
+    /// and so the hook: it keeps last step's creep slip target, and its target follows the load
+    /// only on the steps Avian recomputes it.
+    pub fn with_contact_recycling(mut self, keep: bool) -> Self {
+        self.keep_recycling = keep;
+        self
+    }
+    /// The saturated creep slip \[m/s\] below which `Fidelity::Auto` contacts stay Coulomb.
+    pub fn with_auto_tolerance(mut self, tolerance: f64) -> Self {
+        self.settings.auto_tolerance = tolerance;
+        self
+    }
+    /// Offsets creep pairs' penetration by the mean rotation gap of the step's substeps
+    /// ([`CreepSettings::rotation_gap_correction`]).
+    pub fn with_rotation_gap_correction(mut self, on: bool) -> Self {
+        self.settings.rotation_gap_correction = on;
+        self
+    }
+    /// The steady creep law (Kalker's `F_ss` by default).
+    pub fn with_creep_model(mut self, model: CreepModel) -> Self {
+        self.settings.creep_model = model;
+        self
+    }
+}
+
+impl Plugin for CreepAvianPlugin {
+    fn build(&self, app: &mut App) {
+        let state = match self.settings.validate() {
+            Ok(()) => CreepState::new(self.settings),
+            Err(why) => {
+                let state = CreepState::new(CreepSettings::default());
+                state.lock().warn(CreepWarning::InvalidSettings(why));
+                state
+            }
+        };
+        app.insert_resource(state);
+        app.register_required_components_with::<CreepMaterial, ActiveCollisionHooks>(|| {
+            ActiveCollisionHooks::MODIFY_CONTACTS
+        });
+        app.add_systems(
+            SubstepSchedule,
+            accumulate_substep.after(SubstepSolverSystems::Relax),
+        );
+        app.add_systems(
+            PhysicsSchedule,
+            (
+                (add_missing_hook_flags, begin_step).in_set(PhysicsStepSystems::First),
+                harvest
+                    .in_set(PhysicsStepSystems::Solver)
+                    .after(SolverSystems::StoreContactImpulses),
+            ),
+        );
+    }
+
+    fn finish(&self, app: &mut App) {
+        if !self.keep_recycling
+            && let Some(mut config) = app.world_mut().get_resource_mut::<NarrowPhaseConfig>()
+        {
+            config.recycle_distance = 0.0;
+        }
+        if !app.is_plugin_added::<NarrowPhasePlugin<Collider, CreepHooks>>()
+            && let Some(state) = app.world().get_resource::<CreepState>()
+        {
+            state.lock().warn(CreepWarning::HooksNotInstalled);
+        }
+    }
+}
+
+/// Gives `MODIFY_CONTACTS` to creep colliders whose `ActiveCollisionHooks` lack it.
+fn add_missing_hook_flags(
+    mut commands: Commands,
+    state: Res<CreepState>,
+    query: Query<(Entity, &ActiveCollisionHooks), With<CreepMaterial>>,
+) {
+    for (e, flags) in &query {
+        if !flags.contains(ActiveCollisionHooks::MODIFY_CONTACTS) {
+            state.lock().warn(CreepWarning::HookFlagAdded(e));
+            commands
+                .entity(e)
+                .insert(*flags | ActiveCollisionHooks::MODIFY_CONTACTS);
+        }
+    }
+}
+
+/// Applies spin creep's twisting moment `m` (on body 2; `-m` on body 1) over `dt` as an
+/// angular impulse, scaled down so that it never reverses the bodies' relative spin about `n`
+/// (the creep moment resists the spin; it cannot drive it past zero).
+fn apply_moment(
+    bodies: &mut Query<(
+        &RigidBody,
+        &mut AngularVelocity,
+        &ComputedAngularInertia,
+        &Rotation,
+    )>,
+    (b1, b2): (Option<Entity>, Option<Entity>),
+    m: creep_law::Vec3,
+    n: creep_law::Vec3,
+    dt: f64,
+) {
+    let n = crate::hooks::vf(n);
+    let impulse = crate::hooks::vf(m * dt);
+    let change = |b: Option<Entity>, j: Vec3, bodies: &Query<_, _>| -> (Vec3, f32) {
+        let Some(Ok((rb, w, i, rot))) = b.map(|e| bodies.get(e)) else {
+            return (Vec3::ZERO, 0.0);
+        };
+        let (rb, w, i, rot): (
+            &RigidBody,
+            &AngularVelocity,
+            &ComputedAngularInertia,
+            &Rotation,
+        ) = (rb, w, i, rot);
+        if !rb.is_dynamic() {
+            return (Vec3::ZERO, w.0.dot(n));
+        }
+        (i.rotated(rot.0).inverse() * j, w.0.dot(n))
+    };
+    let (d1, w1) = change(b1, -impulse, bodies);
+    let (d2, w2) = change(b2, impulse, bodies);
+    let spin = w2 - w1;
+    let d = (d2 - d1).dot(n);
+    let scale = if spin * (spin + d) < 0.0 && d != 0.0 {
+        (-spin / d).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    for (b, dw) in [(b1, d1), (b2, d2)] {
+        if let Some(Ok((_, mut w, _, _))) = b.map(|e| bodies.get_mut(e)) {
+            w.0 += dw * scale;
+        }
+    }
+}
+
+/// Starts a step's counts.
+fn begin_step(state: Res<CreepState>) {
+    let mut inner = state.lock();
+    inner.current = Default::default();
+    inner.hook_calls = 0;
+}
+
+/// Adds each creep contact's impulses of a substep (after the relaxation solve: the impulse
+/// the substep applied, its warm start included) to its record. The friction impulse is
+/// solved only there, and a substep's accumulated impulse is what it applied, so the sum over
+/// the substeps is the step's impulse; the last substep alone is not (a rolling ball's
+/// rotation gap opens the contact in the last substeps, which then carry no load).
+fn accumulate_substep(graph: Res<ConstraintGraph>, state: Res<CreepState>) {
+    let mut inner = state.lock();
+    if inner.records.is_empty() {
+        return;
+    }
+    for color in &graph.colors {
+        for c in &color.contact_constraints {
+            let Some(Some(rec)) = inner.records.get_mut(c.contact_id.0 as usize) else {
+                continue;
+            };
+            let (Some(prev), Some(point)) =
+                (rec.points.get_mut(c.manifold_index), c.points.first())
+            else {
+                continue;
+            };
+            let t1 = c.tangent1;
+            let t2 = t1.cross(c.normal);
+            let j = point
+                .tangent_part
+                .as_ref()
+                .map_or(Vec3::ZERO, |t| t.impulse.x * t1 + t.impulse.y * t2);
+            prev.acc_normal += f64::from(point.normal_part.impulse);
+            prev.acc_tangent += v3(j);
+        }
+    }
+}
+
+/// Turns each creep contact's summed impulses into the step's forces, marks the records whose
+/// pairs generated constraints (the others are dropped), applies spin creep's moments, closes
+/// the counts.
+fn harvest(
+    graph: Res<ConstraintGraph>,
+    mut bodies: Query<(
+        &RigidBody,
+        &mut AngularVelocity,
+        &ComputedAngularInertia,
+        &Rotation,
+    )>,
+    state: Res<CreepState>,
+    time: Res<Time>,
+) {
+    let dt = time.delta_secs_f64();
+    let mut inner = state.lock();
+    inner.steps += 1;
+    if dt > 0.0 {
+        for rec in inner.records.iter_mut().flatten() {
+            for point in rec.points.iter_mut() {
+                // The solver applies +j to body 2 and -j to body 1.
+                point.p = point.acc_normal / dt;
+                point.q_meas = point.acc_tangent * (-1.0 / dt);
+                point.acc_normal = 0.0;
+                point.acc_tangent = creep_law::Vec3::ZERO;
+            }
+        }
+    }
+    for color in &graph.colors {
+        for c in &color.contact_constraints {
+            if let Some(Some(rec)) = inner.records.get_mut(c.contact_id.0 as usize) {
+                rec.harvested = true;
+            }
+        }
+    }
+    for slot in inner.records.iter_mut() {
+        if let Some(rec) = slot {
+            for point in &rec.points {
+                if point.moment != creep_law::Vec3::ZERO {
+                    apply_moment(&mut bodies, rec.bodies, point.moment, point.normal, dt);
+                }
+            }
+            if rec.harvested {
+                rec.harvested = false;
+            } else {
+                *slot = None;
+            }
+        }
+    }
+    inner.last_step = inner.current;
+}
