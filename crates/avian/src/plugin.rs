@@ -1,6 +1,10 @@
 //! [`CreepAvianPlugin`]: the resource, the hook flags and the per-step bookkeeping.
 
+use avian3d::collision::contact_types::ContactGraph;
 use avian3d::dynamics::solver::constraint_graph::ConstraintGraph;
+use avian3d::dynamics::solver::contact::{ContactConstraint, ContactTangentPart};
+use avian3d::dynamics::solver::solver_body::{SolverBodies, SolverBodyInertia};
+use avian3d::math::SymmetricTensor;
 use avian3d::dynamics::solver::schedule::{SolverSystems, SubstepSchedule, SubstepSolverSystems};
 use avian3d::prelude::*;
 use bevy::prelude::*;
@@ -105,7 +109,12 @@ impl Plugin for CreepAvianPlugin {
             PhysicsSchedule,
             (
                 (add_missing_hook_flags, begin_step).in_set(PhysicsStepSystems::First),
-                harvest
+                repair_friction_frames
+                    .in_set(PhysicsStepSystems::Solver)
+                    .after(SolverSystems::PrepareContactConstraints)
+                    .before(SolverSystems::Substep),
+                (keep_friction_impulses, harvest)
+                    .chain()
                     .in_set(PhysicsStepSystems::Solver)
                     .after(SolverSystems::StoreContactImpulses),
             ),
@@ -186,6 +195,151 @@ fn apply_moment(
     for (b, dw) in [(b1, d1), (b2, d2)] {
         if let Some(Ok((_, mut w, _, _))) = b.map(|e| bodies.get_mut(e)) {
             w.0 += dw * scale;
+        }
+    }
+}
+
+/// Largest `|t1 . n|` of a friction frame taken as lying in the contact plane.
+const FRAME_TOLERANCE: f32 = 1e-3;
+
+/// Whether both colliders of the contact have a [`CreepMaterial`].
+fn creep_pair(
+    contacts: &ContactGraph,
+    materials: &Query<(), With<CreepMaterial>>,
+    c: &ContactConstraint,
+) -> bool {
+    contacts.get_by_id(c.contact_id).is_some_and(|(_, pair)| {
+        materials.contains(pair.collider1) && materials.contains(pair.collider2)
+    })
+}
+
+/// Gives each contact of two creep colliders a friction frame in its contact plane and a warm
+/// start that is last step's friction impulse.
+///
+/// Avian builds the frame each step from the relative velocity of the two bodies' centres
+/// (`compute_tangent_directions` in avian3d's `dynamics/solver/contact/mod.rs`) and carries the
+/// warm-start friction impulse over as its two components in that frame. When the centres
+/// move apart or together only along the normal (a ball driven by a ball spinning in place, a
+/// ball spinning on a vertical bounce), the tangential part of that velocity is rounding: the
+/// frame turns at random from step to step and can lie along the normal (a normal of length
+/// `1 + 1e-7` leaves a residual along itself). Last step's impulse is then applied in another
+/// direction, the friction solve works against the normal, and a contact that must carry a
+/// steady friction force chatters and slips. Here a frame out of the contact plane is replaced
+/// by one in it (its effective masses recomputed as Avian does), and a warm-started friction
+/// impulse is set to last step's impulse, kept in world space, resolved in the new frame.
+fn repair_friction_frames(
+    mut graph: ResMut<ConstraintGraph>,
+    contacts: Res<ContactGraph>,
+    materials: Query<(), With<CreepMaterial>>,
+    solver_bodies: Res<SolverBodies>,
+    state: Res<CreepState>,
+) {
+    let inner = state.lock();
+    let step = inner.steps;
+    for color in graph.colors.iter_mut() {
+        for c in color.contact_constraints.iter_mut() {
+            if !creep_pair(&contacts, &materials, c) {
+                continue;
+            }
+            let n = c.normal.normalize_or_zero();
+            if n == Vec3::ZERO {
+                continue;
+            }
+            let degenerate = c.tangent1.dot(n).abs() > FRAME_TOLERANCE;
+            if degenerate {
+                c.tangent1 = n.any_orthonormal_vector();
+            }
+            let t1 = c.tangent1;
+            let t2 = t1.cross(c.normal);
+            let last = inner
+                .frames
+                .get(c.contact_id.0 as usize)
+                .filter(|f| f.0 + 1 == step)
+                .and_then(|f| f.1.get(c.manifold_index))
+                .copied();
+            let masses = degenerate.then(|| inverse_masses(&solver_bodies, c));
+            for (k, point) in c.points.iter_mut().enumerate() {
+                let Some(part) = point.tangent_part.as_mut() else {
+                    continue;
+                };
+                // Avian warm-starts a matched point only (else its impulse is zero).
+                if part.impulse != Vec2::ZERO
+                    && k == 0
+                    && let Some(j) = last
+                {
+                    part.impulse = Vec2::new(j.dot(t1), j.dot(t2));
+                }
+                if let Some((sum, i1, i2)) = masses {
+                    *part = ContactTangentPart::generate(
+                        sum,
+                        &i1,
+                        &i2,
+                        point.anchor1,
+                        point.anchor2,
+                        [t1, t2],
+                        Some(part.impulse),
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The inverse mass sum and inverse inertias of a contact's bodies as Avian's
+/// `ContactConstraint::generate` takes them (the dominant body's as zero).
+fn inverse_masses(
+    bodies: &SolverBodies,
+    c: &ContactConstraint,
+) -> (Vec3, SymmetricTensor, SymmetricTensor) {
+    let a = bodies
+        .get_inertia(c.body_index1)
+        .unwrap_or(&SolverBodyInertia::DUMMY);
+    let b = bodies
+        .get_inertia(c.body_index2)
+        .unwrap_or(&SolverBodyInertia::DUMMY);
+    let (m1, i1) = (a.effective_inv_mass(), a.effective_inv_angular_inertia());
+    let (m2, i2) = (b.effective_inv_mass(), b.effective_inv_angular_inertia());
+    match c.relative_dominance.cmp(&0) {
+        std::cmp::Ordering::Equal => (m1 + m2, i1, i2),
+        std::cmp::Ordering::Greater => (m2, SymmetricTensor::ZERO, i2),
+        std::cmp::Ordering::Less => (m1, i1, SymmetricTensor::ZERO),
+    }
+}
+
+/// Keeps, per contact of two creep colliders, each manifold's last friction impulse (the warm
+/// start of the next step) in world space, for [`repair_friction_frames`].
+fn keep_friction_impulses(
+    graph: Res<ConstraintGraph>,
+    contacts: Res<ContactGraph>,
+    materials: Query<(), With<CreepMaterial>>,
+    state: Res<CreepState>,
+) {
+    let mut inner = state.lock();
+    let step = inner.steps;
+    for color in &graph.colors {
+        for c in &color.contact_constraints {
+            if !creep_pair(&contacts, &materials, c) {
+                continue;
+            }
+            let i = c.contact_id.0 as usize;
+            if i >= inner.frames.len() {
+                inner.frames.resize_with(i + 1, Default::default);
+            }
+            let frame = &mut inner.frames[i];
+            if frame.0 != step {
+                frame.0 = step;
+                frame.1.clear();
+            }
+            if frame.1.len() <= c.manifold_index {
+                frame.1.resize(c.manifold_index + 1, Vec3::ZERO);
+            }
+            let t1 = c.tangent1;
+            let t2 = t1.cross(c.normal);
+            frame.1[c.manifold_index] = c
+                .points
+                .first()
+                .and_then(|p| p.tangent_part.as_ref())
+                .map_or(Vec3::ZERO, |t| t.impulse.x * t1 + t.impulse.y * t2);
         }
     }
 }

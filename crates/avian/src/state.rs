@@ -175,6 +175,10 @@ pub(crate) struct Inner {
     pub steps: u64,
     pub warned: Vec<(Option<Entity>, u8)>,
     pub warnings: Vec<CreepWarning>,
+    /// Per contact (indexed by `ContactId`) of a pair of creep colliders: the step it was last
+    /// solved in and, per manifold, its first point's last friction impulse in world space
+    /// \[N s\] (Avian's warm start, which Avian keeps in the step's friction frame).
+    pub frames: Vec<(u64, Vec<bevy::math::Vec3>)>,
 }
 
 impl Inner {
