@@ -144,7 +144,7 @@ impl CollisionHooks for CreepHooks<'_, '_> {
         let (b1, b2) = (self.body(contacts.body1), self.body(contacts.body2));
         let dt = self.time.delta_secs_f64();
         let settings = inner.settings;
-        if settings.rotation_gap_correction {
+        if settings.rotation_gap_correction && !settings.rotation_gap_removal {
             let substeps = self.substeps.0.max(1);
             for manifold in contacts.manifolds.iter_mut() {
                 let n = manifold.normal;

@@ -2,6 +2,7 @@
 
 use avian3d::collision::contact_types::ContactGraph;
 use avian3d::dynamics::solver::constraint_graph::ConstraintGraph;
+use avian3d::dynamics::integrator::IntegrationSystems;
 use avian3d::dynamics::solver::contact::{ContactConstraint, ContactTangentPart};
 use avian3d::dynamics::solver::solver_body::{SolverBodies, SolverBodyInertia};
 use avian3d::math::SymmetricTensor;
@@ -12,7 +13,7 @@ use creep_law::CreepModel;
 
 use crate::hooks::{CreepHooks, v3};
 use crate::material::CreepMaterial;
-use crate::state::{CreepSettings, CreepState, CreepWarning};
+use crate::state::{CreepSettings, CreepState, CreepWarning, GapPoint};
 
 /// Creep-friction for Avian. Install [`crate::CreepHooks`] as Avian's collision hooks, add this
 /// plugin, and give colliders a [`CreepMaterial`]:
@@ -80,6 +81,12 @@ impl CreepAvianPlugin {
         self.settings.rotation_gap_correction = on;
         self
     }
+    /// Removes creep balls' own rotation from the separation Avian's solver reads at each
+    /// substep ([`CreepSettings::rotation_gap_removal`], off by default).
+    pub fn with_rotation_gap_removal(mut self, on: bool) -> Self {
+        self.settings.rotation_gap_removal = on;
+        self
+    }
     /// The steady creep law (Kalker's `F_ss` by default).
     pub fn with_creep_model(mut self, model: CreepModel) -> Self {
         self.settings.creep_model = model;
@@ -103,16 +110,21 @@ impl Plugin for CreepAvianPlugin {
         });
         app.add_systems(
             SubstepSchedule,
-            accumulate_substep.after(SubstepSolverSystems::Relax),
+            (
+                accumulate_substep.after(SubstepSolverSystems::Relax),
+                remove_rotation_gap
+                    .after(SubstepSolverSystems::WarmStart)
+                    .before(SubstepSolverSystems::SolveConstraints),
+                remove_rotation_gap
+                    .after(IntegrationSystems::Position)
+                    .before(SubstepSolverSystems::Relax),
+            ),
         );
         app.add_systems(
             PhysicsSchedule,
             (
                 (add_missing_hook_flags, begin_step).in_set(PhysicsStepSystems::First),
-                repair_friction_frames
-                    .in_set(PhysicsStepSystems::Solver)
-                    .after(SolverSystems::PrepareContactConstraints)
-                    .before(SolverSystems::Substep),
+                repair_friction_frames.in_set(SolverSystems::PreSubstep),
                 (keep_friction_impulses, harvest)
                     .chain()
                     .in_set(PhysicsStepSystems::Solver)
@@ -232,14 +244,35 @@ fn repair_friction_frames(
     contacts: Res<ContactGraph>,
     materials: Query<(), With<CreepMaterial>>,
     solver_bodies: Res<SolverBodies>,
+    colliders: Query<&Collider>,
     state: Res<CreepState>,
 ) {
-    let inner = state.lock();
+    let mut guard = state.lock();
+    let inner = &mut *guard;
     let step = inner.steps;
-    for color in graph.colors.iter_mut() {
-        for c in color.contact_constraints.iter_mut() {
+    let removal = inner.settings.rotation_gap_removal;
+    inner.gaps.clear();
+    let is_ball = |e: Entity| {
+        colliders
+            .get(e)
+            .is_ok_and(|c| c.shape_scaled().as_ball().is_some())
+    };
+    for (ci, color) in graph.colors.iter_mut().enumerate() {
+        for (k, c) in color.contact_constraints.iter_mut().enumerate() {
             if !creep_pair(&contacts, &materials, c) {
                 continue;
+            }
+            if removal && let Some((_, pair)) = contacts.get_by_id(c.contact_id) {
+                let balls = (is_ball(pair.collider1), is_ball(pair.collider2));
+                if balls.0 || balls.1 {
+                    for (pi, point) in c.points.iter().enumerate() {
+                        inner.gaps.push(GapPoint {
+                            at: (ci, k, pi),
+                            balls,
+                            base: point.initial_separation,
+                        });
+                    }
+                }
             }
             let n = c.normal.normalize_or_zero();
             if n == Vec3::ZERO {
@@ -258,13 +291,13 @@ fn repair_friction_frames(
                 .and_then(|f| f.1.get(c.manifold_index))
                 .copied();
             let masses = degenerate.then(|| inverse_masses(&solver_bodies, c));
-            for (k, point) in c.points.iter_mut().enumerate() {
+            for (pi, point) in c.points.iter_mut().enumerate() {
                 let Some(part) = point.tangent_part.as_mut() else {
                     continue;
                 };
                 // Avian warm-starts a matched point only (else its impulse is zero).
                 if part.impulse != Vec2::ZERO
-                    && k == 0
+                    && pi == 0
                     && let Some(j) = last
                 {
                     part.impulse = Vec2::new(j.dot(t1), j.dot(t2));
@@ -282,6 +315,52 @@ fn repair_friction_frames(
                 }
             }
         }
+    }
+}
+
+/// Sets each creep-ball contact point's separation offset for the substep so that the
+/// solver's separation leaves out the balls' own rotation.
+///
+/// Avian's solver (`ContactConstraint::solve` in avian3d's `dynamics/solver/contact/mod.rs`)
+/// reads a point's separation at each substep as
+/// `(dx2 - dx1) . n + (q2 r2 - q1 r1) . n + initial_separation`, the anchors `r` turned by
+/// each body's rotation `q` since the step began. A ball turned about its centre is the same
+/// ball, so for a ball's side the turned anchor opens a gap, `R (1 - cos(w t))`, that is not
+/// there: the contact of a rolling or spinning ball goes slack in the last substeps of a step.
+/// Here `initial_separation` is set, before the solve and before the relaxation of every
+/// substep, to Avian's value less the ball's term `(q r - r) . n` (plus for body 1).
+fn remove_rotation_gap(
+    mut graph: ResMut<ConstraintGraph>,
+    bodies: Res<SolverBodies>,
+    state: Res<CreepState>,
+) {
+    let inner = state.lock();
+    for g in &inner.gaps {
+        let Some(c) = graph
+            .colors
+            .get_mut(g.at.0)
+            .and_then(|color| color.contact_constraints.get_mut(g.at.1))
+        else {
+            continue;
+        };
+        let n = c.normal;
+        let turn = |index, r: Vec3| {
+            bodies
+                .get(index)
+                .map_or(0.0, |b| (b.delta_rotation * r - r).dot(n))
+        };
+        let (i1, i2) = (c.body_index1, c.body_index2);
+        let Some(point) = c.points.get_mut(g.at.2) else {
+            continue;
+        };
+        let mut separation = g.base;
+        if g.balls.0 {
+            separation += turn(i1, point.anchor1);
+        }
+        if g.balls.1 {
+            separation -= turn(i2, point.anchor2);
+        }
+        point.initial_separation = separation;
     }
 }
 

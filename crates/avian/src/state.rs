@@ -28,6 +28,10 @@ pub struct CreepSettings {
     /// gap, crate `hooks`). Off by default: a constant cannot follow a gap that grows through
     /// the step (see the crate's guide page for the measured figures).
     pub rotation_gap_correction: bool,
+    /// Removes each creep ball's own rotation from the separation Avian's solver reads at
+    /// every substep (crate `plugin`): a ball turned about its centre is the same ball, so the
+    /// gap `R (1 - cos(w t))` the turned anchor opens is not there. On by default.
+    pub rotation_gap_removal: bool,
 }
 
 impl Default for CreepSettings {
@@ -36,6 +40,7 @@ impl Default for CreepSettings {
             auto_tolerance: 1e-7,
             creep_model: CreepModel::Kuhn,
             rotation_gap_correction: false,
+            rotation_gap_removal: false,
         }
     }
 }
@@ -179,6 +184,19 @@ pub(crate) struct Inner {
     /// solved in and, per manifold, its first point's last friction impulse in world space
     /// \[N s\] (Avian's warm start, which Avian keeps in the step's friction frame).
     pub frames: Vec<(u64, Vec<bevy::math::Vec3>)>,
+    /// This step's contact points with a creep ball on a side, for the per-substep separation.
+    pub gaps: Vec<GapPoint>,
+}
+
+/// A contact point whose separation the solver must read without a ball's own rotation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct GapPoint {
+    /// Graph colour, constraint and point index in Avian's `ConstraintGraph`.
+    pub at: (usize, usize, usize),
+    /// Whether body 1's and body 2's colliders are balls.
+    pub balls: (bool, bool),
+    /// The point's `initial_separation` as Avian prepared it \[m\].
+    pub base: f32,
 }
 
 impl Inner {

@@ -13,7 +13,6 @@ use creep_avian::scenes::{DriveParams, drive};
 const RATIOS: [f64; 5] = [0.2, 0.4, 0.6, 0.8, 0.9];
 
 #[test]
-#[ignore = "Avian's braked contact chatters and slips from 0.6 mu P (module docs)"]
 fn drive_transmits_the_brake_torque_from_02_to_09_mu_p() {
     let p = DriveParams::default();
     let rows = drive(&p, &RATIOS).unwrap();
@@ -33,7 +32,6 @@ fn drive_transmits_the_brake_torque_from_02_to_09_mu_p() {
 }
 
 #[test]
-#[ignore = "Avian's braked contact chatters (module docs): the creepage is not Kalker's"]
 fn drive_creepage_against_kalker() {
     let p = DriveParams::default();
     let rows = drive(&p, &RATIOS).unwrap();
