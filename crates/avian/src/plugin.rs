@@ -1,12 +1,12 @@
 //! [`CreepAvianPlugin`]: the resource, the hook flags and the per-step bookkeeping.
 
 use avian3d::collision::contact_types::ContactGraph;
-use avian3d::dynamics::solver::constraint_graph::ConstraintGraph;
 use avian3d::dynamics::integrator::IntegrationSystems;
+use avian3d::dynamics::solver::constraint_graph::ConstraintGraph;
 use avian3d::dynamics::solver::contact::{ContactConstraint, ContactTangentPart};
+use avian3d::dynamics::solver::schedule::{SolverSystems, SubstepSchedule, SubstepSolverSystems};
 use avian3d::dynamics::solver::solver_body::{SolverBodies, SolverBodyInertia};
 use avian3d::math::SymmetricTensor;
-use avian3d::dynamics::solver::schedule::{SolverSystems, SubstepSchedule, SubstepSolverSystems};
 use avian3d::prelude::*;
 use bevy::prelude::*;
 use creep_law::CreepModel;
@@ -41,6 +41,12 @@ use crate::state::{CreepSettings, CreepState, CreepWarning, GapPoint};
 ///   ([`CreepAvianPlugin::with_contact_recycling`] keeps it);
 /// - gives each `CreepMaterial` collider `ActiveCollisionHooks::MODIFY_CONTACTS` (a required
 ///   component; an existing `ActiveCollisionHooks` without the flag gets it, with a warning);
+/// - for the contacts of two creep colliders, after Avian prepares its contact constraints,
+///   puts a friction frame that Avian built out of the contact plane back in it and resolves
+///   last step's friction impulse in the new frame (Avian carries it over as components of
+///   the old frame);
+/// - with [`CreepAvianPlugin::with_rotation_gap_removal`], takes creep balls' own rotation out
+///   of the separation Avian's solver reads at each substep;
 /// - after Avian's solver has stored its impulses, reads each creep contact's normal and
 ///   tangential impulses from Avian's contact constraints into the records (the hook runs
 ///   before Avian copies last step's impulses into the new manifolds, so it cannot read them

@@ -1,12 +1,15 @@
 //! The friction drive in Avian: a kinematic ball driven at 10 rad/s turns a ball resting on
-//! it against a brake torque `s mu P R`, `s` from 0.2 to 0.9.
+//! it against a brake torque `s mu P R`, `s` from 0.2 to 0.9 (1/240 s, 6 substeps), with the
+//! plugin's rotation-gap removal in the creep run and its Coulomb twin alike. The contact
+//! transmits `Q = s mu P` at `P = m g`, and the output turns slower than the driver by
+//! Kalker's creepage at that force, against the twin (whose own slip is below 2e-5).
 //!
-//! Not met in Avian (6 substeps, 1/240 s), so both tests are ignored and print their figures
-//! (`cargo test -p creep-avian --ignore-rust-version --test drive -- --ignored --nocapture`):
-//! the braked contact chatters, its friction impulse alternating from step to step between
-//! about zero and twice the mean; at 0.2 mu P the mean force is right (0.206 mu P) but the
-//! Coulomb twin's output turns 1.1 % slower than the driver (Avian's own slip, fifty times
-//! Kalker's creepage), and from 0.6 mu P the output slips outright, plugin and twin alike.
+//! Two things the scene needs from the plugin: the friction frame and warm start it repairs
+//! (Avian builds the frame from the centres' relative velocity, here along the normal, so the
+//! frame turned at random from step to step and the warm start landed elsewhere: the contact
+//! chattered and slipped outright from 0.6 mu P), and the rotation-gap removal (two balls
+//! spinning in place open Avian's rotation gap on both sides: the contact went slack in the
+//! last two substeps of each step and the output lagged by 1 %, five times Kalker's creepage).
 
 use creep_avian::scenes::{DriveParams, drive};
 
