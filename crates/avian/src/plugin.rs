@@ -43,8 +43,7 @@ use crate::state::{CreepSettings, CreepState, CreepWarning, GapPoint};
 ///   component; an existing `ActiveCollisionHooks` without the flag gets it, with a warning);
 /// - for the contacts of two creep colliders, after Avian prepares its contact constraints,
 ///   puts a friction frame that Avian built out of the contact plane back in it and resolves
-///   last step's friction impulse in the new frame (Avian carries it over as components of
-///   the old frame);
+///   the warm-start friction impulses (components in last step's frame) into the new frame;
 /// - with [`CreepAvianPlugin::with_rotation_gap_removal`], takes creep balls' own rotation out
 ///   of the separation Avian's solver reads at each substep;
 /// - after Avian's solver has stored its impulses, reads each creep contact's normal and
@@ -131,7 +130,7 @@ impl Plugin for CreepAvianPlugin {
             (
                 (add_missing_hook_flags, begin_step).in_set(PhysicsStepSystems::First),
                 repair_friction_frames.in_set(SolverSystems::PreSubstep),
-                (keep_friction_impulses, harvest)
+                (keep_friction_frames, harvest)
                     .chain()
                     .in_set(PhysicsStepSystems::Solver)
                     .after(SolverSystems::StoreContactImpulses),
@@ -243,8 +242,8 @@ fn creep_pair(
 /// `1 + 1e-7` leaves a residual along itself). Last step's impulse is then applied in another
 /// direction, the friction solve works against the normal, and a contact that must carry a
 /// steady friction force chatters and slips. Here a frame out of the contact plane is replaced
-/// by one in it (its effective masses recomputed as Avian does), and a warm-started friction
-/// impulse is set to last step's impulse, kept in world space, resolved in the new frame.
+/// by one in it (its effective masses recomputed as Avian does), and each warm-started friction
+/// impulse is resolved from last step's frame, kept per manifold, into the new one.
 fn repair_friction_frames(
     mut graph: ResMut<ConstraintGraph>,
     contacts: Res<ContactGraph>,
@@ -297,15 +296,16 @@ fn repair_friction_frames(
                 .and_then(|f| f.1.get(c.manifold_index))
                 .copied();
             let masses = degenerate.then(|| inverse_masses(&solver_bodies, c));
-            for (pi, point) in c.points.iter_mut().enumerate() {
+            for point in c.points.iter_mut() {
                 let Some(part) = point.tangent_part.as_mut() else {
                     continue;
                 };
-                // Avian warm-starts a matched point only (else its impulse is zero).
+                // Avian warm-starts a matched point only (else its impulse is zero), with
+                // its components in last step's frame.
                 if part.impulse != Vec2::ZERO
-                    && pi == 0
-                    && let Some(j) = last
+                    && let Some([u1, u2]) = last
                 {
+                    let j = part.impulse.x * u1 + part.impulse.y * u2;
                     part.impulse = Vec2::new(j.dot(t1), j.dot(t2));
                 }
                 if let Some((sum, i1, i2)) = masses {
@@ -391,9 +391,9 @@ fn inverse_masses(
     }
 }
 
-/// Keeps, per contact of two creep colliders, each manifold's last friction impulse (the warm
-/// start of the next step) in world space, for [`repair_friction_frames`].
-fn keep_friction_impulses(
+/// Keeps, per contact of two creep colliders, each manifold's friction frame of the step (the
+/// frame of the warm-start impulses Avian carries over), for [`repair_friction_frames`].
+fn keep_friction_frames(
     graph: Res<ConstraintGraph>,
     contacts: Res<ContactGraph>,
     materials: Query<(), With<CreepMaterial>>,
@@ -416,15 +416,9 @@ fn keep_friction_impulses(
                 frame.1.clear();
             }
             if frame.1.len() <= c.manifold_index {
-                frame.1.resize(c.manifold_index + 1, Vec3::ZERO);
+                frame.1.resize(c.manifold_index + 1, [Vec3::ZERO; 2]);
             }
-            let t1 = c.tangent1;
-            let t2 = t1.cross(c.normal);
-            frame.1[c.manifold_index] = c
-                .points
-                .first()
-                .and_then(|p| p.tangent_part.as_ref())
-                .map_or(Vec3::ZERO, |t| t.impulse.x * t1 + t.impulse.y * t2);
+            frame.1[c.manifold_index] = [c.tangent1, c.tangent1.cross(c.normal)];
         }
     }
 }

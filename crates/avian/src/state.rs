@@ -184,9 +184,9 @@ pub(crate) struct Inner {
     pub warned: Vec<(Option<Entity>, u8)>,
     pub warnings: Vec<CreepWarning>,
     /// Per contact (indexed by `ContactId`) of a pair of creep colliders: the step it was last
-    /// solved in and, per manifold, its first point's last friction impulse in world space
-    /// \[N s\] (Avian's warm start, which Avian keeps in the step's friction frame).
-    pub frames: Vec<(u64, Vec<bevy::math::Vec3>)>,
+    /// solved in and, per manifold, that step's friction frame `[t1, t2]` (the frame of the
+    /// warm-start friction impulses Avian carries over as components).
+    pub frames: Vec<(u64, Vec<[bevy::math::Vec3; 2]>)>,
     /// This step's contact points with a creep ball on a side, for the per-substep separation.
     pub gaps: Vec<GapPoint>,
 }
