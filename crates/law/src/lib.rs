@@ -15,6 +15,7 @@ pub mod kinematics;
 pub mod material;
 pub mod mindlin;
 pub mod pair;
+pub mod rigid;
 pub mod rolling_torque;
 pub mod root;
 pub mod steady3d;

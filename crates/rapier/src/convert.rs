@@ -100,3 +100,16 @@ pub(crate) fn inverse_rotational_inertia(
     }
     inv
 }
+
+/// The friction basis of Rapier's Coulomb contact constraint for a manifold of normal `n`
+/// (rapier3d 0.36 `compute_tangent_contact_directions`: `t1 = orthonormal_vector(-n)`, the
+/// branchless basis of Duff et al. 2017, `t2 = -n x t1`); `ContactData::tangent_impulse` is in it
+/// (public so that scenes reading Rapier's friction impulses use the same basis).
+pub fn solver_tangents(n: Vec3) -> (Vec3, Vec3) {
+    let d = -n;
+    let sign = 1f64.copysign(d.z);
+    let a = -1.0 / (sign + d.z);
+    let b = d.x * d.y * a;
+    let t1 = Vec3::new(b, sign + d.y * d.y * a, -d.y);
+    (t1, d.cross(t1))
+}

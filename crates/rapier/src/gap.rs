@@ -58,9 +58,6 @@
 //! the engine follows a ball's separation by the motion of its centre, so a ball reads no
 //! rotation gap at any substep count and the plugin corrects none ([`ball_gap_surface`]); a
 //! wheel (a cylinder) is still tracked by a body-fixed point and keeps its correction.
-//!
-//! The module also holds the f32 noise floor of a contact's tangential load
-//! ([`solver_noise_force`]): the rigid hook builds no creep slip target on a load below it.
 
 use creep_law::kinematics::BodyMotion;
 use creep_law::{Surface, Vec3};
@@ -108,36 +105,6 @@ fn mean_substep_gap(body: &BodyMotion, a: Vec3, n: Vec3, dt: f64, substeps: usiz
     // Rodrigues: Rot(phi) r - r = (cos phi - 1) (r - axis (axis . r)) + sin phi (axis x r).
     let r_perp = r - axis * axis.dot(r);
     (r_perp * (mean_cos - 1.0) + axis.cross(r) * mean_sin).dot(n)
-}
-
-/// Rounding ulps of the contact's surface speed that a solve may leave in its tangential
-/// impulse (measured: in free rolling of a 0.1 m steel or rubber ball at 20 m/s, 1/30 and
-/// 1/120 s, the load the hook infers settles at a median of 1-2 and at most ~7 of these ulps).
-const NOISE_ULPS: f64 = 16.0;
-
-/// The tangential force \[N\] below which a rigid contact's measured load is only the rounding
-/// of Rapier's f32 solve: the solver enforces a relative surface velocity built from f32
-/// velocities of size `u = |v_p| + |w_p| |c - x_p| + |v_q| + |w_q| |c - x_q|` (m/s), so it
-/// resolves that velocity to about `eps_f32 u` and transmits a tangential impulse of up to
-/// `m_t eps_f32 u` that no load asked for (`m_t = 1 / inv_m` the contact's effective mass along
-/// the force, kg). The force floor is `NOISE_ULPS eps_f32 u m_t / dt`. A creep slip target
-/// built on such a force would turn rounding into slip that does work (a 0.1 m rubber ball
-/// rolling freely at 20 m/s gained 1.5e-4 of its energy that way), so the hook leaves a contact
-/// whose load is below the floor to Coulomb. Zero without a dynamic body (`inv_m <= 0`).
-pub(crate) fn solver_noise_force(
-    p: &BodyMotion,
-    q: &BodyMotion,
-    c: Vec3,
-    inv_m: f64,
-    dt: f64,
-) -> f64 {
-    if !(inv_m > 0.0 && dt > 0.0) {
-        return 0.0;
-    }
-    let speed = |b: &BodyMotion| {
-        b.velocity.length() + b.angular_velocity.length() * (c - b.position).length()
-    };
-    NOISE_ULPS * f64::from(f32::EPSILON) * (speed(p) + speed(q)) / (inv_m * dt)
 }
 
 /// Largest number of substeps the rotation-gap correction resolves (more are treated as this
@@ -300,41 +267,5 @@ mod tests {
                 assert!(worst < 1e-15, "{worst}");
             }
         }
-    }
-
-    #[test]
-    fn solver_noise_force_scales_with_the_surface_speed_and_the_effective_mass() {
-        let ball = |v: f64, w: f64| BodyMotion {
-            position: Vec3::new(0.0, 0.1, 0.0),
-            velocity: Vec3::new(v, 0.0, 0.0),
-            angular_velocity: Vec3::new(0.0, 0.0, w),
-            surface: Surface::Sphere(0.1),
-        };
-        let ground = BodyMotion {
-            position: Vec3::ZERO,
-            velocity: Vec3::ZERO,
-            angular_velocity: Vec3::ZERO,
-            surface: Surface::Plane,
-        };
-        let c = Vec3::ZERO;
-        // u = |v| + |w| |c - x| = 2 + 20 * 0.1 = 4 m/s; m_t = 1 / 0.5 kg; dt = 1/60 s.
-        let f = solver_noise_force(&ball(2.0, -20.0), &ground, c, 0.5, 1.0 / 60.0);
-        let expected = NOISE_ULPS * f64::from(f32::EPSILON) * 4.0 * 2.0 * 60.0;
-        assert!(
-            (f - expected).abs() <= 1e-12 * expected,
-            "{f} vs {expected}"
-        );
-        // Twice the speed, twice the floor; a fixed pair (no dynamic body) has none.
-        let f2 = solver_noise_force(&ball(4.0, -40.0), &ground, c, 0.5, 1.0 / 60.0);
-        assert!((f2 / f - 2.0).abs() < 1e-12);
-        assert_eq!(
-            solver_noise_force(&ball(2.0, -20.0), &ground, c, 0.0, 1.0 / 60.0),
-            0.0
-        );
-        // At rest: no floor, so a real load on a resting contact always creeps.
-        assert_eq!(
-            solver_noise_force(&ball(0.0, 0.0), &ground, c, 0.5, 1.0 / 60.0),
-            0.0
-        );
     }
 }

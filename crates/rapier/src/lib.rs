@@ -109,14 +109,11 @@
 #![forbid(unsafe_code)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-mod ball_hook;
 pub mod compliant;
 mod convert;
-mod creep3d;
 mod error;
 mod gap;
 mod hooks;
-mod pair_cache;
 mod pipeline;
 mod registry;
 mod rigid;
@@ -124,13 +121,12 @@ mod rolling;
 mod shape;
 mod store;
 mod warning;
-mod wheel;
-mod wheel_hook;
 mod world;
 
 pub use compliant::{
     CompliantCounts, CompliantEnergy, CompliantRegime, CompliantSettings, RayleighCheck,
 };
+pub use convert::solver_tangents;
 pub use error::PluginError;
 pub use pipeline::{CreepPipeline, RapierStep};
 pub use registry::{
@@ -138,7 +134,7 @@ pub use registry::{
 };
 pub use rigid::{
     CreepHooks, CreepSettings, ROLLING_PGS_ITERATIONS, SolverPreset, StepCounts, check_parameters,
-    configure_parameters, configure_parameters_for, solver_tangents,
+    configure_parameters, configure_parameters_for,
 };
 pub use shape::{FlatShape, SUPPORTED_SHAPES, SupportedShape, supported_shape};
 pub use store::{ContactKey, ContactRecord, ContactStore, KeyHasher};

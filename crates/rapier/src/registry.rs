@@ -221,3 +221,15 @@ pub fn surface_of(collider: &Collider) -> Option<Surface> {
 pub fn rigid_surface_of(collider: &Collider) -> Option<Surface> {
     crate::shape::supported_shape(collider).and_then(|s| s.rigid_surface())
 }
+
+/// The lower of two fidelities (Coulomb < Auto < Creep), except that a `Compliant` collider
+/// makes the pair compliant (it takes part in no Rapier contact solve).
+pub(crate) fn pair_fidelity(a: Fidelity, b: Fidelity) -> Fidelity {
+    use Fidelity::*;
+    match (a, b) {
+        (Coulomb, _) | (_, Coulomb) => Coulomb,
+        (Auto, _) | (_, Auto) => Auto,
+        (Compliant, _) | (_, Compliant) => Compliant,
+        _ => Creep,
+    }
+}

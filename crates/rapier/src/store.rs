@@ -41,7 +41,7 @@ pub struct ContactRecord {
     /// Torque on body 2 computed this step by the rolling model [N m] (`-torque` on body 1).
     pub torque: Vec3,
     /// Twisting moment on body 2 about the normal computed this step by the 3-D creep law
-    /// [N m] (spin creep, crate module `creep3d`; `-spin_torque` on body 1).
+    /// [N m] (spin creep, `creep_law::rigid`; `-spin_torque` on body 1).
     pub spin_torque: Vec3,
     /// Bodies of the contact, for applying the torque.
     pub bodies: (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
@@ -53,6 +53,17 @@ pub struct ContactRecord {
     pub normal: Vec3,
     /// Step in which the record was last seen.
     pub(crate) generation: u64,
+}
+
+impl ContactRecord {
+    /// Keeps the rigid kernel's answer for this step: the force and target (the next step's
+    /// `last_target`) and the twisting moment to apply after the step (zero when the contact
+    /// was left to Coulomb).
+    pub(crate) fn set_creep(&mut self, out: &creep_law::rigid::RigidCreep) {
+        self.q_used = out.force;
+        self.target = out.target;
+        self.spin_torque = out.moment;
+    }
 }
 
 /// A fast, non-cryptographic hasher for [`ContactKey`]s (the multiply-rotate scheme of

@@ -85,7 +85,7 @@ fn wheel_contact(
 /// cuboid (half-extents 1000 x 0.5 x 1000 m, as creep-scenes' floors, upright or turned
 /// upside down and about the vertical) and on a half-space it keeps one solver contact on
 /// every step, with the floor's face normal to f32 rounding and the normal force within 5 % of
-/// `m g` (the hook's patch contact on a flat face, module `wheel_hook`'s `ExactPatch`).
+/// `m g` (the hook's patch contact on a flat face, the rigid regime's `ExactPatch`).
 /// Without it Rapier's narrow phase lost the cylinder on the big cuboid on some steps (a
 /// wrong normal, no solver contact) and stopped it with impacts of 2-7 `m g dt`.
 ///

@@ -11,7 +11,7 @@
 //! (positive forward) is what its motor sets; the chassis' **yaw rate** `Omega = w . y`
 //! (positive: turning left).
 //!
-//! Each contact is measured in the frame of creep-rapier's `creep3d` (Kalker 1967; Kalker
+//! Each contact is measured in the frame of `creep_law::rigid` (Kalker 1967; Kalker
 //! 1990, §1.2) with the rolling body as p and the floor as q (`n` from p to q, downwards):
 //! Kuhn & Bagi's rolling velocity `v_roll` at the point Rapier rolls the body about (under its
 //! centre, midway between the surfaces: `R - delta/2` below it, `delta` the overlap),

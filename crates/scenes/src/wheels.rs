@@ -4,7 +4,7 @@
 //! * [`driven`]: a wheel driven by a torque `T` about its axle and held back at the axle by the
 //!   force `T/R`, so that in steady state the floor's traction is `Q = T/R` at any speed
 //!   (Rapier's lever arm is shortened by the contact's overlap: `Q` is measured from the
-//!   contact impulses). The creepage `xi = v_disp . x / V` (module `creep3d` of creep-rapier:
+//!   contact impulses). The creepage `xi = v_disp . x / V` (`creep_law::rigid`:
 //!   slip of the floor's surface relative to the wheel's along the travel, over Kuhn & Bagi's
 //!   rolling speed) is measured from the bodies' velocities, less the creepage of a Coulomb run
 //!   of the same scene (the engine's spurious slip, Rapier's rolling about a point inside the
@@ -243,7 +243,7 @@ fn build(
 }
 
 /// Steps a wheel world and averages the contact's forces and creepages over the second half
-/// (wheel = body p, floor = q, `n = -y`; the frame of creep-rapier's `creep3d`).
+/// (wheel = body p, floor = q, `n = -y`; the frame of `creep_law::rigid`).
 fn measure(ww: &mut WheelWorld, params: &WheelParams) -> Result<WheelMeasure, SceneError> {
     let steps = (params.duration / params.dt).round() as usize;
     let mut sum = WheelMeasure::default();

@@ -1,10 +1,10 @@
 //! A ball rolling on a plane while it spins about the normal: the spin creep moment of the rigid
-//! regime (crate creep-rapier, module `creep3d`) makes the spin decay.
+//! regime (`creep_law::rigid`, through creep-rapier) makes the spin decay.
 //!
 //! # Closed form (Kalker's linear theory, Kalker 1967; Kalker 1990, §1.2 and Table E.3)
 //!
 //! Ball of radius `R`, mass `m`, rolling at speed `V` along `x` with spin `w_n` about the
-//! vertical. Spin creepage `phi = w_n / V` \[1/m\] (its sign as the frame of module `creep3d`
+//! vertical. Spin creepage `phi = w_n / V` \[1/m\] (its sign as the frame of `creep_law::rigid`
 //! sets it). Linear theory (project signs, normalised with `c = a`, Hertz's radius at
 //! `P = m g`): `Fy = G a^2 C22 eta + G a^3 C23 phi`, `Mz = -G a^3 C23 eta + G a^4 C33 phi`. The
 //! ball is free: any lateral force would change its velocity until the lateral creepage
@@ -116,7 +116,7 @@ pub struct SpinRun {
     pub spin: Vec<f64>,
     /// Rolling speed `|v|` [m/s].
     pub speed: Vec<f64>,
-    /// Lateral creepage `eta` of each sample in the frame of module `creep3d` (ball = p,
+    /// Lateral creepage `eta` of each sample in the frame of `creep_law::rigid` (ball = p,
     /// floor = q): the slip of the floor's surface relative to the ball's across the travel,
     /// over the speed [-].
     pub eta: Vec<f64>,
@@ -207,7 +207,7 @@ pub fn run(params: &SpinParams, fidelity: Fidelity) -> Result<SpinRun, SceneErro
         let vel = creep_law::Vec3::new(f64::from(lv.x), 0.0, f64::from(lv.z));
         let om = creep_law::Vec3::new(f64::from(av.x), f64::from(av.y), f64::from(av.z));
         let speed = vel.length();
-        // Ball = p, floor = q, n from p to q; the frame of creep3d: x along the travel (the
+        // Ball = p, floor = q, n from p to q; the frame of creep_law::rigid: x along the travel (the
         // contact moves with the ball), y = n x x.
         let x = vel
             .try_normalize()
@@ -230,7 +230,7 @@ pub fn run(params: &SpinParams, fidelity: Fidelity) -> Result<SpinRun, SceneErro
 /// moment about it: the ball's spin stays as it is). It settles at the lateral creepage whose
 /// force balances the push (linear theory: `Fy = G a^2 C22 eta`, Kalker 1967), or beyond
 /// `share = 1` slides sideways with the floor's force at `mu P`. Forces and creepage in the
-/// frame of creep-rapier's `creep3d` (ball = p), averaged over the second half of the run.
+/// frame of `creep_law::rigid` (ball = p), averaged over the second half of the run.
 pub fn lateral_push(params: &SpinParams, share: f64) -> Result<LateralPush, SceneError> {
     positive("radius", params.radius)?;
     positive("speed", params.speed)?;

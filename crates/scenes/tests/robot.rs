@@ -113,7 +113,7 @@ fn print(name: &str, r: &RobotRun) {
 /// pure spin (boundary elements) gives 0.296 `mu P` = 1.23 N there (linear between the table's
 /// points, which lies below the concave curve; the law's own lateral creepage, eta_n = 3e-3,
 /// adds ~0.05 N). Before the wheel's patch contact took its geometry from the floor's face
-/// (creep-rapier's `wheel_hook`) Rapier's narrow phase lost the wheels' contact now and then
+/// (creep-rapier's wheel path) Rapier's narrow phase lost the wheels' contact now and then
 /// and this force read 0.76-0.79 N (the Coulomb twin -0.48 N, now -0.20 N), and the dissipation
 /// was measured at the manifold point the patch contact names instead of the patch.
 #[test]

@@ -152,7 +152,7 @@ fn driven_wheels_near_the_friction_limit() {
 /// is within 10 % of its mean, in the creep run and its Coulomb twin, and the traction against
 /// creepage still meets Carter / the boundary elements within 2 % of `mu P` (measured: normal
 /// force constant to 1e-4; creepage within 0.05 % of the 0.1 m/s run's). Before the wheel's
-/// patch contact took its geometry from the floor's face (creep-rapier's `wheel_hook`,
+/// patch contact took its geometry from the floor's face (creep-rapier's wheel path,
 /// `ExactPatch`), Rapier's narrow phase lost the rolling cylinder on the 1000 m floor from 0.5
 /// m/s on: steps without contact and impacts of 2.3-27 times the weight, and at 5 m/s a line
 /// contact's creepage read 0.246 instead of 8.7e-3.
@@ -243,7 +243,7 @@ fn slip_angle_lateral_force() {
 /// the floor's force at `mu P` within 2 %, in contact on every step: no measured step's normal
 /// force leaves 0.9-1.1 of the mean (measured: |F|/(mu P) 1.0000 at all three pushes, normal
 /// force within 1e-4 of its mean). Before the wheel's patch contact took its normal and
-/// separation from the floor's face (creep-rapier's `wheel_hook`, `ExactPatch`), Rapier's
+/// separation from the floor's face (creep-rapier's wheel path, `ExactPatch`), Rapier's
 /// narrow phase lost the sliding cylinder on the 1000 m floor now and then (a wrong normal and
 /// points separated by up to 1.4 mm while it overlapped; steps with no contact, then impulses
 /// of 2-7 `m g dt`): 0.82, 0.999 and 0.9994 at 1.2, 1.05, 1.5 in the round that wrote this test,
@@ -274,7 +274,7 @@ fn slip_angle_saturation() {
     }
 }
 
-/// Lateral creep of a ball (the law the wheels share, creep-rapier's `creep3d`): a rolling
+/// Lateral creep of a ball (the law the wheels share, `creep_law::rigid`): a rolling
 /// rubber ball (nu = 0.5) pushed sideways at its contact's height settles at the lateral
 /// creepage of Kalker's linear theory, `Fy = G a^2 C22 eta` (Kalker 1990, Table E.3: C22 = 3.98
 /// at a/b = 1, nu = 0.5; C11 = 5.20, so an isotropic law would miss by 23 %), within 2 % at

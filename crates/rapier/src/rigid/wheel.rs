@@ -1,23 +1,21 @@
-//! The rigid hook's wheel path (crate::wheel, docs/ARCHITECTURE.md §2, §6): a cylinder on a
-//! flat collider gets one contact record and one slip target for its whole manifold, with
-//! Carter's line-contact law or, for a crowned wheel, the elliptic contact's 3-D law and spin
-//! creep; an upright wheel's manifold is solved as one solver contact at its patch centre
-//! (`patch_contact`, crate::wheel's "The patch contact"). Called from [`crate::CreepHooks`]'
-//! `modify_solver_contacts` (crate::rigid), whose implicit per-contact solve it shares.
+//! The rigid hook's wheel path: a cylinder on a flat collider gets one contact record and one
+//! slip target for its whole manifold, one call of `creep_law::rigid::wheel_creep` (Carter's
+//! line-contact law or, for a crowned wheel, the elliptic contact's 3-D law and spin creep); an
+//! upright wheel's manifold is solved as one solver contact at its patch centre
+//! (`patch_contact`, and "The patch contact" in module `crowns`). Called from the dispatch
+//! (`modify_solver_contacts`).
 
-use creep_law::kinematics::contact_rates;
+use creep_law::rigid::{LawCache, RigidContact, RigidPair, WheelInput, wheel_creep};
 use creep_law::{Surface, Vec3};
 use rapier3d::prelude::*;
 
-use crate::ball_hook::SPIN_NOISE_ULPS;
-use crate::convert::{inverse_mass, motion, v3, vf};
-use crate::creep3d::{LawCache, RollFrame, solve_translation};
+use super::counts::StepCounts;
+use super::crowns::Crowns;
+use super::settings::CreepSettings;
+use crate::convert::{inverse_mass, motion, solver_tangents, v3, vf};
 use crate::gap::rotation_gap_correction;
-use crate::pair_cache::PairConsts;
-use crate::registry::Fidelity;
-use crate::rigid::{CreepSettings, StepCounts, pair_fidelity, solver_tangents};
+use crate::registry::{Fidelity, pair_fidelity};
 use crate::store::{ContactKey, ContactStore};
-use crate::wheel::{Crowns, WheelContact, carter_creepage, line_half_width};
 
 /// What the wheel path needs of the hook's call.
 pub(crate) struct WheelCtx<'a> {
@@ -35,11 +33,11 @@ pub(crate) struct WheelCtx<'a> {
     /// The rotation-gap correction's substeps (`None`: the correction is off).
     pub(crate) gap_substeps: Option<usize>,
     pub(crate) settings: &'a CreepSettings,
-    /// The pair's constants (crate::pair_cache; `None`: a pair the law refuses).
-    pub(crate) consts: Option<&'a PairConsts>,
+    /// The pair's constants (`None`: a pair the law refuses).
+    pub(crate) consts: Option<&'a RigidPair>,
 }
 
-/// The wheel path of the hook (crate::wheel): one record and one slip target for the whole
+/// The wheel path of the hook (module `crowns`): one record and one slip target for the whole
 /// manifold of a cylinder (`side` 0: collider 1, 1: collider 2) on a flat collider. Returns
 /// false when the collider is not a wheel (the caller then falls back to Coulomb).
 pub(crate) fn wheel_manifold(
@@ -69,8 +67,7 @@ pub(crate) fn wheel_manifold(
     } else {
         (Surface::Plane, wheel_surface)
     };
-    let mu = f64::from(*rigid.friction);
-    // The pair's constants once per pair of materials (crate::pair_cache), as the ball path.
+    // The pair's constants once per pair of materials, as the ball path.
     let Some(pair) = ctx.consts.and_then(|k| k.pair_for(s1, s2)) else {
         counts.coulomb_unsupported += n_contacts;
         return true;
@@ -88,7 +85,7 @@ pub(crate) fn wheel_manifold(
         .and_then(|f| floor_face(f, centre, wheel.axle, radius, f64::from(cyl.half_height)))
         .filter(|f| wheel.axle.dot(f.m).abs() < UPRIGHT);
     // One solver contact at the centre of the wheel's contact patch (module docs of
-    // crate::wheel), for every fidelity, so that a Coulomb twin has the same contact.
+    // module `crowns`), for every fidelity, so that a Coulomb twin has the same contact.
     let n_manifold = v3(*rigid.normal);
     let patched = if let Some(face) = face {
         let n = if side == 0 { -face.m } else { face.m };
@@ -134,13 +131,8 @@ pub(crate) fn wheel_manifold(
     };
     let generation = store.generation;
     let rec = store.touch(key);
-    let n_prev = if rec.normal == Vec3::ZERO {
-        n
-    } else {
-        rec.normal
-    };
-    let (t1, t2) = solver_tangents(n_prev);
-    let (impulse, tangent) = (loads.0, t1 * loads.1 + t2 * loads.2);
+    let n_prev = std::mem::replace(&mut rec.normal, n);
+    let (t1, t2) = solver_tangents(if n_prev == Vec3::ZERO { n } else { n_prev });
     let (mut centre, mut count) = (Vec3::ZERO, 0.0);
     for sc in rigid.solver_contacts.iter() {
         centre += (v3(sc.anchor1) + v3(sc.anchor2)) * 0.5;
@@ -149,151 +141,50 @@ pub(crate) fn wheel_manifold(
     rec.bodies = (h1, h2);
     rec.torque = Vec3::ZERO;
     rec.spin_torque = Vec3::ZERO;
-    rec.normal = n;
-    let p_force = impulse / dt;
-    rec.p = p_force;
+    rec.p = loads.0 / dt;
     if !(count > 0.0) {
         rec.q_used = Vec3::ZERO;
         rec.target = Vec3::ZERO;
         return true;
     }
     let c = centre * (1.0 / count);
-    let p_motion = motion(ctx.bodies, h1, c - n, s1);
-    let q_motion = motion(ctx.bodies, h2, c + n, s2);
-    let rates = contact_rates(&p_motion, &q_motion, c, n);
-    // The wheel's frame: x along the heading n x axle, with the rolling.
-    let heading = n.cross(wheel.axle).try_normalize();
-    let frame = heading.map(|h| {
-        let x = if h.dot(rates.v_roll) > 0.0 { -h } else { h };
-        RollFrame { x, y: n.cross(x) }
-    });
-    let roll = frame.map_or(0.0, |f| rates.v_roll.dot(f.x).abs());
-    let Some(frame) = frame.filter(|_| p_force > 0.0 && roll > 0.0 && mu > 0.0) else {
-        rec.q_used = Vec3::ZERO;
-        rec.target = Vec3::ZERO;
-        counts.coulomb_auto += n_contacts;
-        return true;
+    let contact = RigidContact {
+        normal: n,
+        point: c,
+        p: motion(ctx.bodies, h1, c - n, s1),
+        q: motion(ctx.bodies, h2, c + n, s2),
+        normal_impulse: loads.0,
+        tangent_impulse: t1 * loads.1 + t2 * loads.2,
+        last_target: rec.target,
+        dt,
+        auto_tolerance: (fidelity == Fidelity::Auto).then_some(ctx.settings.auto_tolerance),
     };
-    let mu_p = mu * p_force;
-    let g = pair.g;
-    // The law along x and the lateral ratio (module docs of crate::wheel).
-    let (law3, line) = match wheel.contact {
-        WheelContact::Crowned { a1, b1 } => {
-            let s = p_force.cbrt();
-            let (a, b) = (a1 * s, b1 * s);
-            let Some(law3) = laws.get(a / b, pair.nu.clamp(0.0, 0.5)) else {
-                counts.coulomb_unsupported += n_contacts;
-                rec.q_used = Vec3::ZERO;
-                rec.target = Vec3::ZERO;
-                return true;
-            };
-            (Some((law3, a * b)), None)
+    let input = WheelInput {
+        axle: wheel.axle,
+        radius,
+        contact: wheel.contact,
+        wheel_is_p: side == 0,
+        // Spin creep on the patch contact only (a tilted wheel's several friction points
+        // resist a twist as Coulomb does).
+        spin: patched,
+    };
+    // The wheel's turn about n over the last step from its poses (`Crowns::axle_turn`: its
+    // angular velocity holds the last spin impulse, which a joint shares out only in the next
+    // solve).
+    let out = wheel_creep(
+        &pair,
+        &input,
+        &contact,
+        laws,
+        || crowns.axle_turn(wc, wheel.axle, n, generation),
+        |d| inverse_mass(ctx.bodies, [h1, h2], vf(c), vf(d), vf(d)),
+    );
+    counts.book(&out, n_contacts);
+    rec.set_creep(&out);
+    if out.creeps() {
+        for sc in rigid.solver_contacts.iter_mut() {
+            sc.tangent_velocity += vf(out.target);
         }
-        WheelContact::Line { width } => (
-            None,
-            Some(line_half_width(p_force, width, radius, pair.e_star)),
-        ),
-    };
-    // Spin creep of a crowned wheel's patch contact (as a ball's, crate::creep3d): the lateral
-    // force of the spin takes its share of the capacity, the twisting moment is applied after
-    // the step. A line contact (no elliptic law) and a wheel left on Rapier's points (tilted,
-    // whose friction points resist a twist as Coulomb does) have none.
-    // The wheel's turn about n over the last step from its poses (crate::wheel's
-    // `Crowns::axle_turn`: its angular velocity holds the last spin impulse, which a joint
-    // shares out only in the next solve), the other body's from its angular velocity.
-    let turn = crowns.axle_turn(wc, wheel.axle, n, generation);
-    let w_twist_read = match turn {
-        Some(turn) if side == 0 => q_motion.angular_velocity.dot(n) - turn / dt,
-        Some(turn) => turn / dt - p_motion.angular_velocity.dot(n),
-        None => rates.w_twist,
-    };
-    // A relative spin within f32 rounding is noise (crate::rigid's SPIN_NOISE_ULPS): of the
-    // angular velocities, and for a turn read from the poses, of the axle's direction per step.
-    let w_scale = p_motion.angular_velocity.length()
-        + q_motion.angular_velocity.length()
-        + if turn.is_some() { 1.0 / dt } else { 0.0 };
-    let w_twist =
-        if patched && w_twist_read.abs() > SPIN_NOISE_ULPS * f64::from(f32::EPSILON) * w_scale {
-            w_twist_read
-        } else {
-            0.0
-        };
-    let (phi_n, spin_fy) = match law3 {
-        Some((law3, c2)) if w_twist != 0.0 => {
-            let phi_n = w_twist / roll * g * c2 * c2.sqrt() / mu_p;
-            (phi_n, law3.loads(0.0, 0.0, phi_n).fy)
-        }
-        _ => (0.0, 0.0),
-    };
-    let q_s = frame.y * (spin_fy * mu_p);
-    // The capacity left to the translation.
-    let mu_t = (mu_p - spin_fy.abs() * mu_p).max(0.0);
-    let creepage = |q: f64| -> f64 {
-        match (law3, line) {
-            (Some((law3, c2)), _) => {
-                let f = (q / mu_t).clamp(0.0, 1.0 - 1e-9);
-                law3.creepages_for_force(f, 0.0).map_or(0.0, |(x, _)| x) * mu_t / (g * c2)
-            }
-            (None, Some(a)) => carter_creepage(q, mu_p, p_force, a, radius),
-            _ => 0.0,
-        }
-    };
-    let (slope0, r) = match (law3, line) {
-        (Some((law3, c2)), _) => {
-            let k = law3.coefficients();
-            (1.0 / (g * c2 * k.c11), k.c11 / k.c22)
-        }
-        (None, Some(a)) => (a / (2.0 * radius * p_force), 1.0 / (1.0 - pair.nu)),
-        _ => (0.0, 1.0),
-    };
-    if fidelity == Fidelity::Auto && creepage(mu_p) * roll < ctx.settings.auto_tolerance {
-        counts.coulomb_auto += n_contacts;
-        rec.q_used = Vec3::ZERO;
-        rec.target = Vec3::ZERO;
-        return true;
-    }
-    let q_meas = tangent.reject(n) * (1.0 / dt);
-    let tau_prev = rec.target.reject(n);
-    let probe = (q_meas + tau_prev).try_normalize().unwrap_or(frame.x);
-    let inv_m = inverse_mass(ctx.bodies, [h1, h2], vf(c), vf(probe), vf(probe));
-    let q_star = if inv_m > 0.0 {
-        q_meas + tau_prev * (1.0 / (inv_m * dt))
-    } else {
-        q_meas
-    };
-    let noise = crate::gap::solver_noise_force(&p_motion, &q_motion, c, inv_m, dt);
-    if !(q_star.length() > noise) {
-        rec.q_used = Vec3::ZERO;
-        rec.target = Vec3::ZERO;
-        counts.coulomb_auto += n_contacts;
-        return true;
-    }
-    let k = if inv_m > 0.0 {
-        roll / (inv_m * dt)
-    } else {
-        0.0
-    };
-    let (q_t, ux, uy) = solve_translation(frame.split(q_star - q_s), k, r, mu_t, slope0, &creepage);
-    let f = creepage(q_t);
-    let (cx, cy) = (f * ux, f * r * uy);
-    let q_used = frame.join(q_t * ux, q_t * uy) + q_s;
-    let target = frame.join(cx, cy) * roll;
-    rec.q_used = q_used;
-    rec.target = target;
-    // Kalker's twisting moment on p about n (crate::creep3d), applied after the step as an
-    // angular impulse that never reverses the relative spin (crate::rolling).
-    let mz = match law3 {
-        Some((law3, c2)) if phi_n != 0.0 => {
-            let scale = g * c2 / mu_p;
-            law3.loads(cx * scale, cy * scale, phi_n).mz * mu_p * c2.sqrt()
-        }
-        _ => 0.0,
-    };
-    rec.spin_torque = n * (-mz);
-    counts.creep += n_contacts;
-    counts.creep_power += (q_used.dot(target) + mz * w_twist).max(0.0);
-    for sc in rigid.solver_contacts.iter_mut() {
-        sc.tangent_velocity += vf(target);
     }
     true
 }
@@ -514,7 +405,7 @@ fn loaded_contact(rigid: &ModifiableManifold) -> usize {
 /// Replaces a wheel's solver contacts by one at the centre of its contact patch: the point of
 /// the wheel's mid-plane rim nearest the floor, `c = x_w + R d`, `d` the unit direction towards
 /// the floor in the wheel's plane (`towards_floor` less its part along the axle), with the
-/// manifold's mean separation, gap correction and target (module docs of crate::wheel: a
+/// manifold's mean separation, gap correction and target (module docs of `crowns`: a
 /// rigid wheel's friction acts at its patch, not at Rapier's two to four points along the
 /// cylinder's line, whose per-point friction limits let a Coulomb wheel slip from 0.8 `mu P`).
 /// Keeps the contact id of the point that carried last step's load (only it is solved, so only

@@ -1,29 +1,29 @@
-//! Per-pair constants of the rigid hook, computed once per pair of materials:
-//! the combined moduli of [`PairMaterial`] (Hertz's `E*`, Mindlin's `G*`, Kalker's combined
-//! `G` and `nu`, `C11(nu)`), the steady law ([`SteadyLaw`]) and the 3-D law ([`Steady3d`] at
-//! `a/b = 1`, Kalker's `C11/C22`). Without it the hook would rebuild them for every manifold
-//! of every step (`PairMaterial::with_rule`: six divisions and Kalker's table in `nu`).
+//! Per-pair constants of the rigid kernel, computed once per pair of materials and friction
+//! coefficient ([`RigidPair`]): the combined moduli of [`PairMaterial`] (Hertz's `E*`,
+//! Mindlin's `G*`, Kalker's combined `G` and `nu`, `C11(nu)`), the steady law ([`SteadyLaw`])
+//! and the 3-D law ([`Steady3d`] at `a/b = 1`, Kalker's `C11/C22`). Building them per contact
+//! and step would cost six divisions and Kalker's table in `nu` each time.
 //!
 //! Only the effective radius depends on the contact's shapes (`1/R* = 1/R_p + 1/R_q`, Hertz;
-//! Johnson 1985, §4.2): it is set per manifold by [`PairConsts::pair_for`], with the same
+//! Johnson 1985, §4.2): it is set per contact by [`RigidPair::pair_for`], with the same
 //! operations as `PairMaterial::with_rule`, so the pair is bit for bit the one
 //! `PairMaterial::new(..).with_friction(mu)` builds.
 //!
-//! The cache is a short list (no hashing, no allocation once every pair of materials has been
-//! seen) keyed by the two materials and the friction coefficient, compared bit for bit; a scene
-//! with more than [`PAIR_CACHE_LEN`] distinct pairs replaces entries round-robin (then pays
-//! the construction on a miss).
+//! [`RigidPairCache`] keeps them in a short list (no hashing, no allocation once every pair of
+//! materials has been seen) keyed by the two materials and the friction coefficient, compared
+//! bit for bit; a scene with more than [`PAIR_CACHE_LEN`] distinct pairs replaces entries
+//! round-robin (then pays the construction on a miss).
 
-use creep_law::steady_law::SteadyLaw;
-use creep_law::steady3d::Steady3d;
-use creep_law::{CreepModel, Material, PairMaterial, Surface};
+use crate::material::{Material, PairMaterial, Surface};
+use crate::steady_law::{CreepModel, SteadyLaw};
+use crate::steady3d::Steady3d;
 
 /// Largest number of distinct material pairs kept.
-pub(crate) const PAIR_CACHE_LEN: usize = 16;
+pub const PAIR_CACHE_LEN: usize = 16;
 
-/// What the hook needs of one pair of materials at one friction coefficient.
+/// What the rigid kernel needs of one pair of materials at one friction coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct PairConsts {
+pub struct RigidPair {
     /// The combined pair (its `r_star` and surfaces are placeholders: see [`Self::pair_for`]).
     template: PairMaterial,
     /// The configured steady law at the pair's `nu` and `C11`.
@@ -31,14 +31,16 @@ pub(crate) struct PairConsts {
     /// The 3-D law of a circular contact at the pair's `nu` clamped to `[0, 0.5]` (`None`
     /// outside Kalker's table: such a contact is left to Coulomb).
     pub law3: Option<Steady3d>,
-    /// `C11/C22` of [`Self::law3`] (the lateral ratio of the anisotropic solve, crate::creep3d).
+    /// `C11/C22` of [`Self::law3`] (the lateral ratio of the anisotropic solve, parent module
+    /// docs).
     pub r: f64,
 }
 
-impl PairConsts {
-    /// The constants of materials `p`, `q` at friction `mu`; `None` if the pair is invalid
-    /// (the hook then leaves the contact to Coulomb).
-    fn new(p: &Material, q: &Material, mu: f64, model: CreepModel) -> Option<Self> {
+impl RigidPair {
+    /// The constants of materials `p`, `q` at friction `mu` \[-\] with the steady law of
+    /// `model`; `None` if the pair is invalid (a NaN or negative `mu`: the engine then leaves
+    /// the contact to Coulomb).
+    pub fn new(p: &Material, q: &Material, mu: f64, model: CreepModel) -> Option<Self> {
         // Any valid shapes: only r_star and the surfaces depend on them (pair_for).
         let template = PairMaterial::new(p, q, Surface::Sphere(1.0), Surface::Plane)
             .and_then(|pair| pair.with_friction(mu))
@@ -96,18 +98,18 @@ fn material_bits(m: &Material) -> [u64; 4] {
 
 /// The per-pair constants seen so far (module docs).
 #[derive(Debug, Clone, Default)]
-pub(crate) struct PairCache {
-    entries: Vec<(Key, Option<PairConsts>)>,
+pub struct RigidPairCache {
+    entries: Vec<(Key, Option<RigidPair>)>,
     /// The entry found last (piles meet the same pair many times in a row).
     last: usize,
     /// The next entry replaced once the list is full.
     next: usize,
 }
 
-impl PairCache {
+impl RigidPairCache {
     /// The constants of materials `p`, `q` at friction `mu` with the steady law of `model`
-    /// (`None`: an invalid pair, remembered as such). The model is the hooks' setting, fixed
-    /// for their lifetime, so it is not part of the key.
+    /// (`None`: an invalid pair, remembered as such). The model is the engine's setting, fixed
+    /// for the cache's lifetime, so it is not part of the key.
     #[inline]
     pub fn get(
         &mut self,
@@ -115,14 +117,14 @@ impl PairCache {
         q: &Material,
         mu: f64,
         model: CreepModel,
-    ) -> Option<&PairConsts> {
+    ) -> Option<&RigidPair> {
         let key = (material_bits(p), material_bits(q), mu.to_bits());
         let i = if self.entries.get(self.last).is_some_and(|e| e.0 == key) {
             self.last
         } else if let Some(i) = self.entries.iter().position(|e| e.0 == key) {
             i
         } else {
-            let consts = PairConsts::new(p, q, mu, model);
+            let consts = RigidPair::new(p, q, mu, model);
             if self.entries.len() < PAIR_CACHE_LEN {
                 self.entries.push((key, consts));
                 self.entries.len() - 1
@@ -145,7 +147,7 @@ mod tests {
     #[test]
     fn cached_pair_is_bit_for_bit_the_constructed_one() {
         let (steel, glass) = (Material::steel(), Material::glass());
-        let mut cache = PairCache::default();
+        let mut cache = RigidPairCache::default();
         for model in CreepModel::ALL {
             for (s1, s2) in [
                 (Surface::Sphere(0.05), Surface::Plane),
@@ -166,14 +168,14 @@ mod tests {
                     assert_eq!(c.r, k.c11 / k.c22);
                 }
             }
-            cache = PairCache::default();
+            cache = RigidPairCache::default();
         }
     }
 
     #[test]
     fn refuses_what_the_constructor_refuses_and_keeps_a_bounded_list() {
         let m = Material::steel();
-        let mut cache = PairCache::default();
+        let mut cache = RigidPairCache::default();
         let c = *cache.get(&m, &m, 0.5, CreepModel::Kuhn).unwrap();
         assert!(c.pair_for(Surface::Plane, Surface::Plane).is_none());
         assert!(c.pair_for(Surface::Sphere(0.0), Surface::Plane).is_none());

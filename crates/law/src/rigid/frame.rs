@@ -1,56 +1,14 @@
-//! Three-dimensional creep of one rigid contact: the rolling frame, the anisotropic implicit
-//! solve (longitudinal and lateral creep with their own coefficients) and the spin's lateral
-//! force and twisting moment.
-//!
-//! # Frame and creepages (Kalker 1967; Kalker 1990, *Three-dimensional elastic bodies in rolling
-//! contact*, §1.2; signs of creep-reference's `bem` module)
-//!
-//! `z = n` (from p to q); `x` is the direction in which the contact moves over both surfaces,
-//! `x = -v_roll/|v_roll|` (Kuhn & Bagi's `v_roll` is the mean surface velocity relative to the
-//! contact point); `y = z × x`. With `V = |v_roll|`:
-//!
-//! `xi = v_disp . x / V`, `eta = v_disp . y / V` (creepage of q relative to p, \[-\]),
-//! `phi = (w_q - w_p) . n / V` (spin creepage \[1/m\]).
-//!
-//! Linear theory (Kalker 1967, project signs: force on p, moment on p about `n`):
-//! `Fx = G c^2 C11 xi`, `Fy = G c^2 C22 eta + G c^3 C23 phi`, `Mz = -G c^3 C23 eta + G c^4 C33 phi`,
-//! `c = sqrt(a b)`.
-//!
-//! # The law the rigid regime uses
-//!
-//! * **Translation** (`Q_t`, the force less the spin's): at zero spin Kalker's simplified theory
-//!   (Kalker 1982, "A fast algorithm for the simplified theory of rolling contact", Vehicle
-//!   System Dynamics 11; FASTSIM) builds the traction from the flexibilities `L1 = 8a/(3 G C11)`,
-//!   `L2 = 8a/(3 G C22)`, so the force is parallel to `(xi/L1, eta/L2)` and saturates in its
-//!   magnitude alone. The creepage for a force `Q_t` is therefore
-//!   `(xi, eta) = F(|Q_t|) (u_x, (C11/C22) u_y)`, `u = Q_t/|Q_t|`, with `F` the pair's steady law
-//!   along the rolling direction (`SteadyLaw`: Kalker's `F_ss` or the fitted law, circular
-//!   contacts) or, for a wheel, its own law (crate module `wheel`). It is Kalker's linear theory
-//!   at small force in every direction and the configured law exactly along `x`.
-//! * **Spin**: the lateral force of pure spin `f_s(phi_n)` and the moment come from creep-law's
-//!   fast 3-D law (`Steady3d`, a fit to the boundary elements, Kalker's `C23`, `C33` at small
-//!   spin); the spin's force takes its share of the friction capacity (`mu P - |Q_s|` is left to
-//!   the translation), and the moment `Mz(xi_n, eta_n, phi_n)` is applied after the step as an
-//!   angular impulse about `n` that never reverses the relative spin (as the rolling torque).
-//!
-//! # The implicit solve
-//!
-//! As for the circular law (crate module `rigid`), the force the solver would transmit for a
-//! target `tau` is `Q* - (m_t/dt) tau`; with `tau = V (xi, eta)` in the frame and
-//! `K = m_t V/dt`, the translation force solves `Q_t + K F(|Q_t|) A u = Q*_t`, `A = diag(1, r)`,
-//! `r = C11/C22`, `Q*_t = Q* - Q_s`. Written with `q = |Q_t|`: `u = (X/e_x, Y/e_y)/q`,
-//! `e_x = 1 + K F(q)/q`, `e_y = 1 + r K F(q)/q`, and `|u| = 1` is the scalar equation
-//! `q = sqrt((X/e_x)^2 + (Y/e_y)^2)`, whose right side falls as `q` grows (`F(q)/q` rises:
-//! the creepage is convex in the force), so the root is unique; in steady state it returns the
-//! measured force, and for `r = 1` it is the circular solve `q + K F(q) = |Q*|`.
+//! The rolling frame of a contact and the anisotropic implicit solve of its translation
+//! (the equations are in the parent module's docs, "The implicit solve"), and the cache of
+//! the 3-D laws of elliptic contacts by shape.
 
-use creep_law::Vec3;
-use creep_law::root::illinois;
-use creep_law::steady3d::Steady3d;
+use crate::root::illinois;
+use crate::steady3d::Steady3d;
+use crate::vector::Vec3;
 
 /// The rolling frame of a contact: `x` (the contact's travel over the surfaces) and `y = n × x`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct RollFrame {
+pub struct RollFrame {
     /// Unit vector along the rolling direction.
     pub x: Vec3,
     /// Unit vector across it, `n × x`.
@@ -62,6 +20,10 @@ impl RollFrame {
     pub fn new(v_roll: Vec3, n: Vec3) -> Option<Self> {
         let x = (-v_roll).try_normalize()?;
         Some(Self { x, y: n.cross(x) })
+    }
+    /// The frame with the unit rolling direction `x` given (a wheel's heading), `y = n × x`.
+    pub fn along(x: Vec3, n: Vec3) -> Self {
+        Self { x, y: n.cross(x) }
     }
     /// Components of a tangent vector in the frame.
     #[inline]
@@ -75,13 +37,14 @@ impl RollFrame {
     }
 }
 
-/// The translation force of the implicit solve (module docs): returns `(q, u_x, u_y)`, the
+/// The translation force of the implicit solve (parent module docs, "The implicit solve"):
+/// returns `(q, u_x, u_y)`, the
 /// magnitude `q` in `[0, q_max]` and the unit direction in the frame, for the force estimate
 /// `(x_star, y_star)` \[N\], `k = m_t V/dt` \[N\], the creepage law `creepage(q)` \[-\] along
 /// the rolling direction with initial slope `slope0 = dF/dq(0)` \[1/N\], the lateral ratio
 /// `r = C11/C22` (in `(0, 1]` for `nu >= 0`) and the capacity `q_max` \[N\] (beyond it the
 /// contact slides at `q_max`).
-pub(crate) fn solve_translation(
+pub fn solve_translation(
     (x_star, y_star): (f64, f64),
     k: f64,
     r: f64,
@@ -127,11 +90,11 @@ pub(crate) fn solve_translation(
     }
 }
 
-/// The per-shape 3-D laws of a step, looked up by `(a/b, nu)` in a short list (no hashing, no
+/// The 3-D laws of elliptic contacts by shape, looked up by `(a/b, nu)` in a short list (no hashing, no
 /// allocation once every shape has been seen): building a [`Steady3d`] interpolates Kalker's
 /// table and the fitted constants and costs far more than one evaluation.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct LawCache {
+pub struct LawCache {
     entries: Vec<(f64, f64, Steady3d)>,
     next: usize,
 }
@@ -140,7 +103,8 @@ pub(crate) struct LawCache {
 const LAW_CACHE_LEN: usize = 32;
 
 impl LawCache {
-    /// The law at `(ab, nu)`, built on first use; `None` outside Kalker's table.
+    /// The law at `(ab, nu)` (`a/b` and Poisson's ratio), built on first use; `None` outside
+    /// Kalker's table.
     pub fn get(&mut self, ab: f64, nu: f64) -> Option<&Steady3d> {
         let found = self
             .entries

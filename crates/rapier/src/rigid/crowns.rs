@@ -1,7 +1,7 @@
-//! Wheels in the rigid regime: a cylinder collider rolling on its round face
-//! on a flat collider (cuboid, half-space, mesh, heightfield, convex polyhedron) gets the creep
-//! law of its contact, longitudinal and lateral, through the implicit solve of crate module
-//! `creep3d`.
+//! Wheels in the rigid regime: a cylinder collider rolling on its round face on a flat collider
+//! (cuboid, half-space, mesh, heightfield, convex polyhedron) gets the creep law of its contact,
+//! longitudinal and lateral (`creep_law::rigid::wheel_creep`); this module holds the wheels'
+//! per-collider state (axle tracks, elliptic Hertz at unit load, a solver-contact template).
 //!
 //! # Geometry
 //!
@@ -12,20 +12,13 @@
 //! manifold's solver contacts), so a wheel at slip angle `alpha` has `eta = tan(alpha)`.
 //!
 //! * **Crowned wheel** (a crown radius `R_c`: [`crate::CreepMaterial::with_crown`], or
-//!   [`crate::CreepHooks::set_wheel_crown`] once registered):
-//!   Hertz's elliptic contact with the curvature sums `kx = 1/R`, `ky = 1/R_c` (Hertz 1882;
-//!   Johnson 1985, §4.2; creep-law's `elliptic`), semi-axes `a` (rolling direction) and `b`, both
-//!   `~ P^(1/3)`; the law along `x` is creep-law's fast 3-D law at zero spin (`Steady3d`, fitted
-//!   to the boundary elements of Kalker's exact theory, Kalker 1967/1990), normalised with
-//!   `c = sqrt(a b)`; the lateral ratio is Kalker's `C11/C22` at `a/b` (Kalker 1990, Table E.3).
-//! * **Line contact** (no crown): Carter's two-dimensional solution (Carter 1926; Johnson
-//!   1985, §8.2): half-width `a = sqrt(4 (P/L) R/(pi E*))` (Johnson 1985, eq. 4.43) and
-//!   `xi = (mu a/R)(1 - sqrt(1 - Q/(mu P)))`; laterally the same law scaled by
-//!   `C11/C22 = 1/(1 - nu)`: the ratio of the plane-strain to the antiplane shear compliance of
-//!   the strip (this crate's assumption for the slender limit, not a quoted solution); Kalker's
-//!   table tends to it as `a/b -> 0` (Kalker 1990, Table E.3: `C11/C22` = 1.31 and 1.92 at
-//!   `a/b = 0.1`, `nu = 0.25, 0.5`, against 1.33 and 2). Not checked by a scene (creep-scenes'
-//!   lateral scene runs a crowned wheel).
+//!   [`crate::CreepHooks::set_wheel_crown`] once registered): Hertz's elliptic contact with
+//!   the curvature sums `1/R` and `1/R_c` and the 3-D law at its `a/b`, spin creep included.
+//! * **Line contact** (no crown): Carter's two-dimensional solution; no spin creep. Not checked
+//!   by a scene (creep-scenes' lateral scene runs a crowned wheel).
+//!
+//! The law of both is `creep_law::rigid::wheel_creep` (its module docs give the formulas and
+//! their sources).
 //!
 //! # The patch contact
 //!
@@ -37,14 +30,14 @@
 //! Coulomb twin of a driven wheel slipped (creepage 9e-3 at 0.8 `mu P`, 4e-2 at 0.9), and a
 //! wheel pushed sideways slid far beyond its creep target. The hook therefore solves an upright
 //! wheel (`|axle . n| < 0.2`) as **one solver contact at the centre of its patch**
-//! (crate::wheel_hook `patch_contact`: the point of the wheel's mid-plane rim nearest the floor,
+//! (module `wheel`, `patch_contact`: the point of the wheel's mid-plane rim nearest the floor,
 //! with the manifold's separation fitted along the axle), for every fidelity (a Coulomb twin
 //! has the same contact): its friction row acts where the law's patch is, with the limit
 //! `mu P` of the whole wheel. The contact has no tilt stiffness (hold a wheel upright by its
 //! axle: a joint, or locked tilt) and no Coulomb twisting friction.
 //!
 //! On a **cuboid or a half-space** the patch contact's normal and separation come from the two
-//! shapes themselves, not from Rapier's manifold (crate::wheel_hook `ExactPatch`): the floor's
+//! shapes themselves, not from Rapier's manifold (module `wheel`, `ExactPatch`): the floor's
 //! face under the wheel (the face whose slab the wheel's centre lies farthest outside of, its
 //! line of contact on the face) and the distance of the wheel's mid-plane rim point from it.
 //! Rapier's narrow phase computes a cylinder on a cuboid by GJK and EPA in f32 on the
@@ -59,8 +52,8 @@
 //! heightfields, convex polyhedra, a cuboid's edge) the patch takes Rapier's normal and fits
 //! its separation along the axle from Rapier's points.
 //!
-//! **Spin**: a crowned wheel's patch has Kalker's spin creep as a ball's contact has (crate
-//! module `creep3d`): the lateral force of spin takes its share of `mu P` and the twisting moment
+//! **Spin**: a crowned wheel's patch has Kalker's spin creep as a ball's contact has
+//! (`creep_law::rigid`): the lateral force of spin takes its share of `mu P` and the twisting moment
 //! `Mz(xi_n, eta_n, phi_n)` of `Steady3d` is applied after the step (crate module `rolling`).
 //! The relative spin is read from the wheel's axle turning between the hook calls of two steps
 //! (`Crowns::axle_turn`), not from its angular velocity: a wheel on a joint takes the
@@ -70,24 +63,8 @@
 //! wheel's radius; a fast wheel at long steps sinks and loses energy as in plain Rapier.
 
 use creep_law::elliptic::elliptic_hertz;
+use creep_law::rigid::WheelContact;
 use rapier3d::prelude::*;
-
-/// The shape of a wheel's contact law.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum WheelContact {
-    /// Crowned wheel: elliptic semi-axes at unit load, `a = a1 P^(1/3)`, `b = b1 P^(1/3)` \[m\].
-    Crowned {
-        /// `a` at 1 N.
-        a1: f64,
-        /// `b` at 1 N.
-        b1: f64,
-    },
-    /// Line contact of width `width` \[m\].
-    Line {
-        /// Contact length along the axle \[m\].
-        width: f64,
-    },
-}
 
 /// A wheel: a cylinder collider's radius, width and crown.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -171,7 +148,7 @@ impl Crowns {
     }
 
     /// A solver contact with the given public fields, for a wheel manifold whose points Rapier
-    /// left without one (crate::wheel_hook's exact patch contact), or `None` before any was
+    /// left without one (module `wheel`'s exact patch contact), or `None` before any was
     /// seen. Rapier 0.36 has no public constructor of `SolverContact` (its one private field
     /// is SIMD padding, which the solver never reads), so the hook copies one Rapier built
     /// ([`Crowns::keep_template`]) and overwrites every public field.
@@ -224,46 +201,5 @@ impl Crowns {
             axle,
             contact,
         })
-    }
-}
-
-/// Carter's creepage \[-\] at force `q` \[N\] below `mu_p` \[N\] for a line contact of
-/// half-width `a` \[m\] and rolling radius `r` \[m\]: `(mu a/R)(1 - sqrt(1 - q/(mu P)))` (Carter
-/// 1926; Johnson 1985, eq. 8.38), written without cancellation as
-/// `(a/R) (q/P) / (1 + sqrt(1 - q/(mu P)))`, `q` clamped to `[0, mu P]`.
-pub(crate) fn carter_creepage(q: f64, mu_p: f64, p: f64, a: f64, r: f64) -> f64 {
-    if !(mu_p > 0.0 && p > 0.0) {
-        return 0.0;
-    }
-    let q = q.clamp(0.0, mu_p);
-    (a / r) * (q / p) / (1.0 + (1.0 - q / mu_p).sqrt())
-}
-
-/// Hertz's half-width \[m\] of a line contact: `a = sqrt(4 (P/L) R/(pi E*))` (Johnson 1985,
-/// eq. 4.43) for the load `p` \[N\] over the length `width` \[m\], radius `r` \[m\], contact
-/// modulus `e_star` \[Pa\].
-pub(crate) fn line_half_width(p: f64, width: f64, r: f64, e_star: f64) -> f64 {
-    (4.0 * (p / width) * r / (std::f64::consts::PI * e_star)).sqrt()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn carter_matches_its_closed_form() {
-        let (mu_p, p, a, r) = (0.9, 1.0, 1e-3, 0.05);
-        for s in [0.0, 0.1, 0.5, 0.9, 1.0] {
-            let want = (0.9 * a / r) * (1.0 - (1.0 - s).sqrt());
-            let got = carter_creepage(s * mu_p, mu_p, p, a, r);
-            assert!(
-                (got - want).abs() <= 1e-15 + 1e-12 * want,
-                "{s}: {got} {want}"
-            );
-        }
-        // Linear slope: xi = a q/(2 R P).
-        let q = 1e-9;
-        assert!((carter_creepage(q, mu_p, p, a, r) / (a * q / (2.0 * r * p)) - 1.0).abs() < 1e-8);
-        assert_eq!(carter_creepage(0.5, 0.0, p, a, r), 0.0);
     }
 }

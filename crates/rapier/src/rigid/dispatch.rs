@@ -1,0 +1,196 @@
+//! Rapier's call into the rigid hooks: `modify_solver_contacts` sorts each manifold to its path
+//! (compliant, quiet, ball, wheel, Coulomb) and applies the rotation-gap correction.
+
+use std::sync::atomic::Ordering;
+
+use creep_law::Surface;
+use rapier3d::prelude::*;
+
+use super::ball::{BallManifold, ball_manifold};
+use super::hooks::{CreepHooks, Shard, quiet_collider, shard_of};
+use super::wheel::{WheelCtx, wheel_manifold};
+use crate::convert::{body_motion, v3, vf};
+use crate::gap::rotation_gap_correction;
+use crate::registry::{Fidelity, RollingResistance, pair_fidelity};
+
+impl PhysicsHooks for CreepHooks {
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        let (c1, c2) = (context.collider1, context.collider2);
+        let (h1, h2) = (context.rigid_body1, context.rigid_body2);
+        let bodies = context.bodies;
+        let colliders = context.colliders;
+        let Some(rigid) = context.rigid_mut() else {
+            return;
+        };
+        let n_contacts = rigid.solver_contacts.len();
+        if !self.prepared {
+            // Stepped without the step owner: leave the contact to Rapier, and say so at the
+            // next step (PluginError::HookOutsideStep).
+            self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
+            return;
+        }
+        // Only this pair's shard (never a global lock: crate docs of `SHARDS`).
+        let mut shard = self.shards[shard_of(c1, c2)]
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        let Shard {
+            store,
+            counts,
+            laws,
+            crowns,
+            pairs,
+            unregistered,
+            unregistered_seen,
+            bad_friction,
+        } = &mut *shard;
+        let (co1, co2) = (colliders.get(c1), colliders.get(c2));
+        // Both colliders' friction (a registered collider's is checked before the step, its
+        // partner's only here): the step returns PluginError::Friction, and the pair is
+        // solved without friction meanwhile so that no NaN reaches the bodies.
+        for (handle, co) in [(c1, co1), (c2, co2)] {
+            if let Some(co) = co
+                && !(co.friction().is_finite() && co.friction() >= 0.0)
+            {
+                *bad_friction = Some((handle, co.friction()));
+                *rigid.friction = 0.0;
+                return;
+            }
+        }
+        let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
+            counts.coulomb_unregistered += n_contacts;
+            if self.settings.warn_unregistered {
+                let (stranger, known) = if self.registry.get(c1).is_some() {
+                    (c2, c1)
+                } else {
+                    (c1, c2)
+                };
+                if self.registry.get(known).is_some() && unregistered_seen.insert(stranger) {
+                    unregistered.push((stranger, known));
+                }
+            }
+            return;
+        };
+        // --- Compliant regime (crate::compliant applies this pair's forces itself). ---
+        if m1.fidelity == Fidelity::Compliant || m2.fidelity == Fidelity::Compliant {
+            rigid.solver_contacts.clear();
+            return;
+        }
+        // --- end compliant ---
+        if quiet_collider(co1) && quiet_collider(co2) {
+            // Both below the activation speed: plain Rapier contacts (as with the hook off),
+            // rebuilt clean before Rapier starts recycling them.
+            counts.quiet += n_contacts;
+            return;
+        }
+        // The shapes (one typed-shape call per collider): the contact law's surfaces and, for
+        // Rapier's rotation gap, a wheel (cylinder) turning about its axle like a sphere of its
+        // radius (module `crowns`).
+        let (law1, gap1) = co1.map_or((None, None), shape_surfaces);
+        let (law2, gap2) = co2.map_or((None, None), shape_surfaces);
+        // The bodies, looked up once per manifold.
+        let rbs = [
+            h1.and_then(|h| bodies.get(h)),
+            h2.and_then(|h| bodies.get(h)),
+        ];
+        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
+        // A ball on either side of a supported shape: the ball path (module `ball`), with
+        // the pair's constants computed once per pair of materials (`creep_law::rigid::RigidPairCache`).
+        let mu = f64::from(*rigid.friction);
+        let ball = match (law1, law2) {
+            (Some(s1), Some(s2)) if is_sphere(s1) || is_sphere(s2) => pairs
+                .get(&m1.material, &m2.material, mu, self.settings.creep_model)
+                .and_then(|k| k.pair_for(s1, s2).map(|p| (s1, s2, k, p))),
+            _ => None,
+        };
+        if let Some((s1, s2, consts, pair)) = ball {
+            let rolling = match (m1.rolling, m2.rolling) {
+                (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
+                _ => None,
+            };
+            let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
+            let manifold = BallManifold {
+                colliders: (c1, c2),
+                handles: (h1, h2),
+                bodies: rbs,
+                body_set: bodies,
+                surfaces: (s1, s2),
+                pair,
+                consts,
+                fidelity,
+                rolling,
+                dt: self.dt,
+                gap_substeps: self
+                    .settings
+                    .anchor_drift_correction
+                    .then_some(self.substeps),
+                auto_tolerance: (fidelity == Fidelity::Auto)
+                    .then_some(self.settings.auto_tolerance),
+            };
+            // (The rotation-gap correction below is done there, contact by contact, on the
+            // same motions as the creep.)
+            ball_manifold(&manifold, rigid, store, counts);
+            return;
+        }
+        if self.settings.anchor_drift_correction {
+            // Every registered pair, whatever its shapes and fidelity: Rapier's rotation gap
+            // (see `rotation_gap`) is the engine's, not creep's.
+            let n = v3(*rigid.normal);
+            let dt = self.dt;
+            let flat = Surface::Plane;
+            for sc in rigid.solver_contacts.iter_mut() {
+                let (a1, a2) = (v3(sc.anchor1), v3(sc.anchor2));
+                let p_motion = body_motion(rbs[0], a1 - n, gap1.unwrap_or(flat));
+                let q_motion = body_motion(rbs[1], a2 + n, gap2.unwrap_or(flat));
+                let (c, b) =
+                    rotation_gap_correction(&p_motion, a1, &q_motion, a2, n, dt, self.substeps);
+                sc.dist -= c as f32;
+                sc.tangent_velocity += vf(n * b);
+            }
+        }
+        // A cylinder on a flat collider: a wheel (module `wheel`).
+        let wheel_side = match (law1, law2) {
+            (None, Some(Surface::Plane)) => Some(0),
+            (Some(Surface::Plane), None) => Some(1),
+            _ => None,
+        };
+        if let Some(side) = wheel_side {
+            let ctx = WheelCtx {
+                colliders: (c1, c2),
+                handles: (h1, h2),
+                materials: (m1, m2),
+                bodies,
+                colliders_set: colliders,
+                dt: self.dt,
+                prediction: self.prediction,
+                gap_substeps: self
+                    .settings
+                    .anchor_drift_correction
+                    .then_some(self.substeps),
+                settings: &self.settings,
+                consts: pairs.get(&m1.material, &m2.material, mu, self.settings.creep_model),
+            };
+            if wheel_manifold(&ctx, rigid, side, store, counts, laws, crowns) {
+                return;
+            }
+        }
+        match (law1, law2) {
+            (Some(s1), Some(s2)) if !is_sphere(s1) && !is_sphere(s2) => {
+                // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
+                counts.coulomb_no_sphere += n_contacts;
+            }
+            // No supported shape, or a ball pair the law refuses (a bad radius or friction).
+            _ => counts.coulomb_unsupported += n_contacts,
+        }
+    }
+}
+
+/// The surfaces a collider presents to the rigid hook, from one typed-shape call
+/// ([`crate::supported_shape`]): the contact law's ([`crate::SupportedShape::rigid_surface`])
+/// and the rotation-gap correction's (the same, and a wheel as a sphere of its radius: it turns
+/// about its axle).
+fn shape_surfaces(co: &Collider) -> (Option<Surface>, Option<Surface>) {
+    match crate::shape::supported_shape(co) {
+        Some(shape) => (shape.rigid_surface(), Some(shape.gap_surface())),
+        None => (None, None),
+    }
+}
