@@ -233,6 +233,16 @@ mod tests {
     }
 
     #[test]
+    fn ball_gap_surface_is_a_plane_only_for_the_patched_rapier() {
+        let expected = if cfg!(feature = "rapier-patched") {
+            Surface::Plane
+        } else {
+            Surface::Sphere(0.1)
+        };
+        assert_eq!(ball_gap_surface(0.1), expected);
+    }
+
+    #[test]
     fn rotation_gap_correction_stays_below_the_gap_and_is_exact_for_one_substep() {
         let ball = BodyMotion {
             position: Vec3::new(0.0, 0.1, 0.0),
