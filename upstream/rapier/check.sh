@@ -15,7 +15,7 @@
 #      substeps, plain Rapier and the plugin (creep-scenes' tests/rapier_substeps.rs;
 #      ROLLING_TESTS=plain or =plugin runs one of the two, CREEP_MATRIX=full the 72 cases).
 #
-# Run time: 23 min on a 2-core machine under a load of ~9 (6.3 min of CPU), nearly all of it
+# Run time: 6.3 min of CPU on a 2-core x86-64 machine (23 min wall on a busy one), nearly all of it
 # building (Rapier's tests: the scratch crate and its dependencies; the workspace: its own target
 # directory); the tests themselves take under a minute.
 #
