@@ -53,9 +53,26 @@
 //! is plain Rapier's own: a slow ball whose gap stays inside the overlap gains 1.8e-4..1.0e-3
 //! of E0 in 60 s without the plugin, bit for bit as with it (creep-scenes'
 //! `plain_rapier_gains_energy_in_slow_free_rolling`).
+//!
+//! With the feature `rapier-patched` (Rapier 0.36.1 with the patch series in `upstream/rapier/`),
+//! the engine follows a ball's separation by the motion of its centre, so a ball reads no
+//! rotation gap at any substep count and the plugin corrects none ([`ball_gap_surface`]); a
+//! wheel (a cylinder) is still tracked by a body-fixed point and keeps its correction.
 
 use creep_law::kinematics::BodyMotion;
 use creep_law::{Surface, Vec3};
+
+/// The surface a ball of `radius` \[m\] presents to the rotation-gap correction: a sphere (its
+/// body-fixed contact anchor turns away from its lowest point), or, with the feature
+/// `rapier-patched`, a plane: the patched engine tracks the ball's centre, which the rotation
+/// does not move, so there is no gap to correct.
+pub(crate) fn ball_gap_surface(radius: f64) -> Surface {
+    if cfg!(feature = "rapier-patched") {
+        Surface::Plane
+    } else {
+        Surface::Sphere(radius)
+    }
+}
 
 /// Mean spurious change of the separation along `n` caused by a body's contact anchor riding
 /// with the body's rotation through the solver substeps (the correction used with more than
@@ -213,6 +230,16 @@ mod tests {
                 "{closed} vs {direct}"
             );
         }
+    }
+
+    #[test]
+    fn ball_gap_surface_is_a_plane_only_for_the_patched_rapier() {
+        let expected = if cfg!(feature = "rapier-patched") {
+            Surface::Plane
+        } else {
+            Surface::Sphere(0.1)
+        };
+        assert_eq!(ball_gap_surface(0.1), expected);
     }
 
     #[test]

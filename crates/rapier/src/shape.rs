@@ -82,7 +82,8 @@ impl SupportedShape {
     /// turns about its axle like a sphere of its radius.
     pub(crate) fn gap_surface(&self) -> Surface {
         match *self {
-            Self::Ball { radius } | Self::Wheel { radius, .. } => Surface::Sphere(radius),
+            Self::Ball { radius } => crate::gap::ball_gap_surface(radius),
+            Self::Wheel { radius, .. } => Surface::Sphere(radius),
             Self::Flat(_) => Surface::Plane,
         }
     }

@@ -53,7 +53,12 @@ fn anchor_drift_correction_stops_the_sinking() {
             "sinking after 1 s at 1/60 s, {substeps} substep(s): {without:.2e} m without, \
              {with:.2e} m with the correction"
         );
-        if substeps == 1 {
+        if cfg!(feature = "rapier-patched") {
+            // The patched Rapier reads no rotation gap on a ball: the ball stays at its
+            // resting depth (7e-5 m overlap) at any substep count, and the plugin adds nothing.
+            assert!(without.abs() < 1e-4, "{without}");
+            assert_eq!(with, without);
+        } else if substeps == 1 {
             // Rapier reads the gap at the end of the step only: plain sinking is smaller, and
             // the corrected ball stays at its resting depth (Rapier's 7e-5 m resting overlap).
             assert!(without < -2e-4, "{without}");

@@ -119,10 +119,11 @@ impl PhysicsHooks for CreepHooks {
                 fidelity,
                 rolling,
                 dt: self.dt,
-                gap_substeps: self
-                    .settings
-                    .anchor_drift_correction
-                    .then_some(self.substeps),
+                // The patched Rapier (feature `rapier-patched`) reads no rotation gap on a
+                // ball: nothing to correct (crate::gap).
+                gap_substeps: (self.settings.anchor_drift_correction
+                    && !cfg!(feature = "rapier-patched"))
+                .then_some(self.substeps),
                 auto_tolerance: (fidelity == Fidelity::Auto)
                     .then_some(self.settings.auto_tolerance),
             };

@@ -514,7 +514,12 @@ impl CreepHooks {
         // Only with one substep, where the rotation-gap correction is exact: with Rapier's
         // substeps a ball spinning past the cap (100 rad/s at 1/60 s in the hard-case matrix)
         // gains 4.0e-6 of E0 per step against its Coulomb twin (the mean correction's error).
-        if !self.settings.lift_rotation_cap || self.substeps != 1 {
+        // The patched Rapier (feature `rapier-patched`) caps no ball centred at its centre of
+        // mass by itself.
+        if !self.settings.lift_rotation_cap
+            || self.substeps != 1
+            || cfg!(feature = "rapier-patched")
+        {
             return;
         }
         for &handle in &self.selected {
