@@ -19,9 +19,12 @@
 # building (Rapier's tests: the scratch crate and its dependencies; the workspace: its own target
 # directory); the tests themselves take under a minute.
 #
-# Everything it builds goes to target/rapier-patched/ (CREEP_RAPIER_SCRATCH overrides), so the
-# workspace's own target/ is not touched. Cargo.lock is restored on exit (the patch rewrites
-# rapier3d's entry while cargo runs).
+# The patched source lives in target/rapier-patched/ (CREEP_RAPIER_SCRATCH overrides). Both
+# builds use the workspace's target directory, so every dependency Rapier shares with the
+# workspace (nalgebra, parry3d, ...) is built once: the patched rapier3d has another source
+# than crates.io's, hence its own fingerprint, and the crates built on it (creep-rapier,
+# creep-scenes) get their own too; the crates.io builds beside them are not touched.
+# Cargo.lock is restored on exit (the patch rewrites rapier3d's entry while cargo runs).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root=$PWD
@@ -57,7 +60,7 @@ git_ log --oneline "HEAD~$(ls "$series_dir"/0*.patch | wc -l)..HEAD"
 echo "== Rapier's tests on the patched source"
 (
   cd "$rapier"
-  export CARGO_TARGET_DIR=$scratch/rapier-target
+  export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$root/target}
   if [ "${RAPIER_TESTS:-}" = all ]; then
     cargo test --no-fail-fast
   else
@@ -72,7 +75,6 @@ echo "== the workspace against the patched Rapier"
 cp Cargo.lock "$scratch/Cargo.lock.orig"
 trap 'cp "$scratch/Cargo.lock.orig" "$root/Cargo.lock"' EXIT
 patch_cfg="patch.crates-io.rapier3d.path=\"$rapier\""
-export CARGO_TARGET_DIR=$scratch/ws-target
 cargo --config "$patch_cfg" test -p creep-rapier --features rapier-patched
 cargo --config "$patch_cfg" test -p creep-scenes --features creep-rapier/rapier-patched \
   --test rapier_substeps -- --ignored --nocapture "${ROLLING_TESTS-}"
