@@ -102,7 +102,10 @@ pub mod wheel;
 
 pub use ball::ball_creep;
 pub use consts::{PAIR_CACHE_LEN, RigidPair, RigidPairCache};
-pub use frame::{LawCache, RollFrame, solve_translation};
+pub use frame::{
+    COMBINED_ITERATIONS, COMBINED_TOLERANCE, CombinedSolve, LawCache, RollFrame, solve_combined,
+    solve_translation,
+};
 pub use wheel::{WheelContact, WheelInput, wheel_creep};
 
 use crate::kinematics::BodyMotion;
@@ -257,6 +260,8 @@ struct Translation {
     target: Vec3,
     /// Loop gain at the solution.
     gain: f64,
+    /// Whether the force is capped at the capacity (the contact slides).
+    capped: bool,
 }
 
 /// The implicit solve of the translation (module docs) in `frame`, for the force estimate
@@ -292,6 +297,7 @@ fn translate(
         force,
         target,
         gain,
+        capped: !(q_t < mu_t),
     }
 }
 

@@ -28,7 +28,7 @@
 
 use super::{
     CoulombReason, LawCache, RigidContact, RigidCreep, RollFrame, creeping, force_estimate,
-    solver_noise_force, spin_above_noise, translate,
+    solve_combined, solver_noise_force, spin_above_noise, translate,
 };
 use crate::elliptic::elliptic_hertz;
 use crate::error::LawError;
@@ -210,13 +210,39 @@ pub fn wheel_creep(
         slope0,
         &creepage,
     );
+    let Some((law3, c2)) = law3 else {
+        return creeping(&t, n, 0.0, w_twist);
+    };
+    // The combined law: the split solve above (the spin's force, then the translation within
+    // what it leaves) is the guess of the 2-D solve with the 3-D law itself, so that the force
+    // is the law's at the creepages of the target (module docs). A sliding contact keeps the
+    // split answer.
+    let scale = g * c2 / mu_p;
+    let (mut t, mut l) = (t, None);
+    if k > 0.0 && !t.capped {
+        let (xs, ys) = frame.split(q_star);
+        let c = solve_combined(
+            law3,
+            (xs / mu_p, ys / mu_p),
+            k / (g * c2),
+            phi_n,
+            (t.cx * scale, t.cy * scale),
+        );
+        let (cx, cy) = (c.creepage.0 / scale, c.creepage.1 / scale);
+        t.cx = cx;
+        t.cy = cy;
+        t.force = frame.join(c.loads.fx * mu_p, c.loads.fy * mu_p);
+        t.target = frame.join(cx, cy) * roll;
+        l = Some(c.loads);
+    }
     // Kalker's twisting moment on p about n.
-    let mz = match law3 {
-        Some((law3, c2)) if phi_n != 0.0 => {
-            let scale = g * c2 / mu_p;
-            law3.loads(t.cx * scale, t.cy * scale, phi_n).mz * mu_p * c2.sqrt()
-        }
-        _ => 0.0,
+    let mz = if phi_n != 0.0 {
+        l.unwrap_or_else(|| law3.loads(t.cx * scale, t.cy * scale, phi_n))
+            .mz
+            * mu_p
+            * c2.sqrt()
+    } else {
+        0.0
     };
     creeping(&t, n, mz, w_twist)
 }
