@@ -215,19 +215,19 @@ pub fn wheel_creep(
     };
     // The combined law: the split solve above (the spin's force, then the translation within
     // what it leaves) is the guess of the 2-D solve with the 3-D law itself, so that the force
-    // is the law's at the creepages of the target (module docs). A sliding contact keeps the
-    // split answer.
+    // is the law's at the creepages of the target (module docs). An estimate beyond the
+    // capacity `mu P` keeps the split answer (the contact slides).
     let scale = g * c2 / mu_p;
     let (mut t, mut l) = (t, None);
-    if k > 0.0 && !t.capped {
+    if k > 0.0 && q_star.length() < mu_p {
         let (xs, ys) = frame.split(q_star);
-        let c = solve_combined(
-            law3,
-            (xs / mu_p, ys / mu_p),
-            k / (g * c2),
-            phi_n,
-            (t.cx * scale, t.cy * scale),
-        );
+        // Where the split solve saturated (the spin left too little), start from rest.
+        let guess = if t.capped {
+            (0.0, 0.0)
+        } else {
+            (t.cx * scale, t.cy * scale)
+        };
+        let c = solve_combined(law3, (xs / mu_p, ys / mu_p), k / (g * c2), phi_n, guess);
         let (cx, cy) = (c.creepage.0 / scale, c.creepage.1 / scale);
         t.cx = cx;
         t.cy = cy;
