@@ -11,7 +11,9 @@
 //!   along `x` is the fast 3-D law at zero spin ([`crate::steady3d::Steady3d`], fitted to the
 //!   boundary elements of Kalker's exact theory, Kalker 1967/1990), normalised with
 //!   `c = sqrt(a b)`; the lateral ratio is Kalker's `C11/C22` at `a/b` (Kalker 1990, Table E.3);
-//!   spin creep as a ball's (parent module docs).
+//!   spin creep as a ball's (parent module docs); the force is then solved again with the 3-D
+//!   law at the combined creepage, so that it is the law's at the target's creepages (parent
+//!   module docs, "A crowned wheel: the combined law").
 //! * **Line contact** (no crown): Carter's two-dimensional solution (Carter 1926; Johnson
 //!   1985, §8.2): half-width `a = sqrt(4 (P/L) R/(pi E*))` (Johnson 1985, eq. 4.43,
 //!   [`line_half_width`]) and `xi = (mu a/R)(1 - sqrt(1 - Q/(mu P)))` ([`carter_creepage`]);
