@@ -88,6 +88,17 @@
 //! `r = 1` it is the circular solve `q + K F(q) = |Q*|`. It holds for any `g`;
 //! [`RigidCreep::loop_gain`] reports `g` at the solution.
 //!
+//! **A crowned wheel: the combined law.** The split above (the pure spin's lateral force, then
+//! the translation in the capacity it leaves, with the 1-D law along `x` and the ratio `r`) is
+//! not the 3-D law at the combined creepage `(xi, eta, phi)`. For a crowned wheel whose force
+//! estimate is below `mu P` the kernel therefore solves the same relation, `Q + K (xi, eta) = Q*`
+//! in the frame (`Q` the whole force, the spin's included), with `Q = mu P L(xi_n, eta_n, phi_n)`,
+//! `L` the 3-D law's `(fx, fy)` ([`Steady3d::loads`](crate::steady3d::Steady3d::loads)):
+//! normalised, `L(z) + kappa z = Q*/(mu P)`, `kappa = K/(G c^2)`, two unknowns
+//! ([`solve_combined`]: damped Newton from the split answer, or from rest where the split
+//! saturated). The force the kernel reports is then the law's at its target's creepages, and
+//! its moment the law's `Mz` there. A ball keeps the split solve; a line contact has no spin.
+//!
 //! # Noise floors
 //! An engine that solves in f32 resolves the relative surface velocity to about `eps_f32 u`
 //! (`u` the contact's surface speed) and so transmits tangential impulses no load asked for; a
@@ -102,7 +113,10 @@ pub mod wheel;
 
 pub use ball::ball_creep;
 pub use consts::{PAIR_CACHE_LEN, RigidPair, RigidPairCache};
-pub use frame::{LawCache, RollFrame, solve_translation};
+pub use frame::{
+    COMBINED_ITERATIONS, COMBINED_TOLERANCE, CombinedSolve, LawCache, RollFrame, solve_combined,
+    solve_translation,
+};
 pub use wheel::{WheelContact, WheelInput, wheel_creep};
 
 use crate::kinematics::BodyMotion;
@@ -257,6 +271,8 @@ struct Translation {
     target: Vec3,
     /// Loop gain at the solution.
     gain: f64,
+    /// Whether the force is capped at the capacity (the contact slides).
+    capped: bool,
 }
 
 /// The implicit solve of the translation (module docs) in `frame`, for the force estimate
@@ -292,6 +308,7 @@ fn translate(
         force,
         target,
         gain,
+        capped: !(q_t < mu_t),
     }
 }
 

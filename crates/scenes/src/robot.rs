@@ -59,7 +59,7 @@
 //!
 //! # The wheels' lateral forces
 //!
-//! Turning on the spot each wheel presses on the floor sideways with 1.31 N (0.32 `mu P`), in
+//! Turning on the spot each wheel presses on the floor sideways with 1.28 N (0.31 `mu P`), in
 //! opposite directions (the axle is squeezed): the **lateral force of spin** (Kalker's `C23`
 //! term; the wheels spin at `phi_n = phi G c^3/(mu P) = 0.33`), which the creep law gives at
 //! the wheels' creepages within 1 % (creep-scenes' `tests/robot.rs`; Kalker's exact theory for

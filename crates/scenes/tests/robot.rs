@@ -31,7 +31,9 @@ fn law_lateral_force(p: &RobotParams, w: &ContactMean) -> (f64, f64) {
     let law = creep_law::steady3d::Steady3d::new(a / b, p.material.poisson_ratio()).unwrap();
     let scale = g * c2 / mu_p;
     let phi_n = w.phi * scale * c2.sqrt();
-    let loads = law.loads(w.law_creepage[0] * scale, w.law_creepage[1] * scale, phi_n);
+    let (xi_n, eta_n) = (w.law_creepage[0] * scale, w.law_creepage[1] * scale);
+    eprintln!("  law's creepages (xi_n, eta_n, phi_n) ({xi_n:+.4e}, {eta_n:+.4e}, {phi_n:.4})");
+    let loads = law.loads(xi_n, eta_n, phi_n);
     (loads.fy * mu_p, phi_n)
 }
 
@@ -97,22 +99,23 @@ fn print(name: &str, r: &RobotRun) {
 }
 
 /// Turning on the spot (rim speeds -0.1, +0.1 m/s; b = 0.2 m): the yaw rate follows the rim
-/// speeds, `(v_r - v_l)/b`, within 2 % (creep: measured -0.37 %; twin -0.15 %); each wheel's
-/// spin creepage is `2/b` within 3 % (it rolls on a circle of radius `b/2`; measured -0.57 %,
+/// speeds, `(v_r - v_l)/b`, within 2 % (creep: measured -0.42 %; twin -0.15 %); each wheel's
+/// spin creepage is `2/b` within 3 % (it rolls on a circle of radius `b/2`; measured -0.60 %,
 /// +0.26 %); the creep run's dissipation is mostly the wheels' spin creep (Kalker's twisting
 /// moment times the relative spin, over 90 %), and equals the hook's booked creep energy within
-/// 10 % (measured -6.6 %: the measured lateral creepage reads `-Omega dt` more than the motion,
+/// 10 % (measured -5.9 %: the measured lateral creepage reads `-Omega dt` more than the motion,
 /// the wheels' velocities after a step belonging to the step's start and the sample's axes to
 /// its end (module docs of `robot`), which times the spin's lateral force reads as -4.7e-4 W
 /// per wheel). The Coulomb twin's single patch point has no
-/// twisting friction: it dissipates under a tenth of the creep run (measured 1.3 %).
+/// twisting friction: it dissipates under a tenth of the creep run (measured 1.0 %).
 ///
-/// The wheels' lateral force (the axle squeezed by 1.31 N per wheel) is the **lateral force of
+/// The wheels' lateral force (the axle squeezed by 1.28 N per wheel) is the **lateral force of
 /// spin** (Kalker's `C23` term): each wheel's measured force is the creep law's at its
-/// creepages within 3 % (measured +0.85 %, +0.72 %, at phi_n = 0.33); Kalker's exact theory for
+/// creepages within 3 % (measured -0.00 %, -0.02 %, at phi_n = 0.33: the
+/// kernel applies the law's force at the creepages of its target); Kalker's exact theory for
 /// pure spin (boundary elements) gives 0.296 `mu P` = 1.23 N there (linear between the table's
-/// points, which lies below the concave curve; the law's own lateral creepage, eta_n = 3e-3,
-/// adds ~0.05 N). Before the wheel's patch contact took its geometry from the floor's face
+/// points, which lies below the concave curve; the law's own lateral creepage is small,
+/// eta_n < 1e-3). Before the wheel's patch contact took its geometry from the floor's face
 /// (creep-rapier's wheel path) Rapier's narrow phase lost the wheels' contact now and then
 /// and this force read 0.76-0.79 N (the Coulomb twin -0.48 N, now -0.20 N), and the dissipation
 /// was measured at the manifold point the patch contact names instead of the patch.
@@ -175,19 +178,21 @@ fn robot_turns_on_the_spot_with_spin_creep() {
 }
 
 /// An arc (rim speeds 0.1 and 0.15 m/s): the radius follows the rim speeds,
-/// `(b/2)(v_r + v_l)/(v_r - v_l)`, within 1 % with creep (measured +0.08 %) and 2 % in the
+/// `(b/2)(v_r + v_l)/(v_r - v_l)`, within 1 % with creep (measured +0.09 %) and 2 % in the
 /// Coulomb twin (measured -0.01 %); each wheel spins with `phi = 1/(R ∓ b/2)` within 3 %.
 /// The spin's lateral forces (+0.37 N inner, +0.25 N outer: the inner wheel spins faster) are
 /// balanced by lateral creep, so the creep law asks both wheels for lateral creepage (each
 /// at least 1e-3), and on one rigid axle the two slip sideways at one speed: `eta_i V_i` equal
-/// within 5 % (measured -4.74e-4 and -4.63e-4 m/s; the inner wheel, rolling slower, has the
-/// larger creepage). Each wheel's measured lateral force, what is left of the two (-0.028,
-/// -0.015 N; their sum is the centripetal force `M V Omega`), is the law's at its creepages
-/// within 0.1 % of `mu P` (measured 0.0024 and 0.0002 N). The creep run's dissipation equals
-/// the hook's booked creep energy within 10 % (measured +0.3 %). Before the wheel's patch
-/// contact took its geometry from the floor's face the intermittently lost contacts gave law
-/// creepages -1.0e-3 inner and -7.9e-3 outer, inconsistent with one axle (their slip speeds
-/// differed tenfold), and this test asserted the outer one's to be the larger.
+/// within 5 % (measured -4.92e-4 and -4.84e-4 m/s; the inner wheel, rolling slower, has the
+/// larger creepage). Each wheel's measured lateral force, what is left of the two (-0.027,
+/// -0.016 N; their sum is the centripetal force `M V Omega`), is the law's at its creepages
+/// within 0.1 % of `mu P` (measured 0.0008 and 0.0006 N; the kernel applies the law's
+/// force at the creepages of its target, the rest is the measurement's). The creep run's
+/// dissipation equals the hook's booked creep energy within 10 % (measured +0.3 %). Before the
+/// wheel's patch contact took its geometry from the floor's face the intermittently lost
+/// contacts gave law creepages -1.0e-3 inner and -7.9e-3 outer, inconsistent with one axle
+/// (their slip speeds differed tenfold), and this test asserted the outer one's to be the
+/// larger.
 #[test]
 fn robot_drives_an_arc() {
     let p = RobotParams::default();

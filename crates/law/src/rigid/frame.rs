@@ -3,7 +3,7 @@
 //! the 3-D laws of elliptic contacts by shape.
 
 use crate::root::illinois;
-use crate::steady3d::Steady3d;
+use crate::steady3d::{Loads, Steady3d};
 use crate::vector::Vec3;
 
 /// The rolling frame of a contact: `x` (the contact's travel over the surfaces) and `y = n × x`.
@@ -87,6 +87,90 @@ pub fn solve_translation(
         (q, ux / norm, uy / norm)
     } else {
         (q, x_star / q_star, y_star / q_star)
+    }
+}
+
+/// Largest number of Newton steps of [`solve_combined`].
+pub const COMBINED_ITERATIONS: usize = 8;
+
+/// Relative residual at which [`solve_combined`] stops (of `1 + |q*|`, in units of `mu P`).
+pub const COMBINED_TOLERANCE: f64 = 1e-10;
+
+/// The answer of [`solve_combined`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CombinedSolve {
+    /// The normalised creepages `(xi_n, eta_n)` \[-\].
+    pub creepage: (f64, f64),
+    /// The law's loads there (at the given spin).
+    pub loads: Loads,
+    /// The largest component of the residual `L(z) + kappa z - q*` left \[-\] (units of `mu P`).
+    pub residual: f64,
+}
+
+/// The implicit solve with the combined 3-D law (parent module docs, "The implicit solve"):
+/// the normalised creepages `z = (xi_n, eta_n)` with
+/// `L(z, phi_n) + kappa z = q*`, `L` the law's `(fx, fy)` ([`Steady3d::loads`], over `mu P`),
+/// for the force estimate `q*` over `mu P` (frame components, the spin's force included),
+/// `kappa = K/(G c^2)` (`K = m_t V/dt` \[N\]) and the spin creepage `phi_n`. The force over
+/// `mu P` is then the law's at the creepages it returns, exactly.
+///
+/// Damped Newton from `guess` with a forward-difference Jacobian (the law is piecewise
+/// trilinear where tabulated, so a step that does not lower the residual's largest component
+/// is halved, up to six times); stops at [`COMBINED_TOLERANCE`] or after
+/// [`COMBINED_ITERATIONS`] steps with the best point found (never worse than `guess`).
+pub fn solve_combined(
+    law: &Steady3d,
+    q_star: (f64, f64),
+    kappa: f64,
+    phi_n: f64,
+    guess: (f64, f64),
+) -> CombinedSolve {
+    let res = |z: (f64, f64)| {
+        let l = law.loads(z.0, z.1, phi_n);
+        (
+            l,
+            (l.fx + kappa * z.0 - q_star.0, l.fy + kappa * z.1 - q_star.1),
+        )
+    };
+    let size = |r: (f64, f64)| r.0.abs().max(r.1.abs());
+    let tol = COMBINED_TOLERANCE * (1.0 + size(q_star));
+    let mut z = guess;
+    let (mut l, mut r) = res(z);
+    let mut norm = size(r);
+    for _ in 0..COMBINED_ITERATIONS {
+        if !(norm > tol) {
+            break;
+        }
+        let h = 1e-7 * size(z).max(1e-4);
+        let (_, rx) = res((z.0 + h, z.1));
+        let (_, ry) = res((z.0, z.1 + h));
+        let (j00, j01) = ((rx.0 - r.0) / h, (ry.0 - r.0) / h);
+        let (j10, j11) = ((rx.1 - r.1) / h, (ry.1 - r.1) / h);
+        let det = j00 * j11 - j01 * j10;
+        if !(det.abs() > 0.0 && det.is_finite()) {
+            break;
+        }
+        let dz = ((j01 * r.1 - j11 * r.0) / det, (j10 * r.0 - j00 * r.1) / det);
+        let mut step = 1.0;
+        let mut better = false;
+        for _ in 0..7 {
+            let zn = (z.0 + step * dz.0, z.1 + step * dz.1);
+            let (ln, rn) = res(zn);
+            let nn = size(rn);
+            if nn < norm {
+                (z, l, r, norm, better) = (zn, ln, rn, nn, true);
+                break;
+            }
+            step *= 0.5;
+        }
+        if !better {
+            break;
+        }
+    }
+    CombinedSolve {
+        creepage: z,
+        loads: l,
+        residual: norm,
     }
 }
 

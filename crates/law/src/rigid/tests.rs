@@ -430,3 +430,100 @@ fn carter_matches_its_closed_form() {
     );
     assert_eq!(wheel::carter_creepage(0.5, 0.0, p, a, r), 0.0);
 }
+
+#[test]
+fn combined_solve_meets_the_law_and_its_implicit_relation() {
+    // L(z, phi_n) + kappa z = q*, and the loads returned are the law's at z.
+    for ab in [0.5, 1.0] {
+        for nu in [0.25, 0.5] {
+            let law = crate::steady3d::Steady3d::new(ab, nu).unwrap();
+            assert!(law.tabulated(), "a/b {ab}, nu {nu}");
+            for (q_star, kappa, phi_n) in [
+                ((0.3, -0.2), 2.0, 0.0),
+                ((-0.5, 0.4), 0.5, 0.3),
+                ((0.05, -0.3), 10.0, 0.8),
+                ((0.2, 0.6), 0.2, -0.5),
+                ((-0.1, -0.05), 40.0, 0.1),
+            ] {
+                let c = solve_combined(&law, q_star, kappa, phi_n, (0.0, 0.0));
+                let (x, y) = c.creepage;
+                let l = law.loads(x, y, phi_n);
+                assert_eq!((l.fx, l.fy, l.mz), (c.loads.fx, c.loads.fy, c.loads.mz));
+                let (ex, ey) = (l.fx + kappa * x - q_star.0, l.fy + kappa * y - q_star.1);
+                assert!(
+                    ex.abs().max(ey.abs()) < 1e-9,
+                    "a/b {ab}, nu {nu}, {q_star:?}, {kappa}, {phi_n}: {ex} {ey}"
+                );
+                assert!(c.residual < 1e-9);
+            }
+        }
+    }
+}
+
+/// A crowned wheel at a/b = `ab` (semi-axes at 1 N set directly) spinning at `phi_n`: its force
+/// is the 3-D law's at the creepages of its target, and the implicit relation holds.
+fn crowned_wheel_is_the_combined_law(ab: f64, phi_n: f64, q_n: (f64, f64)) {
+    let rubber = Material::rubber();
+    let consts = RigidPair::new(&rubber, &rubber, rubber.friction(), CreepModel::Kuhn).unwrap();
+    let (r, p, v, dt) = (0.05, 5.0, 0.1, 1.0 / 60.0);
+    let pair = consts.pair_for(Surface::Sphere(r), Surface::Plane).unwrap();
+    let a1 = match WheelContact::crowned(r, r, pair.e_star).unwrap() {
+        WheelContact::Crowned { a1, .. } => a1,
+        WheelContact::Line { .. } => unreachable!(),
+    };
+    let contact = WheelContact::Crowned { a1, b1: a1 / ab };
+    let (wheel, mut c) = wheel_case(contact, r, p, v, dt);
+    let mu_p = rubber.friction() * p;
+    let (a, b) = (a1 * p.cbrt(), a1 / ab * p.cbrt());
+    let c2 = a * b;
+    // The frame is (x, z) (n = -y); the wheel is p: w_twist = -w_p . n = w_p.y.
+    let w = phi_n * mu_p * v / (pair.g * c2 * c2.sqrt());
+    c.p.angular_velocity.y = w;
+    let law = crate::steady3d::Steady3d::new(ab, pair.nu.clamp(0.0, 0.5)).unwrap();
+    assert!(law.tabulated());
+    let q = Vec3::new(q_n.0 * mu_p, 0.0, q_n.1 * mu_p);
+    let scale = pair.g * c2 / mu_p;
+    let check = |out: &RigidCreep, what: &str| {
+        assert!(out.creeps(), "{what}");
+        let (cx, cy) = (out.target.x / v, out.target.z / v);
+        let l = law.loads(cx * scale, cy * scale, phi_n);
+        let (ex, ey) = (out.force.x / mu_p - l.fx, out.force.z / mu_p - l.fy);
+        assert!(
+            ex.abs().max(ey.abs()) < 1e-6,
+            "{what} a/b {ab}, phi_n {phi_n}, {q_n:?}: force {:?} vs the law's {l:?}",
+            out.force * (1.0 / mu_p)
+        );
+    };
+    // Settled: the force is the measured one.
+    let out = settled_wheel(&pair, &wheel, c, q);
+    check(&out, "settled");
+    let e = (out.force - q).length() / mu_p;
+    assert!(e < 1e-6, "settled force off by {e} mu P");
+    // One step from another target: Q + (m_t/dt) tau = Q_measured + (m_t/dt) tau_prev.
+    let c = RigidContact {
+        tangent_impulse: q * dt,
+        last_target: out.target * 0.5 + Vec3::new(1e-4, 0.0, -2e-4),
+        ..c
+    };
+    let mut laws = LawCache::default();
+    let one = wheel_creep(&pair, &wheel, &c, &mut laws, || None, |_| 3.0);
+    check(&one, "one step");
+    let m_dt = 1.0 / (3.0 * dt);
+    let e = (one.force + one.target * m_dt - q - c.last_target * m_dt).length() / mu_p;
+    assert!(e < 1e-6, "implicit relation off by {e} mu P");
+}
+
+#[test]
+fn crowned_wheel_force_is_the_combined_law_at_its_creepages() {
+    for ab in [0.5, 1.0] {
+        for (phi_n, q_n) in [
+            (0.0, (0.3, 0.2)),
+            (0.3, (0.1, 0.2)),
+            (0.3, (-0.05, -0.4)),
+            (-0.6, (0.4, 0.1)),
+            (0.1, (-0.2, 0.05)),
+        ] {
+            crowned_wheel_is_the_combined_law(ab, phi_n, q_n);
+        }
+    }
+}

@@ -11,7 +11,9 @@
 //!   along `x` is the fast 3-D law at zero spin ([`crate::steady3d::Steady3d`], fitted to the
 //!   boundary elements of Kalker's exact theory, Kalker 1967/1990), normalised with
 //!   `c = sqrt(a b)`; the lateral ratio is Kalker's `C11/C22` at `a/b` (Kalker 1990, Table E.3);
-//!   spin creep as a ball's (parent module docs).
+//!   spin creep as a ball's (parent module docs); the force is then solved again with the 3-D
+//!   law at the combined creepage, so that it is the law's at the target's creepages (parent
+//!   module docs, "A crowned wheel: the combined law").
 //! * **Line contact** (no crown): Carter's two-dimensional solution (Carter 1926; Johnson
 //!   1985, §8.2): half-width `a = sqrt(4 (P/L) R/(pi E*))` (Johnson 1985, eq. 4.43,
 //!   [`line_half_width`]) and `xi = (mu a/R)(1 - sqrt(1 - Q/(mu P)))` ([`carter_creepage`]);
@@ -28,7 +30,7 @@
 
 use super::{
     CoulombReason, LawCache, RigidContact, RigidCreep, RollFrame, creeping, force_estimate,
-    solver_noise_force, spin_above_noise, translate,
+    solve_combined, solver_noise_force, spin_above_noise, translate,
 };
 use crate::elliptic::elliptic_hertz;
 use crate::error::LawError;
@@ -210,13 +212,39 @@ pub fn wheel_creep(
         slope0,
         &creepage,
     );
+    let Some((law3, c2)) = law3 else {
+        return creeping(&t, n, 0.0, w_twist);
+    };
+    // The combined law: the split solve above (the spin's force, then the translation within
+    // what it leaves) is the guess of the 2-D solve with the 3-D law itself, so that the force
+    // is the law's at the creepages of the target (module docs). An estimate beyond the
+    // capacity `mu P` keeps the split answer (the contact slides).
+    let scale = g * c2 / mu_p;
+    let (mut t, mut l) = (t, None);
+    if k > 0.0 && q_star.length() < mu_p {
+        let (xs, ys) = frame.split(q_star);
+        // Where the split solve saturated (the spin left too little), start from rest.
+        let guess = if t.capped {
+            (0.0, 0.0)
+        } else {
+            (t.cx * scale, t.cy * scale)
+        };
+        let c = solve_combined(law3, (xs / mu_p, ys / mu_p), k / (g * c2), phi_n, guess);
+        let (cx, cy) = (c.creepage.0 / scale, c.creepage.1 / scale);
+        t.cx = cx;
+        t.cy = cy;
+        t.force = frame.join(c.loads.fx * mu_p, c.loads.fy * mu_p);
+        t.target = frame.join(cx, cy) * roll;
+        l = Some(c.loads);
+    }
     // Kalker's twisting moment on p about n.
-    let mz = match law3 {
-        Some((law3, c2)) if phi_n != 0.0 => {
-            let scale = g * c2 / mu_p;
-            law3.loads(t.cx * scale, t.cy * scale, phi_n).mz * mu_p * c2.sqrt()
-        }
-        _ => 0.0,
+    let mz = if phi_n != 0.0 {
+        l.unwrap_or_else(|| law3.loads(t.cx * scale, t.cy * scale, phi_n))
+            .mz
+            * mu_p
+            * c2.sqrt()
+    } else {
+        0.0
     };
     creeping(&t, n, mz, w_twist)
 }
