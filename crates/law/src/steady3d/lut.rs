@@ -171,7 +171,7 @@ impl Lut {
         }
     }
 
-    /// [`Lut::loads`] for any creepages: non-finite ones give zero loads.
+    /// `Lut::loads` for any creepages: non-finite ones give zero loads.
     pub fn loads_checked(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         if !(xi_n.is_finite() && eta_n.is_finite() && phi_n.is_finite()) {
             return Loads::default();
