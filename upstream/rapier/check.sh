@@ -58,6 +58,9 @@ git_ am -q "$series_dir"/0*.patch
 git_ log --oneline "HEAD~$(ls "$series_dir"/0*.patch | wc -l)..HEAD"
 
 echo "== Rapier's tests on the patched source"
+# Start from the workspace's lockfile: the dependencies Rapier shares with the workspace keep
+# the versions CI tests (and their builds are reused); cargo adds Rapier's dev-dependencies.
+cp "$root/Cargo.lock" "$rapier/Cargo.lock"
 (
   cd "$rapier"
   export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$root/target}
