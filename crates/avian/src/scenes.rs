@@ -13,7 +13,7 @@ use avian3d::prelude::*;
 use bevy::math::{DQuat, DVec3};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use creep_law::{CreepModel, Material, PairMaterial, SteadyLaw, Surface, hertz};
+use creep_law::{CreepModel, Material, PairMaterial, SteadyLaw, Surface};
 
 use crate::{CreepAvianPlugin, CreepHooks, CreepMaterial, CreepState, Fidelity, StepCounts};
 
@@ -145,13 +145,12 @@ pub fn kalker_creepage(
     q: f64,
 ) -> Result<f64, creep_law::LawError> {
     let pair = PairMaterial::new(material, material, s1, s2)?;
-    let a = hertz::contact_radius(&pair, pn);
     Ok(
-        SteadyLaw::with_c11(CreepModel::Kuhn, pair.nu, pair.c11).creepage_for_force(
+        SteadyLaw::with_c11(CreepModel::Kuhn, pair.nu, pair.c11).contact_creepage(
+            &pair,
+            material.friction(),
+            pn,
             q,
-            material.friction() * pn,
-            pair.g,
-            a,
         ),
     )
 }

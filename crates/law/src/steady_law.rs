@@ -260,6 +260,22 @@ impl SteadyLaw {
         }
     }
 
+    /// Steady creepage [-] of a Hertz contact of `pair` under normal force `pn` \[N\] carrying a
+    /// tangential force of magnitude `q_abs` \[N\] with friction coefficient `mu` [-]:
+    /// [`Self::creepage_for_force`] at Hertz's contact radius `a(pn)` ([`crate::hertz`],
+    /// Johnson 1985, §4.2) and the Coulomb limit `mu pn`. The closed form every rolling scene
+    /// (incline, friction drive) is graded against, in any engine.
+    pub fn contact_creepage(
+        &self,
+        pair: &crate::PairMaterial,
+        mu: f64,
+        pn: f64,
+        q_abs: f64,
+    ) -> f64 {
+        let a = crate::hertz::contact_radius(pair, pn);
+        self.creepage_for_force(q_abs, mu * pn, pair.g, a)
+    }
+
     /// Dimensional steady creepage [-] for a tangential force of magnitude `q_abs` \[N\], Coulomb
     /// limit `mu_p` \[N\] (`+inf`: no slip, Kalker's linear theory `|Q|/(G a^2 C11)`), combined
     /// shear modulus `g` \[Pa\] and contact radius `a` \[m\]: `mu P/(G a^2) xi_n(|Q|/(mu P))`.
@@ -372,6 +388,33 @@ mod tests {
         assert!((big / lin - 1.0).abs() < 1e-6, "{big} {lin}");
         assert_eq!(law.creepage_for_force(1.0, mu_p, g, 0.0), 0.0);
         assert_eq!(law.creepage_for_force(1.0, 0.0, g, a), 0.0);
+    }
+
+    #[test]
+    fn contact_creepage_is_kalkers_at_hertzs_radius() {
+        // A steel ball of 0.1 m on a steel plane: Kalker's F_ss (kalker::steady_creepage) at
+        // Hertz's radius, for the Kuhn model; zero without load.
+        let steel = crate::Material::steel();
+        let pair = crate::PairMaterial::new(
+            &steel,
+            &steel,
+            crate::Surface::Plane,
+            crate::Surface::Sphere(0.1),
+        )
+        .unwrap();
+        let law = SteadyLaw::with_c11(CreepModel::Kuhn, pair.nu, pair.c11);
+        let (mu, pn) = (0.5, 300.0);
+        for s in [0.05, 0.3, 0.7, 0.95] {
+            let q = s * mu * pn;
+            let a = crate::hertz::contact_radius(&pair, pn);
+            let kalker = crate::kalker::steady_creepage(s, mu * pn, pair.g, a, pair.c11);
+            let got = law.contact_creepage(&pair, mu, pn, q);
+            assert!(
+                (got / kalker - 1.0).abs() < 1e-12,
+                "s {s}: {got} vs {kalker}"
+            );
+        }
+        assert_eq!(law.contact_creepage(&pair, mu, 0.0, 1.0), 0.0);
     }
 
     #[test]

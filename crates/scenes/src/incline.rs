@@ -5,7 +5,7 @@
 //! The incline is a fixed flat cuboid with the gravity tilted by `theta`.
 
 use creep_law::steady_law::SteadyLaw;
-use creep_law::{CreepModel, Material, PairMaterial, Surface, hertz};
+use creep_law::{CreepModel, Material, PairMaterial, Surface};
 use creep_rapier::{CreepMaterial, CreepSettings, CreepWorld, Fidelity, StepCounts};
 use rapier3d::prelude::*;
 
@@ -67,13 +67,12 @@ impl InclineParams {
             Surface::Plane,
             Surface::Sphere(self.radius),
         )?;
-        let a = hertz::contact_radius(&pair, pn);
         Ok(
-            SteadyLaw::with_c11(self.creep_model, pair.nu, pair.c11).creepage_for_force(
+            SteadyLaw::with_c11(self.creep_model, pair.nu, pair.c11).contact_creepage(
+                &pair,
+                self.material.friction(),
+                pn,
                 q,
-                self.material.friction() * pn,
-                pair.g,
-                a,
             ),
         )
     }
