@@ -71,7 +71,6 @@ pub struct CreepHooks<'w, 's> {
     colliders: Query<'w, 's, &'static Collider>,
     bodies: Query<'w, 's, BodyData>,
     time: Res<'w, Time>,
-    substeps: Res<'w, SubstepCount>,
 }
 
 /// A body's motion (the centre placed at `point - anchor`), its inverse mass and world
@@ -144,17 +143,6 @@ impl CollisionHooks for CreepHooks<'_, '_> {
         let (b1, b2) = (self.body(contacts.body1), self.body(contacts.body2));
         let dt = self.time.delta_secs_f64();
         let settings = inner.settings;
-        if settings.rotation_gap_correction && !settings.rotation_gap_removal {
-            let substeps = self.substeps.0.max(1);
-            for manifold in contacts.manifolds.iter_mut() {
-                let n = manifold.normal;
-                for point in manifold.points.iter_mut() {
-                    let gap =
-                        mean_rotation_gap(&b1, point.anchor1, &b2, point.anchor2, n, dt, substeps);
-                    point.penetration += gap as f32;
-                }
-            }
-        }
         if m1.fidelity.min(m2.fidelity) == Fidelity::Coulomb {
             inner.current.coulomb_requested += points;
             return true;
@@ -256,41 +244,6 @@ impl CollisionHooks for CreepHooks<'_, '_> {
         inner.current = counts;
         true
     }
-}
-
-/// The mean, over the bias solves of a step's `substeps` substeps, of the separation Avian's
-/// solver reads at a contact from the anchors turned with their bodies (its rotation gap) \[m\]:
-/// at substep `j` (from 0) the solver rotates each anchor `r` by the body's rotation so far,
-/// `q(w j h) r`, `h = dt / substeps`, and reads the separation change
-/// `((q2 r2 - r2) - (q1 r1 - r1)) . n`. For a ball rolling on a plane it is
-/// `R (1 - cos(w j h))`, a gap that is not there.
-fn mean_rotation_gap(
-    b1: &Body,
-    r1: Vec3,
-    b2: &Body,
-    r2: Vec3,
-    n: Vec3,
-    dt: f64,
-    substeps: u32,
-) -> f64 {
-    let h = dt / f64::from(substeps);
-    let turn = |b: &Body, r: Vec3, t: f64| {
-        let w = bevy::math::DVec3::new(
-            b.angular_velocity.x,
-            b.angular_velocity.y,
-            b.angular_velocity.z,
-        );
-        let r = r.as_dvec3();
-        bevy::math::DQuat::from_scaled_axis(w * t) * r - r
-    };
-    let n = n.as_dvec3();
-    let sum: f64 = (0..substeps)
-        .map(|j| {
-            let t = f64::from(j) * h;
-            (turn(b2, r2, t) - turn(b1, r1, t)).dot(n)
-        })
-        .sum();
-    sum / f64::from(substeps)
 }
 
 /// Leaves a pair to Coulomb for a bad setup: warns once, counts its points.

@@ -80,12 +80,6 @@ impl CreepAvianPlugin {
         self.settings.auto_tolerance = tolerance;
         self
     }
-    /// Offsets creep pairs' penetration by the mean rotation gap of the step's substeps
-    /// ([`CreepSettings::rotation_gap_correction`]).
-    pub fn with_rotation_gap_correction(mut self, on: bool) -> Self {
-        self.settings.rotation_gap_correction = on;
-        self
-    }
     /// Removes creep balls' own rotation from the separation Avian's solver reads at each
     /// substep ([`CreepSettings::rotation_gap_removal`], off by default).
     pub fn with_rotation_gap_removal(mut self, on: bool) -> Self {

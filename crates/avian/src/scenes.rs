@@ -30,9 +30,6 @@ pub enum Run {
     Plain,
     /// The plugin installed, every collider at this fidelity.
     Plugin(Fidelity),
-    /// The plugin with its rotation-gap correction on
-    /// ([`crate::CreepSettings::rotation_gap_correction`]), every collider at this fidelity.
-    GapCorrected(Fidelity),
     /// The plugin with its per-substep rotation-gap removal on
     /// ([`crate::CreepSettings::rotation_gap_removal`]), every collider at this fidelity.
     GapRemoved(Fidelity),
@@ -46,11 +43,10 @@ pub fn headless_app(dt: f64, substeps: u32, gravity: Vec3, run: Run) -> App {
         Run::Plain => {
             app.add_plugins(PhysicsPlugins::new(PostUpdate));
         }
-        Run::Plugin(_) | Run::GapCorrected(_) | Run::GapRemoved(_) => {
+        Run::Plugin(_) | Run::GapRemoved(_) => {
             app.add_plugins((
                 PhysicsPlugins::new(PostUpdate).with_collision_hooks::<CreepHooks>(),
                 CreepAvianPlugin::default()
-                    .with_rotation_gap_correction(matches!(run, Run::GapCorrected(_)))
                     .with_rotation_gap_removal(matches!(run, Run::GapRemoved(_))),
             ));
         }
@@ -82,9 +78,7 @@ pub fn step(app: &mut App) {
 fn creep_material(material: Material, run: Run) -> Option<CreepMaterial> {
     match run {
         Run::Plain => None,
-        Run::Plugin(f) | Run::GapCorrected(f) | Run::GapRemoved(f) => {
-            Some(CreepMaterial::new(material).with_fidelity(f))
-        }
+        Run::Plugin(f) | Run::GapRemoved(f) => Some(CreepMaterial::new(material).with_fidelity(f)),
     }
 }
 
@@ -754,15 +748,16 @@ pub fn fast_matrix() -> Vec<FastCase> {
 }
 
 /// One case run with the plugin (`Fidelity::Creep`), with the plugin and its rotation-gap
-/// correction, and with plain Avian.
+/// removal, and with plain Avian.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FastOutcome {
     /// The case.
     pub case: FastCase,
     /// The plugin.
     pub plugin: Summary,
-    /// The plugin with the rotation-gap correction.
-    pub corrected: Summary,
+    /// The plugin with its rotation-gap removal
+    /// ([`crate::CreepSettings::rotation_gap_removal`]).
+    pub removed: Summary,
     /// Plain Avian.
     pub plain: Summary,
 }
@@ -780,7 +775,7 @@ pub fn fast_case(case: FastCase, duration: f64, substeps: u32) -> Option<FastOut
     Some(FastOutcome {
         case,
         plugin: ball.run(Run::Plugin(Fidelity::Creep), |_, _| {}),
-        corrected: ball.run(Run::GapCorrected(Fidelity::Creep), |_, _| {}),
+        removed: ball.run(Run::GapRemoved(Fidelity::Creep), |_, _| {}),
         plain: ball.run(Run::Plain, |_, _| {}),
     })
 }

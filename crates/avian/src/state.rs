@@ -23,17 +23,11 @@ pub struct CreepSettings {
     pub auto_tolerance: f64,
     /// The steady creep law (Kalker's `F_ss` for [`CreepModel::Kuhn`]).
     pub creep_model: CreepModel,
-    /// Offsets each creep pair's penetration by the mean, over the step's substeps, of the
-    /// separation Avian's solver reads from anchors turned with their bodies (the rotation
-    /// gap, crate `hooks`). Off by default: a constant cannot follow a gap that grows through
-    /// the step (see the crate's guide page for the measured figures).
-    pub rotation_gap_correction: bool,
     /// Removes each creep ball's own rotation from the separation Avian's solver reads at
     /// every substep (crate `plugin`): a ball turned about its centre is the same ball, so the
     /// gap `R (1 - cos(w t))` the turned anchor opens is not there. Off by default: with it a
     /// freely rolling ball keeps its height, and Avian's soft contact can then hand it up to
-    /// about 2e-6 of its energy (see the crate's guide page). Takes the place of
-    /// `rotation_gap_correction` when both are on.
+    /// about 2e-6 of its energy (see the crate's guide page).
     pub rotation_gap_removal: bool,
 }
 
@@ -42,7 +36,6 @@ impl Default for CreepSettings {
         Self {
             auto_tolerance: 1e-7,
             creep_model: CreepModel::Kuhn,
-            rotation_gap_correction: false,
             rotation_gap_removal: false,
         }
     }
