@@ -13,7 +13,7 @@
 //! Run: `cargo bench -p creep-law --bench steady3d` (results: docs/CREEP3D.md);
 //! `-- --rounds-only` prints the table alone, `-- --rounds N` takes N rounds (default 11).
 //!
-//! `-- --count CASE [--blend] [--passes P]` evaluates one variant only (`CASE` 0-6: the
+//! `-- --count CASE [--blend] [--passes P]` evaluates one variant only (`CASE` 0-7: the
 //! table's cases in order; `--blend`: `Steady3d::two_row_blend`; `CASE` `fss`: `F_ss`; `P`
 //! passes over the 4096 inputs, default 20) in the function `count_batch`, for a load-free
 //! instruction count per evaluation:
@@ -145,7 +145,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// The table's cases: name, `a/b`, `nu` (the last two in the boundary-element table's
 /// coverage: `Steady3d::loads` interpolates it; "before" there is the fitted law).
-const CASES: [(&str, f64, f64); 7] = [
+const CASES: [(&str, f64, f64); 8] = [
     ("a/b 0.5, nu 0.25 (a node)", 0.5, 0.25),
     ("a/b 0.5, nu 0.125 (a row)", 0.5, 0.125),
     ("a/b 0.35, nu 0.125 (between rows)", 0.35, 0.125),
@@ -153,6 +153,7 @@ const CASES: [(&str, f64, f64); 7] = [
     ("a/b 1.4, nu 0.125 (between rows)", 1.4, 0.125),
     ("a/b 1, nu 0.3 (table node)", 1.0, 0.3),
     ("a/b 1, nu 0.4 (table, two nodes)", 1.0, 0.4),
+    ("a/b 0.7, nu 0.3 (table, between a/b)", 0.7, 0.3),
 ];
 
 /// 4096 inputs of the bench's distribution (creepages up to full slip, spins both ways).
@@ -283,7 +284,7 @@ fn count_mode(case: &str, blend: bool, passes: usize) {
         };
         count_batch(&xs, passes, &|v| kuhn.creepage_n(v[0].abs().min(0.99)))
     } else {
-        let (name, ab, nu) = CASES[case.parse::<usize>().expect("--count CASE: 0-6 or fss")];
+        let (name, ab, nu) = CASES[case.parse::<usize>().expect("--count CASE: 0-7 or fss")];
         let law = if blend {
             Steady3d::two_row_blend(ab, nu).unwrap()
         } else {
@@ -305,7 +306,7 @@ fn time_mode(case: &str, blend: bool) {
     let (ab, nu) = if case == "fss" {
         (1.0, 0.25)
     } else {
-        let c = CASES[case.parse::<usize>().expect("--time CASE: 0-6 or fss")];
+        let c = CASES[case.parse::<usize>().expect("--time CASE: 0-7 or fss")];
         (c.1, c.2)
     };
     let law = if blend {

@@ -28,10 +28,11 @@
 //! extrapolation's excess is scaled onto it); beyond it the creepage is scaled onto the grid's
 //! box along its direction (deep in full slip the loads depend on the direction only: the
 //! traction is `mu p` along the rigid slip). Between two computed `nu` of one `a/b` the two
-//! tables' loads are blended linearly in `nu`. Elsewhere (an `a/b` not computed, or a `nu`
-//! outside the computed ones) the fitted law below. **Computed**: `a/b = 1` at `nu = 0.25, 0.3,
-//! 0.5` and `a/b = 0.5` at `nu = 0.25, 0.5`, so the table covers those two axis ratios (within
-//! 0.1 %) at `0.25 <= nu <= 0.5`. The inverse at zero spin,
+//! tables' loads are blended linearly in `nu`; between two computed `a/b` whose rows both cover
+//! `nu`, the two rows' loads are blended linearly in `ln(a/b)` ([`Coverage::BetweenRatios`],
+//! looser bounds). Elsewhere (an `a/b` below the lowest or above the highest computed one, or a
+//! `nu` outside the computed ones) the fitted law below ([`Steady3d::coverage`] says which).
+//! The computed nodes are listed by [`lut::nodes`] and in docs/CREEP3D.md. The inverse at zero spin,
 //! [`Steady3d::creepages_for_force`], is the fitted law's everywhere.
 //!
 //! Regenerate a node with `cargo run --release -p creep-reference --example steady3d_lut --
@@ -497,6 +498,22 @@ pub fn node_at(ab: f64, nu: f64) -> Node {
     n
 }
 
+/// Where [`Steady3d::loads`] takes a contact's loads from (module documentation, "The table").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coverage {
+    /// The boundary-element table at a computed `a/b` (between computed `nu` of it, linear in
+    /// `nu`): within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment on the
+    /// error map.
+    Table,
+    /// Between two computed `a/b`, linear in `ln(a/b)`: within 3.5 % of `mu P` in each force
+    /// and 4 % of `mu P a` in the moment on the error map and its off-grid validation (worst
+    /// measured: Fx 3.28 % at `a/b = 0.85`, `nu = 0.4`; Mz 3.71 % at `a/b = 0.7`, between the
+    /// computed `0.5` and `1`).
+    BetweenRatios,
+    /// The fitted law (no computed `a/b` on both sides, or `nu` outside the computed ones).
+    Fitted,
+}
+
 impl Steady3d {
     /// The law for the axis ratio `ab = a/b` in `[0.1, 10]` (`a` along the rolling direction)
     /// and Poisson ratio `nu` in `[0, 0.5]` (Kalker's table range), with the fitted constants.
@@ -549,6 +566,16 @@ impl Steady3d {
     /// table"): then [`Steady3d::loads`] interpolates it; otherwise the fitted law.
     pub fn tabulated(&self) -> bool {
         self.lut.is_some()
+    }
+
+    /// Which of the law's sources gives this contact's loads, and so its accuracy (module
+    /// documentation, "The table").
+    pub fn coverage(&self) -> Coverage {
+        match &self.lut {
+            Some(l) if l.between_ratios() => Coverage::BetweenRatios,
+            Some(_) => Coverage::Table,
+            None => Coverage::Fitted,
+        }
     }
 
     /// The fitted law at this contact, without the table (as [`Steady3d::new`] where the table

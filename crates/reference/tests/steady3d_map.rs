@@ -161,22 +161,30 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
 /// and `phi_n = 0, +-4` are common), so the map grades its interpolation; the cases at a `nu`
 /// between the table's nodes (e.g. `nu = 0.3` where only `0.25` and `0.5` are computed) grade
 /// its interpolation in `nu` too. The same on the off-grid validation table where it covers.
+/// Between two computed `a/b` (`Coverage::BetweenRatios`, linear in `ln(a/b)`) the stated
+/// bounds are 3.5 % of `mu P` and 4 % of `mu P a` (measured Fx 2.61 %, Fy 2.54 %, Mz 3.71 %
+/// at `a/b = 0.7` between `0.5` and `1`; 3.28 %, 2.29 %, 3.35 % on the off-grid case
+/// `a/b = 0.85`, `nu = 0.4`).
 #[test]
 fn table_meets_the_bounds_where_it_covers_the_map() {
+    use creep_law::steady3d::{Coverage, Steady3d};
+    let bounds = |ab: f64, nu: f64| match Steady3d::new(ab, nu).unwrap().coverage() {
+        Coverage::Table => Some([0.02, 0.03]),
+        Coverage::BetweenRatios => Some([0.035, 0.04]),
+        Coverage::Fitted => None,
+    };
     let map = grade_steady3d(&map_table().unwrap()).unwrap();
-    let mut covered = 0;
+    let (mut covered, mut between) = (0, 0);
     for &ab in &MAP_RATIOS {
         for &nu in &MAP_POISSON {
-            if !creep_law::steady3d::Steady3d::new(ab, nu)
-                .unwrap()
-                .tabulated()
-            {
+            let Some([f, m]) = bounds(ab, nu) else {
                 continue;
-            }
+            };
             covered += 1;
+            between += usize::from(f > 0.02);
             let w = worst(map.iter().filter(|e| e.point.ab == ab && e.point.nu == nu));
             assert!(
-                w[0] <= 0.02 && w[1] <= 0.02 && w[3] <= 0.03,
+                w[0] <= f && w[1] <= f && w[3] <= m,
                 "a/b={ab} nu={nu}: Fx {:.4}, Fy {:.4}, Mz/(mu P a) {:.4}",
                 w[0],
                 w[1],
@@ -185,6 +193,7 @@ fn table_meets_the_bounds_where_it_covers_the_map() {
         }
     }
     assert!(covered > 0, "the table covers no map case");
+    assert!(between > 0, "no map case lies between computed axis ratios");
     let mut val = grade_steady3d_as_is(&validation_table().unwrap()).unwrap();
     // Between computed nu of one a/b (the blend in nu): random signed creepages at a/b = 1,
     // nu = 0.4 and 0.45 (`steady3d_lut -- validate 1 0.4 1 0.45`).
@@ -194,13 +203,12 @@ fn table_meets_the_bounds_where_it_covers_the_map() {
     .unwrap();
     assert_eq!(between.len(), 80);
     val.extend(grade_steady3d_as_is(&between).unwrap());
-    for e in val.iter().filter(|e| {
-        creep_law::steady3d::Steady3d::new(e.point.ab, e.point.nu)
-            .unwrap()
-            .tabulated()
-    }) {
+    for e in &val {
+        let Some([f, m]) = bounds(e.point.ab, e.point.nu) else {
+            continue;
+        };
         assert!(
-            e.fx <= 0.02 && e.fy <= 0.02 && e.mz_a <= 0.03,
+            e.fx <= f && e.fy <= f && e.mz_a <= m,
             "{:?}: {:?}",
             e.point,
             e.law

@@ -97,18 +97,21 @@ pub fn nodes() -> &'static [LutNode] {
 pub const SNAP: f64 = 1e-3;
 
 /// The tables at `(a/b, nu)` with their weights: one at a computed node (within [`SNAP`]), two
-/// between two computed `nu` of one computed `a/b` (linear in `nu`).
+/// between two computed `nu` of one computed `a/b` (linear in `nu`), up to four between two
+/// computed `a/b` (linear in `ln(a/b)` between the two rows, each at `nu`).
 #[derive(Clone, Copy)]
 pub struct Lut {
-    tables: [&'static Table; 2],
-    w: [f64; 2],
+    tables: [&'static Table; 4],
+    w: [f64; 4],
     n: usize,
+    between_ratios: bool,
 }
 
 impl std::fmt::Debug for Lut {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Lut")
             .field("tables", &self.n)
+            .field("between_ratios", &self.between_ratios)
             .field("w", &&self.w[..self.n])
             .finish()
     }
@@ -117,12 +120,14 @@ impl std::fmt::Debug for Lut {
 impl PartialEq for Lut {
     fn eq(&self, o: &Self) -> bool {
         self.n == o.n
+            && self.between_ratios == o.between_ratios
             && self.w == o.w
             && (0..self.n).all(|i| std::ptr::eq(self.tables[i], o.tables[i]))
     }
 }
 
-/// The tables of one computed `a/b` around `nu`, with weights.
+/// The tables of one computed `a/b` around `nu`, with weights: the node at `nu`, or linear
+/// between the two computed `nu` around it.
 fn row_at(ab: f64, nu: f64) -> Option<Vec<(&'static Table, f64)>> {
     let mut col: Vec<&LutNode> = nodes()
         .iter()
@@ -141,18 +146,45 @@ fn row_at(ab: f64, nu: f64) -> Option<Vec<(&'static Table, f64)>> {
     Some(vec![(a.loads, 1.0 - w), (b.loads, w)])
 }
 
+/// The tables at `(a/b, nu)` with weights, and whether they are blended between two computed
+/// `a/b`: one computed `a/b`'s row, or linear in `ln(a/b)` between the rows of the two computed
+/// `a/b` around it.
+type Parts = (Vec<(&'static Table, f64)>, bool);
+fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
+    if nodes().iter().any(|n| (n.ab.ln() - ab.ln()).abs() < SNAP) {
+        return row_at(ab, nu).map(|row| (row, false));
+    }
+    let l = ab.ln();
+    let lo = nodes()
+        .iter()
+        .map(|n| n.ab.ln())
+        .filter(|&x| x < l)
+        .reduce(f64::max)?;
+    let hi = nodes()
+        .iter()
+        .map(|n| n.ab.ln())
+        .filter(|&x| x > l)
+        .reduce(f64::min)?;
+    let w = (l - lo) / (hi - lo);
+    let mut out = row_at(lo.exp(), nu)?;
+    out.iter_mut().for_each(|p| p.1 *= 1.0 - w);
+    out.extend(row_at(hi.exp(), nu)?.into_iter().map(|(t, v)| (t, v * w)));
+    Some((out, true))
+}
+
 impl Lut {
     /// The table at `(a/b, nu)`, or `None` outside its coverage (module documentation).
     pub fn at(ab: f64, nu: f64) -> Option<Lut> {
         if !(ab.is_finite() && ab > 0.0 && nu.is_finite()) {
             return None;
         }
-        let parts = row_at(ab, nu)?;
+        let (parts, between_ratios) = tables_at(ab, nu)?;
         let first = parts[0].0;
         let mut lut = Lut {
-            tables: [first; 2],
-            w: [0.0; 2],
+            tables: [first; 4],
+            w: [0.0; 4],
             n: parts.len(),
+            between_ratios,
         };
         for (i, (t, w)) in parts.into_iter().enumerate() {
             lut.tables[i] = t;
@@ -165,9 +197,10 @@ impl Lut {
     /// it is emitted; [`super::Steady3d::new`] finds the nodes itself).
     pub fn of_table(table: &'static Table) -> Lut {
         Lut {
-            tables: [table; 2],
-            w: [1.0, 0.0],
+            tables: [table; 4],
+            w: [1.0, 0.0, 0.0, 0.0],
             n: 1,
+            between_ratios: false,
         }
     }
 
@@ -177,6 +210,11 @@ impl Lut {
             return Loads::default();
         }
         self.loads(xi_n, eta_n, phi_n)
+    }
+
+    /// Whether the tables are blended between two computed `a/b` (linear in `ln(a/b)`).
+    pub fn between_ratios(&self) -> bool {
+        self.between_ratios
     }
 
     /// The number of tables blended (1 at a node).

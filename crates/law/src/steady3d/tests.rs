@@ -859,6 +859,80 @@ fn table_reproduces_its_nodes_and_blends_in_nu() {
     }
 }
 
+/// Between two computed axis ratios both of whose rows cover `nu`, the loads are linear in
+/// `ln(a/b)` between the two rows' (each at `nu`); outside the computed axis ratios, or at a `nu`
+/// below the computed ones, the fitted law.
+#[test]
+fn table_blends_between_computed_axis_ratios() {
+    use crate::steady3d::Coverage;
+    let mut ratios: Vec<f64> = lut::nodes().iter().map(|n| n.ab).collect();
+    ratios.sort_by(f64::total_cmp);
+    ratios.dedup();
+    let lowest = ratios[0];
+    let highest = ratios[ratios.len() - 1];
+    assert_eq!(
+        Steady3d::new(lowest * 0.8, 0.3).unwrap().coverage(),
+        Coverage::Fitted
+    );
+    assert_eq!(
+        Steady3d::new(highest * 1.2, 0.3).unwrap().coverage(),
+        Coverage::Fitted
+    );
+    assert_eq!(Steady3d::new(1.0, 0.3).unwrap().coverage(), Coverage::Table);
+    let mut checked = 0;
+    for w in ratios.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        // A nu that both rows cover (between or at their computed nu), if any.
+        let nus = |ab: f64| {
+            let v: Vec<f64> = lut::nodes()
+                .iter()
+                .filter(|n| n.ab == ab)
+                .map(|n| n.nu)
+                .collect();
+            (
+                v.iter().copied().fold(f64::INFINITY, f64::min),
+                v.iter().copied().fold(0.0, f64::max),
+            )
+        };
+        let ((a0, a1), (b0, b1)) = (nus(lo), nus(hi));
+        let (n0, n1) = (a0.max(b0), a1.min(b1));
+        if n0 > n1 {
+            continue;
+        }
+        let nu = 0.5 * (n0 + n1);
+        let t = 0.3;
+        let ab = (lo.ln() + t * (hi.ln() - lo.ln())).exp();
+        let (la, lb, lm) = (
+            Steady3d::new(lo, nu).unwrap(),
+            Steady3d::new(hi, nu).unwrap(),
+            Steady3d::new(ab, nu).unwrap(),
+        );
+        assert_eq!(lm.coverage(), Coverage::BetweenRatios, "a/b {ab}, nu {nu}");
+        assert_eq!(
+            Steady3d::new(ab, n0 - 0.05).unwrap().coverage(),
+            Coverage::Fitted
+        );
+        for c in [
+            [0.3, -0.5, 0.7],
+            [-1.1, 0.05, -2.0],
+            [0.01, 0.002, 0.3],
+            [5.0, -3.0, 9.0],
+        ] {
+            let (p, q, m) = (
+                la.loads(c[0], c[1], c[2]),
+                lb.loads(c[0], c[1], c[2]),
+                lm.loads(c[0], c[1], c[2]),
+            );
+            assert!((m.fx - ((1.0 - t) * p.fx + t * q.fx)).abs() < 1e-12);
+            assert!((m.fy - ((1.0 - t) * p.fy + t * q.fy)).abs() < 1e-12);
+            assert!((m.mz - ((1.0 - t) * p.mz + t * q.mz)).abs() < 1e-12);
+            assert!(m.fx.hypot(m.fy) <= 1.0 + 1e-9);
+        }
+        checked += 1;
+    }
+    assert!(checked > 0, "no two computed axis ratios share a nu");
+}
+
 /// At small creepage the table is Kalker's linear theory: the first cells are geometric
 /// (`0.004, 0.012, 0.036`), so the secant slope of the first is the exact theory's within about
 /// `0.5 %`; the boundary elements' coefficients are within about 1 % of Kalker's table
