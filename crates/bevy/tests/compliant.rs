@@ -19,7 +19,7 @@ const MU: f32 = 0.3;
 const STEPS: usize = 300;
 
 fn glass() -> CreepMaterial {
-    CreepMaterial::new(Material::glass()).with_fidelity(Fidelity::Compliant)
+    CreepMaterial::compliant(Material::glass())
 }
 
 fn dt() -> f32 {
