@@ -15,7 +15,7 @@
 //! origin, where f32 positions are finest.
 
 use creep_law::{Material, PairMaterial, Surface, hertz};
-use creep_rapier::{CompliantSettings, CreepMaterial, CreepSettings, CreepWorld, Fidelity};
+use creep_rapier::{CompliantSettings, CreepMaterial, CreepSettings, CreepWorld};
 use creep_reference::hertz::HertzImpact;
 use rapier3d::prelude::*;
 

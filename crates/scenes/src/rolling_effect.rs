@@ -42,9 +42,7 @@ use creep_law::{
     CreepInput, CreepLaw, CreepModel, CreepState, LawError, Material, PairMaterial, SteadyLaw,
     Surface, Vec2, hertz,
 };
-use creep_rapier::{
-    CompliantSettings, CreepMaterial, CreepSettings, CreepWorld, Fidelity, PluginError,
-};
+use creep_rapier::{CompliantSettings, CreepMaterial, CreepSettings, CreepWorld, PluginError};
 use creep_reference::RefError;
 use creep_reference::bem::{Creepage, SolverOptions, SteadySolver, TransientSolver};
 use creep_reference::contact::CircularContact;

@@ -2,7 +2,7 @@
 
 use creep_rapier::{
     CompliantRegime, CompliantSettings, CreepHooks, CreepMaterial, CreepSettings, CreepWorld,
-    Fidelity, RayleighCheck, clone_physics,
+    RayleighCheck, clone_physics,
 };
 use rand_xoshiro::SplitMix64;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
