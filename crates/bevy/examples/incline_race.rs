@@ -222,7 +222,7 @@ fn keys(
         race.fidelity = match race.fidelity {
             Fidelity::Creep => Fidelity::Auto,
             Fidelity::Auto => Fidelity::Coulomb,
-            _ => Fidelity::Creep,
+            Fidelity::Coulomb => Fidelity::Creep,
         };
         reset.0 = true;
     }
@@ -498,7 +498,6 @@ fn fidelity_name(f: Fidelity) -> &'static str {
         Fidelity::Creep => "creep",
         Fidelity::Auto => "auto",
         Fidelity::Coulomb => "Coulomb (F)",
-        _ => "other",
     }
 }
 

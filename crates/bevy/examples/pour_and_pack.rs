@@ -200,10 +200,10 @@ fn keys(
         pour.fidelity = match pour.fidelity {
             Fidelity::Auto => Fidelity::Creep,
             Fidelity::Creep => Fidelity::Coulomb,
-            _ => Fidelity::Auto,
+            Fidelity::Coulomb => Fidelity::Auto,
         };
         for mut m in &mut grains {
-            m.fidelity = pour.fidelity;
+            *m = m.with_fidelity(pour.fidelity);
         }
     }
 }
@@ -308,7 +308,6 @@ fn colour(
         Fidelity::Auto => "Auto",
         Fidelity::Creep => "Creep",
         Fidelity::Coulomb => "Coulomb",
-        _ => "other",
     };
     panel.0 = format!(
         "pour and pack: {} steel spheres (R = {} mm +-10 %, mu = {MU}), fidelity {fidelity} (F); R pours again\n\

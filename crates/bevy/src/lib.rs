@@ -39,7 +39,7 @@ pub mod state;
 
 pub use contacts::{ContactState, CreepContact};
 pub use creep_rapier::{
-    CompliantSettings, CreepSettings, Fidelity, RollingResistance, SolverPreset, StepCounts,
+    CompliantSettings, CreepSettings, Fidelity, Regime, RollingResistance, SolverPreset, StepCounts,
 };
 #[cfg(feature = "gizmos")]
 pub use gizmos::CreepGizmos;
@@ -61,6 +61,7 @@ pub mod prelude {
     pub use creep_law::Material;
     pub use creep_law::rolling_torque::RollingModel;
     pub use creep_rapier::{
-        CompliantSettings, CreepSettings, Fidelity, RollingResistance, SolverPreset, StepCounts,
+        CompliantSettings, CreepSettings, Fidelity, Regime, RollingResistance, SolverPreset,
+        StepCounts,
     };
 }

@@ -5,19 +5,22 @@
 use bevy::prelude::*;
 use creep_law::Material;
 use creep_law::rolling_torque::RollingModel;
-use creep_rapier::Fidelity;
+use creep_rapier::{Fidelity, Regime};
 use std::ops::{Deref, DerefMut};
 
 /// Opts a collider entity (one with a bevy_rapier3d `Collider`) in to creep-friction. The fields
-/// are creep-rapier's (reached through `Deref`/`DerefMut`, e.g. `m.fidelity = ...`):
+/// are creep-rapier's (reached through `Deref`/`DerefMut`, e.g. `m.regime = ...`):
 ///
 /// - `material`: shear modulus G \[Pa\], Poisson's ratio nu \[-\] and density rho \[kg/m^3\]
 ///   (creep-law's validated [`Material`]). The friction coefficient mu is **not** taken from the
 ///   material: the collider's bevy_rapier3d `Friction` component supplies it (Rapier's combine
 ///   rule applies; Rapier's default is 0.5), so Coulomb and creep-friction see the same mu.
-/// - `fidelity`: Coulomb (Rapier's own response), `Auto` (creep where its slip speed bound
-///   exceeds [`creep_rapier::CreepSettings::auto_tolerance`]) or `Creep` (always). A pair uses
-///   the lower of its two colliders' (Coulomb < Auto < Creep).
+/// - `regime`: [`Regime::Rigid`] (Rapier's contact solve) at a [`Fidelity`]: Coulomb (Rapier's
+///   own response), `Auto` (creep where its slip speed bound exceeds
+///   [`creep_rapier::CreepSettings::auto_tolerance`]) or `Creep` (always); a pair uses the
+///   lower of its two colliders' (Coulomb < Auto < Creep). Or [`Regime::Compliant`]
+///   ([`CreepMaterial::compliant`]): soft-sphere forces (balls, cuboid and half-space walls),
+///   which a pair gets as soon as one of its colliders is compliant ([`Regime::pair`]).
 /// - `crown`: a wheel's crown radius \[m\] (`None`: a flat tread, line contact).
 /// - `rolling`: contact-torque rolling resistance (Ai et al. 2011 types A, B, C), the other
 ///   category of rolling resistance, for comparison; a pair uses the first collider's that is
@@ -38,9 +41,17 @@ use std::ops::{Deref, DerefMut};
 pub struct CreepMaterial(pub creep_rapier::CreepMaterial);
 
 impl CreepMaterial {
-    /// A material with `Fidelity::Auto` and no rolling torque.
+    /// A material in the rigid regime with `Fidelity::Auto` and no rolling torque.
     pub fn new(material: Material) -> Self {
         Self(creep_rapier::CreepMaterial::new(material))
+    }
+    /// A material in the rigid regime at `fidelity`, with no rolling torque.
+    pub fn rigid(material: Material, fidelity: Fidelity) -> Self {
+        Self(creep_rapier::CreepMaterial::rigid(material, fidelity))
+    }
+    /// A material in the compliant regime ([`Regime::Compliant`]), with no rolling torque.
+    pub fn compliant(material: Material) -> Self {
+        Self(creep_rapier::CreepMaterial::compliant(material))
     }
     /// Steel (creep-law's [`Material::steel`]), `Fidelity::Auto`.
     pub fn steel() -> Self {
@@ -54,9 +65,13 @@ impl CreepMaterial {
     pub fn rubber() -> Self {
         Self::new(Material::rubber())
     }
-    /// This material with another fidelity.
+    /// This material in the rigid regime at `fidelity` (whatever its regime was).
     pub fn with_fidelity(self, fidelity: Fidelity) -> Self {
         Self(self.0.with_fidelity(fidelity))
+    }
+    /// This material in another regime.
+    pub fn with_regime(self, regime: Regime) -> Self {
+        Self(self.0.with_regime(regime))
     }
     /// This material on a wheel with a crown of radius `crown` \[m\] (finite, > 0): the tread's
     /// profile across the wheel, for Hertz's elliptic contact with spin creep instead of

@@ -13,8 +13,8 @@ use bevy_rapier3d::prelude::{
     RapierContextSimulation, RapierRigidBodySet, SimulationMode, SolverGroups,
 };
 use creep_rapier::{
-    CompliantSettings, CreepSettings, Fidelity, PluginError, RollingResistance, SolverPreset,
-    configure_parameters_for, supported_shape,
+    CompliantSettings, CreepSettings, Fidelity, PluginError, Regime, RollingResistance,
+    SolverPreset, configure_parameters_for, supported_shape,
 };
 use rapier3d::prelude::{ActiveHooks, IntegrationParameters};
 
@@ -95,7 +95,7 @@ impl CreepFrictionPlugin {
         self.settings = settings;
         self
     }
-    /// The plugin with compliant-regime settings (for colliders with `Fidelity::Compliant`;
+    /// The plugin with compliant-regime settings (for colliders in [`Regime::Compliant`];
     /// validated when the plugin is built: invalid settings draw a warning and the defaults are
     /// used).
     pub fn with_compliant_settings(mut self, settings: CompliantSettings) -> Self {
@@ -418,7 +418,7 @@ fn sync_materials(
                         shape: shape_name(),
                     },
                 );
-                m.fidelity = Fidelity::Coulomb;
+                m.regime = Regime::Rigid(Fidelity::Coulomb);
                 m.rolling = RollingResistance::None;
                 m.crown = None;
             }
@@ -441,7 +441,7 @@ fn sync_materials(
                 WarnKey::Entity("invalid-material", entity),
                 CreepWarning::InvalidMaterial { entity, error },
             );
-            m.fidelity = Fidelity::Coulomb;
+            m.regime = Regime::Rigid(Fidelity::Coulomb);
             m.rolling = RollingResistance::None;
             m.crown = None;
         }
@@ -451,13 +451,13 @@ fn sync_materials(
             state.entities.remove(&old);
             state.pipeline.hooks.registry_mut().remove(old);
         }
-        if m.fidelity != Fidelity::Compliant
+        if !m.is_compliant()
             && state
                 .pipeline
                 .hooks
                 .registry()
                 .get(handle)
-                .is_some_and(|old| old.fidelity == Fidelity::Compliant)
+                .is_some_and(|old| old.is_compliant())
         {
             state.restore_groups.push((handle, entity));
         }
@@ -592,7 +592,7 @@ fn pre_step(
             .pipeline
             .registry()
             .iter()
-            .filter(|(_, m)| m.fidelity == Fidelity::Compliant)
+            .filter(|(_, m)| m.is_compliant())
             .filter_map(|(h, _)| state.entities.get(h).map(|e| (*h, *e)))
             .collect();
         for (handle, entity) in compliant {

@@ -265,7 +265,7 @@ pub const MAX_MISSING_MATERIAL_WARNINGS: usize = 16;
 #[derive(Resource)]
 pub struct CreepFriction {
     /// creep-rapier's step owner: the rigid hooks and the compliant (DEM) regime of the pairs
-    /// whose colliders are both `Fidelity::Compliant`.
+    /// with a [`creep_rapier::Regime::Compliant`] collider.
     pub(crate) pipeline: CreepPipeline,
     /// Registered collider -> its entity (guards against handles of another context).
     pub(crate) entities: HashMap<ColliderHandle, Entity>,

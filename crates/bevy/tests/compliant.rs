@@ -8,7 +8,7 @@ mod common;
 use bevy::prelude::*;
 use bevy_rapier3d::prelude::*;
 use common::*;
-use creep_bevy::{CreepFrictionPlugin, CreepMaterial, CreepSettings, Fidelity};
+use creep_bevy::{CreepFrictionPlugin, CreepMaterial, CreepSettings};
 use creep_law::Material;
 use creep_rapier::CreepWorld;
 use rapier3d::prelude::{ColliderBuilder, RigidBodyBuilder, Vector};
@@ -19,7 +19,7 @@ const MU: f32 = 0.3;
 const STEPS: usize = 300;
 
 fn glass() -> CreepMaterial {
-    CreepMaterial::new(Material::glass()).with_fidelity(Fidelity::Compliant)
+    CreepMaterial::compliant(Material::glass())
 }
 
 fn dt() -> f32 {

@@ -336,7 +336,7 @@ fn compliant_regime_errors_warn_and_stay_coulomb() {
     // the contact to Rapier.
     let mut app = default_app();
     let p = incline();
-    let m = CreepMaterial::new(p.material).with_fidelity(Fidelity::Compliant);
+    let m = CreepMaterial::compliant(p.material);
     let (_, ball) = spawn_incline(&mut app, &p, Some(m), Some(m));
     run(&mut app, 120);
     assert!(

@@ -2,6 +2,12 @@
 //! Rapier's contact solve (the hook clears its solver contacts) and applies, each step, the
 //! contact forces and torques itself. Rapier keeps broad phase, narrow phase and integration.
 //!
+//! Its pairs are those with a collider registered as [`Regime::Compliant`](crate::Regime):
+//! a pair is compliant as soon as one of its colliders is ([`crate::Regime::pair`]), so a
+//! compliant ball meets a wall (or ball) registered in the rigid regime through these forces,
+//! with both colliders' materials. The time-step check below takes the Rayleigh time of the
+//! compliant balls only.
+//!
 //! # The contact law (all in f64)
 //! Bodies p (the narrow phase's collider1) and q, unit normal `n` from p to q, overlap `delta`,
 //! contact point `c` in the middle of the overlap (conventions: docs/ARCHITECTURE.md §4).
@@ -95,7 +101,7 @@ pub use damping::{
 
 use crate::error::PluginError;
 use crate::hooks::{FastMap, vf};
-use crate::registry::{Fidelity, MaterialRegistry};
+use crate::registry::MaterialRegistry;
 pub use records::*;
 pub use settings::*;
 
@@ -166,7 +172,7 @@ impl CompliantRegime {
     pub fn rayleigh_time_step(registry: &MaterialRegistry, colliders: &ColliderSet) -> f64 {
         let mut t_min = f64::INFINITY;
         for (&h, m) in registry.iter() {
-            if m.fidelity != Fidelity::Compliant {
+            if !m.is_compliant() {
                 continue;
             }
             if let Some(ball) = colliders.get(h).and_then(|c| c.shape().as_ball()) {
@@ -228,7 +234,7 @@ impl CompliantRegime {
         let t_r = Self::rayleigh_time_step(registry, colliders);
         self.counts.rayleigh_time_step = t_r;
         for (&h, m) in registry.iter() {
-            if m.fidelity != Fidelity::Compliant {
+            if !m.is_compliant() {
                 continue;
             }
             let Some(co) = colliders.get(h) else {

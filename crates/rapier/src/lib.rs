@@ -128,7 +128,7 @@ pub use compliant::{
 };
 pub use error::PluginError;
 pub use pipeline::{CreepPipeline, RapierStep};
-pub use registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
+pub use registry::{CreepMaterial, Fidelity, MaterialRegistry, Regime, RollingResistance};
 pub use rigid::{
     CreepHooks, CreepSettings, ROLLING_PGS_ITERATIONS, SolverPreset, StepCounts, check_parameters,
     configure_parameters, configure_parameters_for,
@@ -150,8 +150,8 @@ pub mod diagnostics {
 pub mod prelude {
     pub use crate::{
         CreepMaterial, CreepPipeline, CreepSettings, CreepWarning, CreepWorld, Fidelity,
-        PluginError, RapierStep, RollingResistance, SolverPreset, StepCounts, SupportedShape,
-        configure_parameters, configure_parameters_for, supported_shape,
+        PluginError, RapierStep, Regime, RollingResistance, SolverPreset, StepCounts,
+        SupportedShape, configure_parameters, configure_parameters_for, supported_shape,
     };
     pub use creep_law::Material;
 }

@@ -10,7 +10,7 @@
 //! 2. switch each visited collider's hook on or off ([`crate::CreepSettings::activation_speed`]),
 //!    and note what deserves a [`crate::CreepWarning`] (a fast ball or wheel with substeps, no
 //!    registered collider, an unregistered collider touching a registered one);
-//! 3. the compliant regime's forces (pairs of `Fidelity::Compliant` colliders);
+//! 3. the compliant regime's forces (pairs with a [`crate::Regime::Compliant`] collider);
 //! 4. Rapier's step, with the rigid hooks (which also refuse a NaN or negative friction on a
 //!    registered collider's unregistered partner);
 //! 5. what Rapier quarantined; the compliant regime restores the user forces; the rigid hooks
@@ -27,14 +27,15 @@
 //! pipeline ([`PluginError::HookOutsideStep`], reported by the next step; those contacts were
 //! left to Coulomb).
 //!
-//! [`crate::Fidelity`] (Coulomb < Auto < Creep) is what a rigid contact asks for; the regime
-//! (rigid or compliant) is `Fidelity::Compliant` on both colliders.
+//! Each collider's [`crate::Regime`] says which regime solves its pairs: rigid at a
+//! [`crate::Fidelity`] (Coulomb < Auto < Creep; a pair uses the lower), or compliant, which a
+//! pair is as soon as one of its colliders is ([`crate::Regime::pair`]).
 
 use rapier3d::prelude::*;
 
 use crate::compliant::{CompliantRegime, CompliantSettings};
 use crate::error::PluginError;
-use crate::registry::{Fidelity, MaterialRegistry};
+use crate::registry::MaterialRegistry;
 use crate::rigid::{CreepHooks, CreepSettings, StepCounts};
 
 /// What `PhysicsPipeline::step` takes (but the hooks, which the pipeline supplies).
@@ -73,8 +74,8 @@ pub struct CreepPipeline {
     /// The rigid regime's hooks (materials, settings, contact records, counts). Read-only use
     /// is free; give them to Rapier only through [`CreepPipeline::step`] (or the host pair).
     pub hooks: CreepHooks,
-    /// The compliant (DEM) regime: forces of the pairs whose colliders are both
-    /// `Fidelity::Compliant` (inactive without such colliders).
+    /// The compliant (DEM) regime: forces of the pairs with a [`crate::Regime::Compliant`]
+    /// collider (inactive without such colliders).
     pub compliant: CompliantRegime,
 }
 
@@ -259,7 +260,7 @@ impl CreepPipeline {
                 continue;
             };
             mat.validate()?;
-            if mat.fidelity == Fidelity::Compliant {
+            if mat.is_compliant() {
                 continue;
             }
             if let Some(co) = colliders.get(handle) {

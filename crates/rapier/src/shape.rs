@@ -17,7 +17,7 @@ use creep_law::Surface;
 use rapier3d::parry::shape::TypedShape;
 use rapier3d::prelude::Collider;
 
-use crate::registry::Fidelity;
+use crate::registry::Regime;
 
 /// A flat collider of the rigid regime (flat at the contact: infinite radius, the face's
 /// normal is Rapier's contact normal; a contact with a mesh's edge or vertex is taken as a face
@@ -98,13 +98,13 @@ impl SupportedShape {
         }
     }
 
-    /// Whether a collider of this shape can take part in contacts of `fidelity`: every shape
-    /// in the rigid regime (Coulomb, Auto, Creep), balls, cuboids and half-spaces in the
-    /// compliant one.
-    pub fn supports(&self, fidelity: Fidelity) -> bool {
-        match fidelity {
-            Fidelity::Compliant => self.compliant_surface().is_some(),
-            Fidelity::Coulomb | Fidelity::Auto | Fidelity::Creep => true,
+    /// Whether a collider of this shape can take part in contacts of `regime`: every shape
+    /// in the rigid regime (at any fidelity), balls, cuboids and half-spaces in the compliant
+    /// one.
+    pub fn supports(&self, regime: Regime) -> bool {
+        match regime {
+            Regime::Compliant => self.compliant_surface().is_some(),
+            Regime::Rigid(_) => true,
         }
     }
 
@@ -151,6 +151,7 @@ pub fn supported_shape(collider: &Collider) -> Option<SupportedShape> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::registry::Fidelity;
     use rapier3d::prelude::*;
 
     #[test]
@@ -163,7 +164,7 @@ mod tests {
             }
         );
         assert_eq!(ball.rigid_surface(), Some(Surface::Sphere(0.1f32 as f64)));
-        assert!(ball.supports(Fidelity::Compliant));
+        assert!(ball.supports(Regime::Compliant));
         let cuboid = supported_shape(&ColliderBuilder::cuboid(1.0, 0.1, 1.0).build()).unwrap();
         assert_eq!(cuboid, SupportedShape::Flat(FlatShape::Cuboid));
         assert_eq!(cuboid.compliant_surface(), Some(Surface::Plane));
@@ -182,7 +183,7 @@ mod tests {
             .build();
         let mesh = supported_shape(&mesh).unwrap();
         assert_eq!(mesh, SupportedShape::Flat(FlatShape::TriMesh));
-        assert!(!mesh.supports(Fidelity::Compliant) && mesh.supports(Fidelity::Creep));
+        assert!(!mesh.supports(Regime::Compliant) && mesh.supports(Regime::Rigid(Fidelity::Creep)));
         let mut hull = verts;
         hull.push(Vector::new(0.0, -1.0, 0.0));
         let hull = supported_shape(&ColliderBuilder::convex_hull(&hull).unwrap().build()).unwrap();
@@ -196,7 +197,7 @@ mod tests {
             }
         );
         assert_eq!(wheel.rigid_surface(), None);
-        assert!(wheel.is_wheel() && !wheel.supports(Fidelity::Compliant));
+        assert!(wheel.is_wheel() && !wheel.supports(Regime::Compliant));
         assert!(supported_shape(&ColliderBuilder::capsule_y(0.1, 0.1).build()).is_none());
         assert!(supported_shape(&ColliderBuilder::cone(0.1, 0.1).build()).is_none());
     }

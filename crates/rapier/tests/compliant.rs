@@ -44,7 +44,7 @@ fn alumina() -> Material {
 }
 
 fn compliant(m: Material) -> Option<CreepMaterial> {
-    Some(CreepMaterial::new(m).with_fidelity(Fidelity::Compliant))
+    Some(CreepMaterial::compliant(m))
 }
 
 /// A zero-gravity world with one solver iteration (symplectic Euler for the contact forces).
@@ -804,4 +804,117 @@ fn a_settled_compliant_ball_sleeps_and_is_woken_by_a_moving_one() {
         w.physics.bodies[low].translation().y < y,
         "and presses it into the floor"
     );
+}
+
+/// Contacts the rigid hook handled in one step, on any of its paths.
+fn rigid_contacts(c: &creep_rapier::StepCounts) -> usize {
+    c.coulomb_unregistered
+        + c.coulomb_unsupported
+        + c.coulomb_no_sphere
+        + c.coulomb_requested
+        + c.coulomb_auto
+        + c.creep
+        + c.quiet
+}
+
+/// A pair of one compliant and one rigid-regime collider is compliant (`Regime::pair`): a
+/// compliant sphere on a wall registered in the rigid regime (`Fidelity::Creep`) rebounds as on a
+/// compliant wall of the same material, Hertz's contact duration and an elastic rebound, with no
+/// solver contact from the rigid hook.
+#[test]
+fn a_compliant_ball_meets_a_rigid_regime_wall_through_the_compliant_forces() {
+    let al = alloy();
+    let (r, v) = (0.1, 0.2);
+    let mass = al.density() * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let (t_c, p_max) = hertz_impact(mass, r, e_star(&al, &al), v);
+    let dt = t_c / 300.0;
+    let mut w = world(dt);
+    let wall = ColliderBuilder::cuboid(1.0, 0.05, 1.0)
+        .restitution(1.0)
+        .friction(0.3);
+    let (_, wall) = w.insert(
+        RigidBodyBuilder::fixed().translation(Vector::new(0.0, (-r - 0.05) as f32, 0.0)),
+        wall,
+        Some(CreepMaterial::rigid(al, Fidelity::Creep)),
+    );
+    let (h, _) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, (3.0 * v * dt) as f32, 0.0))
+            .linvel(Vector::new(0.0, -v as f32, 0.0)),
+        ball(r, &al, 1.0, 0.3),
+        compliant(al),
+    );
+    assert!(!w.registry().get(wall).unwrap().is_compliant());
+    let (mut duration, mut peak, mut touched) = (0.0, 0.0f64, false);
+    for _ in 0..20_000 {
+        let counts = w.step().expect("step");
+        assert_eq!(
+            rigid_contacts(&counts),
+            0,
+            "the rigid hook solved a compliant pair"
+        );
+        let c = w.compliant().counts();
+        assert_eq!(c.unsupported, 0);
+        if c.contacts > 0 {
+            touched = true;
+            duration += dt;
+            for (_, k) in w.compliant().contacts() {
+                peak = peak.max(k.normal_force);
+            }
+        } else if touched {
+            break;
+        }
+    }
+    let vy = f64::from(w.physics.bodies[h].linvel().y);
+    println!(
+        "compliant alloy sphere on a rigid-regime wall: t_c {duration:.5e} s (Hertz {t_c:.5e}), \
+         P_max {peak:.2} N (Hertz {p_max:.2}), rebound {:.6}",
+        vy / v
+    );
+    assert!(touched);
+    assert!((duration / t_c - 1.0).abs() < 0.01);
+    assert!((peak / p_max - 1.0).abs() < 0.01);
+    assert!((vy / v - 1.0).abs() < 1e-3);
+}
+
+/// A compliant ball and a rigid-regime shape the compliant regime does not model (a capsule):
+/// the pair is compliant, so Rapier gives it no contact, and the compliant regime passes it
+/// through, counted in `CompliantCounts::unsupported`; the ball flies on untouched.
+#[test]
+fn a_compliant_ball_passes_through_a_shape_the_compliant_regime_does_not_model() {
+    let glass = Material::glass();
+    let r = 0.01;
+    let dt = 0.1 * creep_law::hertz::rayleigh_time_step(&glass, r);
+    let mut w = world(dt);
+    let v0 = Vector::new(10.0, 0.0, 0.0);
+    w.insert(
+        RigidBodyBuilder::fixed(),
+        ColliderBuilder::capsule_y(0.01, 0.005).restitution(0.5),
+        Some(CreepMaterial::rigid(glass, Fidelity::Creep)),
+    );
+    let (h, _) = w.insert(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(-0.02, 0.0, 0.0))
+            .linvel(v0),
+        ball(r, &glass, 0.5, 0.5),
+        compliant(glass),
+    );
+    let steps = (0.06 / (10.0 * dt)) as usize;
+    let mut unsupported = 0;
+    for _ in 0..steps {
+        let counts = w.step().expect("step");
+        assert_eq!(rigid_contacts(&counts), 0);
+        let c = w.compliant().counts();
+        assert_eq!(c.contacts, 0);
+        unsupported += c.unsupported;
+    }
+    let rb = &w.physics.bodies[h];
+    println!(
+        "compliant ball through a rigid-regime capsule: {unsupported} unsupported pair-steps of \
+         {steps}, x = {:.4} m",
+        rb.translation().x
+    );
+    assert!(unsupported > 0, "the passed-through pair was not counted");
+    assert!(rb.translation().x > 0.03, "the ball did not pass");
+    assert_eq!(rb.linvel(), v0);
 }

@@ -15,7 +15,7 @@
 //! origin, where f32 positions are finest.
 
 use creep_law::{Material, PairMaterial, Surface, hertz};
-use creep_rapier::{CompliantSettings, CreepMaterial, CreepSettings, CreepWorld, Fidelity};
+use creep_rapier::{CompliantSettings, CreepMaterial, CreepSettings, CreepWorld};
 use creep_reference::hertz::HertzImpact;
 use rapier3d::prelude::*;
 
@@ -110,7 +110,7 @@ pub fn run(p: &ImpactParams) -> Result<ImpactResult, SceneError> {
             .max(CompliantSettings::default().rayleigh_fraction),
         ..CompliantSettings::default()
     })?;
-    let mat = Some(CreepMaterial::new(p.material).with_fidelity(Fidelity::Compliant));
+    let mat = Some(CreepMaterial::compliant(p.material));
     let (e, mu) = (p.restitution as f32, p.material.friction() as f32);
     // A fixed wall whose top face is the plane y = -R.
     let top = -r;

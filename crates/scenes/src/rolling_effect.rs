@@ -42,9 +42,7 @@ use creep_law::{
     CreepInput, CreepLaw, CreepModel, CreepState, LawError, Material, PairMaterial, SteadyLaw,
     Surface, Vec2, hertz,
 };
-use creep_rapier::{
-    CompliantSettings, CreepMaterial, CreepSettings, CreepWorld, Fidelity, PluginError,
-};
+use creep_rapier::{CompliantSettings, CreepMaterial, CreepSettings, CreepWorld, PluginError};
 use creep_reference::RefError;
 use creep_reference::bem::{Creepage, SolverOptions, SteadySolver, TransientSolver};
 use creep_reference::contact::CircularContact;
@@ -437,7 +435,7 @@ impl RollingEffect {
     /// `Q/(mu P)` along the path of ratio `r` by the Rapier compliant regime
     /// (`creep_rapier::compliant`), which runs Kuhn's rule ([`CreepState`], [`CreepModel::Kuhn`])
     /// from Rapier's poses and velocities: the figure's contact as two dynamic balls of the
-    /// configured material and radius in a [`CreepWorld`], both `Fidelity::Compliant`, gravity
+    /// configured material and radius in a [`CreepWorld`], both `Regime::Compliant`, gravity
     /// off, one solver iteration, `dt` one tenth of the Rayleigh time step (creep-law
     /// `hertz::rayleigh_time_step`, Li, Xu & Thornton 2005).
     ///
@@ -499,7 +497,7 @@ impl RollingEffect {
             creep_model: CreepModel::Kuhn,
             ..CompliantSettings::default()
         })?;
-        let mat = CreepMaterial::new(m).with_fidelity(Fidelity::Compliant);
+        let mat = CreepMaterial::compliant(m);
         let mut insert = |y: f32| {
             let body = RigidBodyBuilder::dynamic()
                 .translation(Vector::new(0.0, y, 0.0))

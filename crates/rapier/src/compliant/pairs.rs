@@ -11,7 +11,7 @@ use super::colliders::{surface, touch_geometry, touch_of};
 use super::{CompliantContact, CompliantRegime};
 use crate::error::PluginError;
 use crate::hooks::{FastMap, body_motion as motion};
-use crate::registry::{Fidelity, MaterialRegistry, RollingResistance};
+use crate::registry::{MaterialRegistry, Regime, RollingResistance};
 
 impl CompliantRegime {
     /// The contact of one narrow-phase pair at step `dt` \[s\]: skips (and counts) pairs that are
@@ -32,17 +32,15 @@ impl CompliantRegime {
     ) -> Result<(), PluginError> {
         let (c1, c2) = (pair.collider1, pair.collider2);
         let (Some(m1), Some(m2)) = (registry.get(c1), registry.get(c2)) else {
-            let compliant = |c| {
-                registry
-                    .get(c)
-                    .is_some_and(|m| m.fidelity == Fidelity::Compliant)
-            };
+            let compliant = |c| registry.get(c).is_some_and(|m| m.is_compliant());
             if compliant(c1) || compliant(c2) {
                 self.counts.unsupported += 1; // an unregistered partner: passed through
             }
             return Ok(());
         };
-        if m1.fidelity != Fidelity::Compliant && m2.fidelity != Fidelity::Compliant {
+        // A pair with one compliant collider is compliant (`Regime::pair`): a rigid-regime
+        // partner meets it with its own material.
+        if m1.regime.pair(m2.regime) != Regime::Compliant {
             return Ok(());
         }
         let (Some(co1), Some(co2)) = (colliders.get(c1), colliders.get(c2)) else {

@@ -11,7 +11,7 @@ use super::hooks::{CreepHooks, Shard, quiet_collider, shard_of};
 use super::wheel::{WheelCtx, wheel_manifold};
 use crate::convert::{body_motion, v3, vf};
 use crate::gap::rotation_gap_correction;
-use crate::registry::{Fidelity, RollingResistance, pair_fidelity};
+use crate::registry::{Fidelity, Regime, RollingResistance};
 
 impl PhysicsHooks for CreepHooks {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
@@ -70,12 +70,12 @@ impl PhysicsHooks for CreepHooks {
             }
             return;
         };
-        // --- Compliant regime (crate::compliant applies this pair's forces itself). ---
-        if m1.fidelity == Fidelity::Compliant || m2.fidelity == Fidelity::Compliant {
+        // A pair with a compliant collider is the compliant regime's (`Regime::pair`), which
+        // applies its forces itself.
+        let Regime::Rigid(fidelity) = m1.regime.pair(m2.regime) else {
             rigid.solver_contacts.clear();
             return;
-        }
-        // --- end compliant ---
+        };
         if quiet_collider(co1) && quiet_collider(co2) {
             // Both below the activation speed: plain Rapier contacts (as with the hook off),
             // rebuilt clean before Rapier starts recycling them.
@@ -107,7 +107,6 @@ impl PhysicsHooks for CreepHooks {
                 (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
                 _ => None,
             };
-            let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
             let manifold = BallManifold {
                 colliders: (c1, c2),
                 handles: (h1, h2),
@@ -168,6 +167,7 @@ impl PhysicsHooks for CreepHooks {
                     .anchor_drift_correction
                     .then_some(self.substeps),
                 settings: &self.settings,
+                fidelity,
                 consts: pairs.get(&m1.material, &m2.material, mu, self.settings.creep_model),
             };
             if wheel_manifold(&ctx, rigid, side, store, counts, laws, crowns) {

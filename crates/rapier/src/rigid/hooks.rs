@@ -341,7 +341,7 @@ impl CreepHooks {
                     }
                 }
             }
-            if mat.fidelity == Fidelity::Compliant {
+            if mat.is_compliant() {
                 // Out of Rapier's contact solve altogether (no solver contacts, no hook), so its
                 // pairs keep Rapier's contact recycling: the compliant regime needs only the
                 // narrow phase's pair list, and computes the geometry itself.
@@ -354,7 +354,7 @@ impl CreepHooks {
                 }
                 continue;
             }
-            let moving = mat.fidelity == Fidelity::Creep
+            let moving = mat.regime.fidelity() == Some(Fidelity::Creep)
                 || matches!(mat.rolling, RollingResistance::Torque(_))
                 || v_act == 0.0
                 || co.parent().and_then(|h| bodies.get(h)).is_some_and(|rb| {
@@ -526,7 +526,7 @@ impl CreepHooks {
             let Some(mat) = self.registry.get(handle) else {
                 continue;
             };
-            if mat.fidelity == Fidelity::Compliant {
+            if mat.is_compliant() {
                 continue;
             }
             let Some(co) = colliders.get(handle) else {

@@ -14,7 +14,7 @@ use super::crowns::Crowns;
 use super::settings::CreepSettings;
 use crate::convert::{inverse_mass, motion, solver_tangents, v3, vf};
 use crate::gap::rotation_gap_correction;
-use crate::registry::{Fidelity, pair_fidelity};
+use crate::registry::Fidelity;
 use crate::store::{ContactKey, ContactStore};
 
 /// What the wheel path needs of the hook's call.
@@ -33,6 +33,8 @@ pub(crate) struct WheelCtx<'a> {
     /// The rotation-gap correction's substeps (`None`: the correction is off).
     pub(crate) gap_substeps: Option<usize>,
     pub(crate) settings: &'a CreepSettings,
+    /// The pair's fidelity (`Regime::pair` of the two materials).
+    pub(crate) fidelity: Fidelity,
     /// The pair's constants (`None`: a pair the law refuses).
     pub(crate) consts: Option<&'a RigidPair>,
 }
@@ -116,7 +118,7 @@ pub(crate) fn wheel_manifold(
     // of a tilted wheel's solver contacts.
     let loads = manifold_loads(rigid);
     let n_contacts = rigid.solver_contacts.len();
-    let fidelity = pair_fidelity(m1.fidelity, m2.fidelity);
+    let fidelity = ctx.fidelity;
     if fidelity == Fidelity::Coulomb {
         counts.coulomb_requested += n_contacts;
         return true;

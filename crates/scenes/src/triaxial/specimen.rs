@@ -2,7 +2,7 @@
 
 use creep_rapier::{
     CompliantRegime, CompliantSettings, CreepHooks, CreepMaterial, CreepSettings, CreepWorld,
-    Fidelity, RayleighCheck, clone_physics,
+    RayleighCheck, clone_physics,
 };
 use rand_xoshiro::SplitMix64;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
@@ -52,7 +52,7 @@ impl Specimen {
             creep: false,
             ..CompliantSettings::default()
         })?;
-        let mat = CreepMaterial::new(params.material).with_fidelity(Fidelity::Compliant);
+        let mat = CreepMaterial::compliant(params.material);
         let n = params.n_per_side;
         let r = params.radius;
         let r_max = r * (1.0 + params.radius_spread);
