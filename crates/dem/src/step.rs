@@ -107,7 +107,7 @@ impl<T: TangentialLaw> Dem<T> {
         self.energy = energy;
     }
 
-    #[inline]
+    #[inline(always)]
     pub(crate) fn body(&self, i: usize, position: Vec3) -> PairBody {
         PairBody {
             position,
@@ -121,7 +121,7 @@ impl<T: TangentialLaw> Dem<T> {
     /// The pair `(i, j)` of list entry `k`: `None` when apart (the history is reset), else the
     /// indices of p and q and the kernel's output.
     /// `Err(released energy)` when the pair is apart (its history reset).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn pair(
         &self,
         i: usize,
@@ -174,6 +174,19 @@ impl<T: TangentialLaw> Dem<T> {
     /// bits. A tier with a block kernel ([`TangentialLaw::HAS_BLOCK`]) evaluates a window of
     /// entries first ([`Dem::pair_outputs`]), then adds them in list order.
     fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
+        crate::kernels::dispatch!(self.kernels, pair_forces_avx2<T>(
+            dem: &mut Dem<T> = self,
+            dt: f64 = dt,
+            counts: &mut DemCounts = counts,
+            energy: &mut DemEnergy = energy,
+        ) -> () {
+            dem.pair_forces_body(dt, counts, energy)
+        })
+    }
+
+    /// [`Dem::pair_forces_serial`]'s loop, inlined into each compiled copy (`kernels`).
+    #[inline(always)]
+    fn pair_forces_body(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
         let mut outs = WindowOut::default();
@@ -231,7 +244,7 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// The end of the window of particles from `w0` (before `i1`) holding about [`WINDOW`]
     /// list entries (at least one particle).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn window_end(&self, w0: usize, i1: usize) -> usize {
         let mut w1 = w0 + 1;
         while w1 < i1 && ((self.nl_start[w1] - self.nl_start[w0]) as usize) < WINDOW {
@@ -246,6 +259,7 @@ impl<T: TangentialLaw> Dem<T> {
     /// [`TangentialLaw::sphere_block`], the rest (and the lanes the block leaves) to the
     /// one-contact kernel ([`Dem::pair`]); each entry's output depends on its own history only,
     /// so the results are the one-contact kernel's, entry for entry.
+    #[inline(always)]
     pub(crate) fn pair_outputs(
         &self,
         w0: usize,
@@ -346,14 +360,31 @@ impl<T: TangentialLaw> Dem<T> {
             if mask >> l & 1 == 1 {
                 outs.pq[o] = [p, q];
             } else {
-                self.pair_out(i as usize, j as usize, &mut hist[o], dt, o, outs);
+                self.pair_out_rare(i as usize, j as usize, &mut hist[o], dt, o, outs);
             }
         }
         pend.len = 0;
     }
 
+    /// [`Dem::pair_out`] for the lanes the block kernel leaves (rare: a contact that opens,
+    /// or whose normal turned far): out of line, so that it does not crowd the loop (the
+    /// baseline copy only).
+    #[inline(never)]
+    #[cold]
+    fn pair_out_rare(
+        &self,
+        i: usize,
+        j: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+        o: usize,
+        outs: &mut WindowOut,
+    ) {
+        self.pair_out(i, j, h, dt, o, outs);
+    }
+
     /// [`Dem::pair`] into window entry `o` of `outs`.
-    #[inline]
+    #[inline(always)]
     fn pair_out(
         &self,
         i: usize,
@@ -383,6 +414,19 @@ impl<T: TangentialLaw> Dem<T> {
     }
 
     fn wall_forces(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
+        crate::kernels::dispatch!(self.kernels, wall_forces_avx2<T>(
+            dem: &mut Dem<T> = self,
+            dt: f64 = dt,
+            counts: &mut DemCounts = counts,
+            energy: &mut DemEnergy = energy,
+        ) -> () {
+            dem.wall_forces_body(dt, counts, energy)
+        })
+    }
+
+    /// [`Dem::wall_forces`]' loop, inlined into each compiled copy (`kernels`).
+    #[inline(always)]
+    fn wall_forces_body(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         for f in &mut self.wall_force {
             *f = Vec3::ZERO;
         }
@@ -396,7 +440,7 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// The contact of wall-list entry `e` (the wall is p): the kernel's output when touching,
     /// else the energy its history released.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn wall_pair(
         &self,
         e: usize,
@@ -433,7 +477,7 @@ impl<T: TangentialLaw> Dem<T> {
     }
 
     /// Adds wall-list entry `e`'s output to its particle, its wall and the tallies.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn apply_wall(
         &mut self,
         e: usize,
@@ -506,6 +550,7 @@ pub(crate) fn add_partial(
     energy.truncation += e.truncation;
 }
 
+#[inline(always)]
 pub(crate) fn tally(
     counts: &mut DemCounts,
     energy: &mut DemEnergy,
@@ -520,7 +565,7 @@ pub(crate) fn tally(
     );
 }
 
-#[inline]
+#[inline(always)]
 fn tally_parts(
     counts: &mut DemCounts,
     energy: &mut DemEnergy,
@@ -575,7 +620,7 @@ struct Pending {
 }
 
 /// [`tally`] of a window entry's outputs.
-#[inline]
+#[inline(always)]
 pub(crate) fn tally_block(counts: &mut DemCounts, energy: &mut DemEnergy, out: &SphereForces) {
     tally_parts(
         counts,
