@@ -94,6 +94,7 @@
 //! with `k_t = 8 G* a` (Mindlin 1949).
 
 use crate::hertz;
+use crate::pair::finite;
 use crate::material::PairMaterial;
 use crate::vector::Vec2;
 
@@ -283,8 +284,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
         let () = Self::CAPACITY_OK;
-        let a = if a.is_finite() && a > 0.0 { a } else { 0.0 };
-        let du = if !du.is_finite() {
+        let a = if finite(a) && a > 0.0 { a } else { 0.0 };
+        let du = if !(finite(du.x) && finite(du.y)) {
             Vec2::ZERO
         } else if du.length() > MAX_INCREMENT {
             du * (MAX_INCREMENT / du.length())
@@ -372,6 +373,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         let mut x_lo = 0.0;
         let k2 = kappa * kappa;
         let mut split_bits: u32 = 0;
+        // The depth at the inner end of the piece: the last piece's outer one (`a^2` at 0).
+        let mut s_lo = a2;
         for (i, (p, cut_out)) in self.pieces[..self.n]
             .iter()
             .zip(cuts.iter_mut())
@@ -380,7 +383,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
             // them so and `from_array` refuses other states.
             let hi = p.x_hi;
-            let mut cut = stick_cut(p, kappa, k2, a, a2, x_lo, hi);
+            let s_hi = depth(a, hi);
+            let mut cut = stick_cut(p, kappa, k2, a2, (x_lo, hi), (s_lo, s_hi));
             if cut < hi {
                 // A cut within rounding of an end of the piece is at that end: a sliver of
                 // springs split off by rounding would take a slot of the memory (and change
@@ -397,6 +401,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             }
             *cut_out = cut;
             x_lo = hi;
+            s_lo = s_hi;
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let g_star = pair.g_star;
@@ -576,12 +581,19 @@ fn piece_u2(p: &Piece, a: f64, x1: f64, x2: f64) -> f64 {
 /// `s* = |c|^2 / (sqrt(D) - beta.c)`, `D = (beta.c)^2 + (kappa^2 - |beta|^2) |c|^2`, and its
 /// square root `x = sqrt(a^2 - s*)`. Springs entering the contact can bring `|beta| > kappa`,
 /// and huge or non-finite values may overflow the squares: those go to [`stick_radius`].
+/// `s_lo`, `s_hi` are the depths at `x_lo` and `hi` ([`depth`], shared by neighbours).
 #[inline(always)]
-fn stick_cut(p: &Piece, kappa: f64, k2: f64, a: f64, a2: f64, x_lo: f64, hi: f64) -> f64 {
+fn stick_cut(
+    p: &Piece,
+    kappa: f64,
+    k2: f64,
+    a2: f64,
+    (x_lo, hi): (f64, f64),
+    (s_lo, s_hi): (f64, f64),
+) -> f64 {
     let b2 = p.beta.length_squared();
     // Pieces at the limit have `|beta| = kappa` to rounding (`e kappa` with `|e| = 1 +- eps`).
     if b2 <= k2 * (1.0 + 1e-12) && k2 < f64::INFINITY {
-        let (s_hi, s_lo) = (depth(a, hi), depth(a, x_lo));
         let u_hi = p.beta * s_hi + p.c;
         let q_hi = k2 * (s_hi * s_hi) - u_hi.length_squared();
         if q_hi >= 0.0 {
@@ -596,7 +608,7 @@ fn stick_cut(p: &Piece, kappa: f64, k2: f64, a: f64, a2: f64, x_lo: f64, hi: f64
         let d = bc * bc + (k2 - b2).max(0.0) * c2;
         let den = d.sqrt() - bc;
         let s_star = c2 / den;
-        if q_hi.is_finite() && q_lo.is_finite() && s_star.is_finite() && den > 0.0 {
+        if finite(q_hi) && finite(q_lo) && finite(s_star) && den > 0.0 {
             let r2 = a2 - s_star;
             return if r2 > 0.0 {
                 r2.sqrt().clamp(x_lo, hi)
@@ -680,7 +692,7 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> 
     let is2 = int_s2(a, x1, x2);
     let trial = p.beta * is + p.c * (x2 - x1);
     let l = trial.length();
-    let e = if l > 0.0 && l.is_finite() {
+    let e = if l > 0.0 && finite(l) {
         trial * (1.0 / l)
     } else {
         Vec2::new(1.0, 0.0)
@@ -962,7 +974,7 @@ fn at_limit(p: &Piece, kappa: f64) -> bool {
 fn limit_union(p: &Piece, q: &Piece, a: f64, kappa: f64, lo: f64) -> Piece {
     let sum = p.beta * int_s(a, lo, p.x_hi) + q.beta * int_s(a, p.x_hi, q.x_hi);
     let l = sum.length();
-    let e = if l > 0.0 && l.is_finite() {
+    let e = if l > 0.0 && finite(l) {
         sum * (1.0 / l)
     } else {
         Vec2::new(1.0, 0.0)
