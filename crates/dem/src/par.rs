@@ -206,11 +206,12 @@ impl<T: TangentialLaw> Dem<T> {
             }
             return (c, e);
         }
+        let arrays = self.arrays();
         for i in i0..i1 {
             for k in self.nl_start[i] as usize..self.nl_start[i + 1] as usize {
                 let j = self.nl_j[k] as usize;
                 let slot = &mut o[k - base];
-                *slot = match self.pair(i, j, &mut h[k - base], dt) {
+                *slot = match self.pair_in(&arrays, i, j, &mut h[k - base], dt) {
                     Ok((p, _, f)) => {
                         tally(&mut c, &mut e, &f);
                         c.contacts += 1;
