@@ -50,7 +50,10 @@ mod history;
 mod kernel;
 mod tiers;
 
-pub use block::{LANES, SphereForces, SphereLanes, SpherePair, block_supports, cheap_sphere_block};
+pub use block::{
+    LANES, SphereForces, SphereLanes, SpherePair, block_supports, cheap_sphere_block,
+    exact_sphere_block,
+};
 pub use constants::{ContactGeometry, PairBody, PairConstants};
 pub use damping::{MIN_RESTITUTION, damping_coefficient};
 pub use history::ContactHistory;

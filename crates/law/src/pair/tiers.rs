@@ -1,7 +1,7 @@
 //! The tangential tiers: the [`TangentialLaw`] trait, [`Exact`] (Cattaneo-Mindlin memory with
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
-use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block};
+use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block, exact_sphere_block};
 use super::kernel::finite;
 use super::{ContactHistory, PairConstants};
 use crate::LawError;
@@ -130,6 +130,21 @@ impl TangentialLaw for Exact {
 
     fn elastic_energy(h: &CreepState, pm: &PairMaterial) -> f64 {
         h.mindlin().elastic_energy(pm)
+    }
+
+    const HAS_BLOCK: bool = true;
+
+    #[inline(always)]
+    fn sphere_block(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        out: &mut [SphereForces],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+    ) -> u32 {
+        exact_sphere_block(c, pairs, hist, out, idx, n, dt)
     }
 
     fn write(h: &CreepState, out: &mut [f64]) {
