@@ -1,4 +1,6 @@
-//! Four sphere-sphere contacts of the [`Cheap`] tier at once: [`cheap_sphere_block`].
+//! Four sphere-sphere contacts at once: [`cheap_sphere_block`] for the [`Cheap`] tier,
+//! [`exact_sphere_block`] for the [`Exact`] tier (whose Cattaneo-Mindlin memory, a short list
+//! of annuli per contact, runs lane by lane between the shared vector parts described below).
 //!
 //! The same arithmetic as [`pair_force`](super::pair_force) for two movable spheres with the
 //! cheap tier, no rolling resistance and (with creep) Kuhn's steady law, operation for

@@ -67,8 +67,9 @@ pub trait TangentialLaw:
     /// `hist[idx[l]]` (none virgin; lanes from `n` on repeat one of the first and are not
     /// written) and step `dt` \[s\]: the mask of the lanes done (their histories updated, their
     /// outputs in `out[idx[l]]`, the same bits as [`pair_force`](super::pair_force)'s); the others are
-    /// left for the one-contact kernel. None by default; the cheap tier's is
-    /// [`cheap_sphere_block`](super::cheap_sphere_block).
+    /// left for the one-contact kernel. None by default; the tiers' are
+    /// [`cheap_sphere_block`](super::cheap_sphere_block) and
+    /// [`exact_sphere_block`](super::exact_sphere_block).
     #[inline(always)]
     fn sphere_block(
         c: &PairConstants,
