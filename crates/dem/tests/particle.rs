@@ -567,10 +567,12 @@ fn kernels_give_the_same_bits() {
 fn same_bits_both_kernels<T: TangentialLaw>() {
     if !Kernels::Avx2.available() {
         println!("kernels: this CPU has no AVX2 and FMA, only the portable copy runs");
-        assert!(Dem::<T>::new(DemConfig::default(), table1(), &[], &[])
-            .unwrap()
-            .set_kernels(Kernels::Avx2)
-            .is_err());
+        assert!(
+            Dem::<T>::new(DemConfig::default(), table1(), &[], &[])
+                .unwrap()
+                .set_kernels(Kernels::Avx2)
+                .is_err()
+        );
         return;
     }
     let bits = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
@@ -605,7 +607,11 @@ fn same_bits_both_kernels<T: TangentialLaw>() {
     for parallel in variants {
         let p = run(Kernels::Portable, parallel);
         let a = run(Kernels::Avx2, parallel);
-        assert!(p.2.contacts > 100 && p.2.sliding > 0 && p.2.creeping > 0, "{:?}", p.2);
+        assert!(
+            p.2.contacts > 100 && p.2.sliding > 0 && p.2.creeping > 0,
+            "{:?}",
+            p.2
+        );
         let differ = a.0.iter().zip(&p.0).filter(|(x, y)| x != y).count();
         println!(
             "kernels ({}, parallel {parallel}): avx2 vs portable after 1500 steps: {differ} \

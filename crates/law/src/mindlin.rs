@@ -94,8 +94,8 @@
 //! with `k_t = 8 G* a` (Mindlin 1949).
 
 use crate::hertz;
-use crate::pair::finite;
 use crate::material::PairMaterial;
+use crate::pair::finite;
 use crate::vector::Vec2;
 
 /// The most pieces (annuli of distinct load history) one contact remembers: the capacity of

@@ -24,8 +24,8 @@
 
 use super::kernel::finite;
 use super::{Cheap, ContactHistory, Exact, PairConstants, PairDissipation, TangentialLaw};
-use crate::material::{PairMaterial, Surface};
 use crate::kalker;
+use crate::material::{PairMaterial, Surface};
 use crate::steady_law::SteadyLaw;
 use crate::vector::{Vec2, Vec3};
 
@@ -677,13 +677,12 @@ pub fn exact_sphere_block(
     let zero = F::splat(0.0);
     // The lanes the tangential law takes: the front's, with a loaded contact (the one-contact
     // kernel's other cases go to it).
-    let ok = f
-        .ok
-        .and(f.p_el.gt(zero))
-        .and(f.a.gt(zero))
-        .and(f.p_el.finite())
-        .and(f.a.finite())
-        .0;
+    let ok =
+        f.ok.and(f.p_el.gt(zero))
+            .and(f.a.gt(zero))
+            .and(f.p_el.finite())
+            .and(f.a.finite())
+            .0;
     let (mut q_x, mut q_y) = (zero, zero);
     let (mut cx, mut cy) = (zero, zero);
     let (mut slip, mut creep, mut truncation) = (zero, zero, zero);
