@@ -92,12 +92,17 @@ impl Kernels {
 /// `#[inline(always)]` (down to the kernels) for them to be compiled with the features: a
 /// function that is not inlined is compiled once, for the baseline. Each use makes its own
 /// copy: `$name` names the AVX2 function, `($($arg: $ty),*)` its arguments (generic over
-/// `$T: TangentialLaw`), `-> $ret` its result.
+/// `$T: TangentialLaw`), `-> $ret` its result. `$body` sees the constant `WIDE`: `true` in the
+/// AVX2 copy (four-lane vector registers), `false` in the portable one.
 macro_rules! dispatch {
     ($kernels:expr, $name:ident<$T:ident>($($arg:ident: $ty:ty = $val:expr),* $(,)?) -> $ret:ty $body:block) => {{
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2,fma")]
-        fn $name<$T: creep_law::pair::TangentialLaw>($($arg: $ty),*) -> $ret $body
+        fn $name<$T: creep_law::pair::TangentialLaw>($($arg: $ty),*) -> $ret {
+            #[allow(dead_code)]
+            const WIDE: bool = true;
+            $body
+        }
         match $kernels {
             // SAFETY: an engine holds `Kernels::Avx2` only where `Kernels::available` found
             // AVX2 and FMA on this CPU (`Dem::new`, `Dem::set_kernels`).
@@ -105,6 +110,8 @@ macro_rules! dispatch {
             #[allow(unsafe_code)]
             $crate::kernels::Kernels::Avx2 => unsafe { $name::<$T>($($val),*) },
             _ => {
+                #[allow(dead_code)]
+                const WIDE: bool = false;
                 $(let $arg: $ty = $val;)*
                 $body
             }

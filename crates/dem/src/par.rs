@@ -162,7 +162,7 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// The contact kernels of the pair entries of the block of particles from `i0` (their
     /// histories `h` and outputs `o`): the block's counts and energies. Inlined into each
-    /// compiled copy (`kernels`).
+    /// compiled copy (`kernels`; `wide` as for [`Dem::use_block`]).
     #[inline(always)]
     fn pairs_task(
         &self,
@@ -170,13 +170,14 @@ impl<T: TangentialLaw> Dem<T> {
         h: &mut [ContactHistory<T>],
         o: &mut [Entry],
         dt: f64,
+        wide: bool,
     ) -> (DemCounts, DemEnergy) {
         let n = self.len();
         let mut c = DemCounts::default();
         let mut e = DemEnergy::default();
         let base = self.nl_start[i0] as usize;
         let i1 = (i0 + CHUNK).min(n);
-        if T::HAS_BLOCK {
+        if Self::use_block(wide) {
             // The serial loop's windows (block kernel), the outputs to entries.
             let mut outs = WindowOut::default();
             let mut w0 = i0;
@@ -300,7 +301,7 @@ impl<T: TangentialLaw> Dem<T> {
                         o: &mut [Entry] = o,
                         dt: f64 = dt,
                     ) -> (DemCounts, DemEnergy) {
-                        dem.pairs_task(i0, h, o, dt)
+                        dem.pairs_task(i0, h, o, dt, WIDE)
                     });
                     Some(pair)
                 }

@@ -158,13 +158,20 @@ impl<T: TangentialLaw> Dem<T> {
             counts: &mut DemCounts = counts,
             energy: &mut DemEnergy = energy,
         ) -> () {
-            dem.pair_forces_body(dt, counts, energy)
+            dem.pair_forces_body(dt, counts, energy, WIDE)
         })
     }
 
-    /// [`Dem::pair_forces_serial`]'s loop, inlined into each compiled copy (`kernels`).
+    /// [`Dem::pair_forces_serial`]'s loop, inlined into each compiled copy (`kernels`; `wide`:
+    /// the copy with four-lane vector registers, see [`Dem::use_block`]).
     #[inline(always)]
-    fn pair_forces_body(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
+    fn pair_forces_body(
+        &mut self,
+        dt: f64,
+        counts: &mut DemCounts,
+        energy: &mut DemEnergy,
+        wide: bool,
+    ) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
         let mut outs = WindowOut::default();
@@ -173,7 +180,7 @@ impl<T: TangentialLaw> Dem<T> {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
-            if T::HAS_BLOCK {
+            if Self::use_block(wide) {
                 let mut w0 = i0;
                 while w0 < i1 {
                     let w1 = self.window_end(w0, i1);
@@ -219,6 +226,15 @@ impl<T: TangentialLaw> Dem<T> {
             i0 = i1;
         }
         self.nl_h = hist;
+    }
+
+    /// Whether the force loop runs the tier's block kernel: where it has one
+    /// ([`TangentialLaw::HAS_BLOCK`]), unless the block pays only with four-lane vector
+    /// registers ([`TangentialLaw::BLOCK_NEEDS_WIDE`]) and the copy (`wide`) has none. The
+    /// results are the same bits either way.
+    #[inline(always)]
+    pub(crate) fn use_block(wide: bool) -> bool {
+        T::HAS_BLOCK && (wide || !T::BLOCK_NEEDS_WIDE)
     }
 
     /// The end of the window of particles from `w0` (before `i1`) holding about [`WINDOW`]

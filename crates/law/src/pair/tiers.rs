@@ -63,6 +63,11 @@ pub trait TangentialLaw:
     /// ([`TangentialLaw::sphere_block`]).
     const HAS_BLOCK: bool = false;
 
+    /// Whether the block kernel pays only where four `f64` fit one vector register (AVX): a
+    /// host's build for two-lane registers (SSE2) then runs the one-contact kernel (the same
+    /// bits). The exact tier's, whose memory runs lane by lane between its vector parts.
+    const BLOCK_NEEDS_WIDE: bool = false;
+
     /// [`LANES`] sphere-sphere contacts at once with constants `c`, bodies `pairs`, histories
     /// `hist[idx[l]]` (none virgin; lanes from `n` on repeat one of the first and are not
     /// written) and step `dt` \[s\]: the mask of the lanes done (their histories updated, their
@@ -134,6 +139,7 @@ impl TangentialLaw for Exact {
     }
 
     const HAS_BLOCK: bool = true;
+    const BLOCK_NEEDS_WIDE: bool = true;
 
     #[inline(always)]
     fn sphere_block(
