@@ -3,7 +3,9 @@
 use creep_law::Vec3;
 use creep_law::pair::{ContactHistory, TangentialLaw};
 
-use crate::{Dem, DemConfig, DemCounts, DemEnergy, DemError, MaterialTable, Particle, Wall, grid};
+use crate::{
+    Dem, DemConfig, DemCounts, DemEnergy, DemError, Kernels, MaterialTable, Particle, Wall, grid,
+};
 
 fn check(name: &'static str, value: f64, ok: bool, why: &'static str) -> Result<(), DemError> {
     if ok {
@@ -148,6 +150,7 @@ impl<T: TangentialLaw> Dem<T> {
             counts: DemCounts::default(),
             time: 0.0,
             steps: 0,
+            kernels: Kernels::detected()?,
             #[cfg(feature = "parallel")]
             par: crate::par::Buffers::default(),
         };
@@ -171,6 +174,23 @@ impl<T: TangentialLaw> Dem<T> {
     /// The settings.
     pub fn config(&self) -> &DemConfig {
         &self.cfg
+    }
+    /// The compiled copy of the force loops the engine runs ([`Kernels::detected`] at first).
+    pub fn kernels(&self) -> Kernels {
+        self.kernels
+    }
+    /// Runs the force loops' copy `kernels` from now on (the same bits as any other); one the
+    /// CPU does not run ([`Kernels::available`]) is an error.
+    pub fn set_kernels(&mut self, kernels: Kernels) -> Result<(), DemError> {
+        if !kernels.available() {
+            return Err(DemError::Parameter {
+                name: "kernels",
+                value: f64::NAN,
+                why: "this CPU lacks the instruction set (Kernels::available)",
+            });
+        }
+        self.kernels = kernels;
+        Ok(())
     }
     /// The material table.
     pub fn table(&self) -> &MaterialTable {

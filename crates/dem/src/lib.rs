@@ -15,9 +15,9 @@
 //! * the pair force is creep-law's pure kernel [`creep_law::pair::pair_force`], with the
 //!   tangential tier a generic parameter ([`creep_law::pair::Exact`]: Cattaneo-Mindlin memory
 //!   with Kuhn's creep; [`creep_law::pair::Cheap`]: incremental `8 G* a` spring, rescaled at
-//!   `mu P`, plus creep), monomorphised; for the cheap tier the force loop evaluates a window
-//!   of list entries first, the touching sphere pairs four at a time
-//!   ([`creep_law::pair::cheap_sphere_block`], vector instructions, the same bits as the
+//!   `mu P`, plus creep), monomorphised; the force loop evaluates a window of list entries
+//!   first, the touching sphere pairs four at a time ([`creep_law::pair::cheap_sphere_block`],
+//!   [`creep_law::pair::exact_sphere_block`]: vector instructions, the same bits as the
 //!   one-contact kernel), then adds the outputs in list order;
 //! * velocity Verlet (Swope et al. 1982) for translation and rotation (spheres: isotropic
 //!   inertia `I = (2/5) m r^2`), the contact forces evaluated at the half-step velocities as in
@@ -30,12 +30,15 @@
 //!   particle the sum of its contacts' outputs in list order, the order in which the serial loop
 //!   adds them, then the second half-kick), energies and counts summed per block of particles
 //!   in both, and the neighbour list is built per block of particles at rebuilds: results are
-//!   the same bits as the serial loop's, run to run and for any number of threads.
+//!   the same bits as the serial loop's, run to run and for any number of threads;
+//! * the force loops compiled twice, for the target's baseline and (x86-64) with AVX2 and FMA,
+//!   the latter taken at run time where the CPU has them ([`Kernels`]): the same bits.
 //!
 //! Conventions are creep-law's: in a pair the particle with the smaller id is body p, the
 //! normal points from p to q; for a wall contact the wall is p, its normal points into the
 //! domain. SI units throughout.
-#![forbid(unsafe_code)]
+// No unsafe code but the one call of the AVX2 copy of the force loops (`kernels`), allowed there.
+#![deny(unsafe_code)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 // Loops index several per-particle arrays at once (structure of arrays) on purpose.
 #![allow(clippy::needless_range_loop)]
@@ -46,6 +49,7 @@ pub mod dump;
 mod engine;
 mod external;
 mod grid;
+mod kernels;
 mod material;
 mod measure;
 mod neighbour;
@@ -56,6 +60,7 @@ mod step;
 
 pub use config::{DemConfig, DemError, Particle, Wall};
 pub use external::{ExternalForces, ExternalView, NoExternal};
+pub use kernels::{KERNELS_ENV, Kernels};
 pub use material::MaterialTable;
 pub use measure::{ContactView, DemCounts, DemEnergy};
 pub use probe::{ContactForce, ContactLoad};
@@ -104,6 +109,8 @@ pub struct Dem<T: TangentialLaw> {
     counts: DemCounts,
     time: f64,
     steps: u64,
+    /// The compiled copy of the force loops this engine runs.
+    kernels: Kernels,
     #[cfg(feature = "parallel")]
     par: par::Buffers,
 }

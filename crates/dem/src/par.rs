@@ -160,6 +160,74 @@ impl<T: TangentialLaw> Dem<T> {
         b.wall_out.resize(self.wl_i.len(), Err(0.0));
     }
 
+    /// The contact kernels of the pair entries of the block of particles from `i0` (their
+    /// histories `h` and outputs `o`): the block's counts and energies. Inlined into each
+    /// compiled copy (`kernels`; `wide` as for [`Dem::use_block`]).
+    #[inline(always)]
+    fn pairs_task(
+        &self,
+        i0: usize,
+        h: &mut [ContactHistory<T>],
+        o: &mut [Entry],
+        dt: f64,
+        wide: bool,
+    ) -> (DemCounts, DemEnergy) {
+        let n = self.len();
+        let mut c = DemCounts::default();
+        let mut e = DemEnergy::default();
+        let base = self.nl_start[i0] as usize;
+        let i1 = (i0 + CHUNK).min(n);
+        if Self::use_block(wide) {
+            // The serial loop's windows (block kernel), the outputs to entries.
+            let mut outs = WindowOut::default();
+            let mut w0 = i0;
+            while w0 < i1 {
+                let w1 = self.window_end(w0, i1);
+                let (a, b) = (
+                    self.nl_start[w0] as usize - base,
+                    self.nl_start[w1] as usize - base,
+                );
+                self.pair_outputs(w0, w1, &mut h[a..b], dt, &mut outs);
+                for i in w0..w1 {
+                    for k in self.nl_start[i] as usize..self.nl_start[i + 1] as usize {
+                        let w = k - base - a;
+                        let [p, _] = outs.pq[w];
+                        let f = &outs.f[w];
+                        o[k - base] = if p == APART {
+                            e.slip += f.dissipation.slip;
+                            Entry::default()
+                        } else {
+                            tally_block(&mut c, &mut e, f);
+                            c.contacts += 1;
+                            entry(p as usize == i, f.force_p, f.torque_p, f.torque_q)
+                        };
+                    }
+                }
+                w0 = w1;
+            }
+            return (c, e);
+        }
+        let arrays = self.arrays();
+        for i in i0..i1 {
+            for k in self.nl_start[i] as usize..self.nl_start[i + 1] as usize {
+                let j = self.nl_j[k] as usize;
+                let slot = &mut o[k - base];
+                *slot = match self.pair_in(&arrays, i, j, &mut h[k - base], dt) {
+                    Ok((p, _, f)) => {
+                        tally(&mut c, &mut e, &f);
+                        c.contacts += 1;
+                        entry(p == i, f.force_p, f.torque_p, f.torque_q)
+                    }
+                    Err(released) => {
+                        e.slip += released;
+                        Entry::default()
+                    }
+                };
+            }
+        }
+        (c, e)
+    }
+
     /// One velocity-Verlet step on rayon's threads (see the module docs).
     pub(crate) fn step_parallel<E: ExternalForces>(
         &mut self,
@@ -226,63 +294,29 @@ impl<T: TangentialLaw> Dem<T> {
             .with_max_len(1)
             .map(|task| match task {
                 Task::Pairs(i0, h, o) => {
-                    let mut c = DemCounts::default();
-                    let mut e = DemEnergy::default();
-                    let base = this.nl_start[i0] as usize;
-                    let i1 = (i0 + CHUNK).min(n);
-                    if T::HAS_BLOCK {
-                        // The serial loop's windows (block kernel), the outputs to entries.
-                        let mut outs = WindowOut::default();
-                        let mut w0 = i0;
-                        while w0 < i1 {
-                            let w1 = this.window_end(w0, i1);
-                            let (a, b) = (
-                                this.nl_start[w0] as usize - base,
-                                this.nl_start[w1] as usize - base,
-                            );
-                            this.pair_outputs(w0, w1, &mut h[a..b], dt, &mut outs);
-                            for i in w0..w1 {
-                                for k in this.nl_start[i] as usize..this.nl_start[i + 1] as usize {
-                                    let w = k - base - a;
-                                    let [p, _] = outs.pq[w];
-                                    let f = &outs.f[w];
-                                    o[k - base] = if p == APART {
-                                        e.slip += f.dissipation.slip;
-                                        Entry::default()
-                                    } else {
-                                        tally_block(&mut c, &mut e, f);
-                                        c.contacts += 1;
-                                        entry(p as usize == i, f.force_p, f.torque_p, f.torque_q)
-                                    };
-                                }
-                            }
-                            w0 = w1;
-                        }
-                        return Some((c, e));
-                    }
-                    for i in i0..i1 {
-                        for k in this.nl_start[i] as usize..this.nl_start[i + 1] as usize {
-                            let j = this.nl_j[k] as usize;
-                            let slot = &mut o[k - base];
-                            *slot = match this.pair(i, j, &mut h[k - base], dt) {
-                                Ok((p, _, f)) => {
-                                    tally(&mut c, &mut e, &f);
-                                    c.contacts += 1;
-                                    entry(p == i, f.force_p, f.torque_p, f.torque_q)
-                                }
-                                Err(released) => {
-                                    e.slip += released;
-                                    Entry::default()
-                                }
-                            };
-                        }
-                    }
-                    Some((c, e))
+                    let pair = crate::kernels::dispatch!(this.kernels, pairs_avx2<T>(
+                        dem: &Dem<T> = this,
+                        i0: usize = i0,
+                        h: &mut [ContactHistory<T>] = h,
+                        o: &mut [Entry] = o,
+                        dt: f64 = dt,
+                    ) -> (DemCounts, DemEnergy) {
+                        dem.pairs_task(i0, h, o, dt, WIDE)
+                    });
+                    Some(pair)
                 }
                 Task::Walls(e0, h, o) => {
-                    for (k, (h, o)) in h.iter_mut().zip(o.iter_mut()).enumerate() {
-                        *o = this.wall_pair(e0 + k, h, dt);
-                    }
+                    crate::kernels::dispatch!(this.kernels, walls_avx2<T>(
+                        dem: &Dem<T> = this,
+                        e0: usize = e0,
+                        h: &mut [ContactHistory<T>] = h,
+                        o: &mut [WallResult] = o,
+                        dt: f64 = dt,
+                    ) -> () {
+                        for (k, (h, o)) in h.iter_mut().zip(o.iter_mut()).enumerate() {
+                            *o = dem.wall_pair(e0 + k, h, dt);
+                        }
+                    });
                     None
                 }
             })

@@ -107,21 +107,21 @@ impl<T: TangentialLaw> Dem<T> {
         self.energy = energy;
     }
 
-    #[inline]
+    #[inline(always)]
     pub(crate) fn body(&self, i: usize, position: Vec3) -> PairBody {
-        PairBody {
-            position,
-            velocity: self.v[i],
-            angular_velocity: self.w[i],
-            surface: Surface::Sphere(self.r[i]),
-            mass: self.mass[i],
-        }
+        self.arrays().body(i, position)
     }
 
-    /// The pair `(i, j)` of list entry `k`: `None` when apart (the history is reset), else the
-    /// indices of p and q and the kernel's output.
-    /// `Err(released energy)` when the pair is apart (its history reset).
-    #[inline]
+    /// The per-particle arrays the contact kernels read ([`Arrays`]).
+    #[inline(always)]
+    pub(crate) fn arrays(&self) -> Arrays<'_> {
+        arrays!(self)
+    }
+
+    /// The pair `(i, j)` of a list entry with history `h`: the indices of p and q and the
+    /// kernel's output when touching, `Err(released energy)` when the pair is apart (its
+    /// history reset).
+    #[inline(always)]
     pub(crate) fn pair(
         &self,
         i: usize,
@@ -129,42 +129,20 @@ impl<T: TangentialLaw> Dem<T> {
         h: &mut ContactHistory<T>,
         dt: f64,
     ) -> Result<(usize, usize, creep_law::pair::PairForces), f64> {
-        let d = self.grid.min_image(self.x[j] - self.x[i]);
-        let rs = self.r[i] + self.r[j];
-        if d.dot(d) >= rs * rs {
-            if h.is_virgin() {
-                return Err(0.0);
-            }
-            let c = self.table.pair(self.mat[i] as usize, self.mat[j] as usize);
-            return Err(release(
-                c,
-                Surface::Sphere(self.r[i]),
-                Surface::Sphere(self.r[j]),
-                h,
-            ));
-        }
-        let (p, q, dpq) = if self.id[i] < self.id[j] {
-            (i, j, d)
-        } else {
-            (j, i, -d)
-        };
-        let xp = self.x[p];
-        let xq = xp + dpq;
-        let c = self.table.pair(self.mat[p] as usize, self.mat[q] as usize);
-        let Some(geo) = ContactGeometry::sphere_sphere(xp, self.r[p], xq, self.r[q]) else {
-            return Err(release(
-                c,
-                Surface::Sphere(self.r[p]),
-                Surface::Sphere(self.r[q]),
-                h,
-            ));
-        };
-        let out = pair_force(c, &self.body(p, xp), &self.body(q, xq), &geo, h, dt);
-        if out.touching {
-            Ok((p, q, out))
-        } else {
-            Err(out.dissipation.slip)
-        }
+        self.pair_in(&self.arrays(), i, j, h, dt)
+    }
+
+    /// [`Dem::pair`] reading the arrays `a` (built once per loop).
+    #[inline(always)]
+    pub(crate) fn pair_in(
+        &self,
+        a: &Arrays<'_>,
+        i: usize,
+        j: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+    ) -> Result<(usize, usize, creep_law::pair::PairForces), f64> {
+        a.pair(i, j, h, dt)
     }
 
     /// The pair forces, one particle after another. Each particle's force and torque sum its
@@ -174,6 +152,26 @@ impl<T: TangentialLaw> Dem<T> {
     /// bits. A tier with a block kernel ([`TangentialLaw::HAS_BLOCK`]) evaluates a window of
     /// entries first ([`Dem::pair_outputs`]), then adds them in list order.
     fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
+        crate::kernels::dispatch!(self.kernels, pair_forces_avx2<T>(
+            dem: &mut Dem<T> = self,
+            dt: f64 = dt,
+            counts: &mut DemCounts = counts,
+            energy: &mut DemEnergy = energy,
+        ) -> () {
+            dem.pair_forces_body(dt, counts, energy, WIDE)
+        })
+    }
+
+    /// [`Dem::pair_forces_serial`]'s loop, inlined into each compiled copy (`kernels`; `wide`:
+    /// the copy with four-lane vector registers, see [`Dem::use_block`]).
+    #[inline(always)]
+    fn pair_forces_body(
+        &mut self,
+        dt: f64,
+        counts: &mut DemCounts,
+        energy: &mut DemEnergy,
+        wide: bool,
+    ) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
         let mut outs = WindowOut::default();
@@ -182,7 +180,7 @@ impl<T: TangentialLaw> Dem<T> {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
-            if T::HAS_BLOCK {
+            if Self::use_block(wide) {
                 let mut w0 = i0;
                 while w0 < i1 {
                     let w1 = self.window_end(w0, i1);
@@ -205,11 +203,12 @@ impl<T: TangentialLaw> Dem<T> {
                     w0 = w1;
                 }
             } else {
+                let arrays = arrays!(self);
                 for i in i0..i1 {
                     let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
                     for k in a..b {
                         let j = self.nl_j[k] as usize;
-                        match self.pair(i, j, &mut hist[k], dt) {
+                        match arrays.pair(i, j, &mut hist[k], dt) {
                             Ok((p, q, out)) => {
                                 self.f[p] += out.force_p;
                                 self.f[q] -= out.force_p;
@@ -229,9 +228,18 @@ impl<T: TangentialLaw> Dem<T> {
         self.nl_h = hist;
     }
 
+    /// Whether the force loop runs the tier's block kernel: where it has one
+    /// ([`TangentialLaw::HAS_BLOCK`]), unless the block pays only with four-lane vector
+    /// registers ([`TangentialLaw::BLOCK_NEEDS_WIDE`]) and the copy (`wide`) has none. The
+    /// results are the same bits either way.
+    #[inline(always)]
+    pub(crate) fn use_block(wide: bool) -> bool {
+        T::HAS_BLOCK && (wide || !T::BLOCK_NEEDS_WIDE)
+    }
+
     /// The end of the window of particles from `w0` (before `i1`) holding about [`WINDOW`]
     /// list entries (at least one particle).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn window_end(&self, w0: usize, i1: usize) -> usize {
         let mut w1 = w0 + 1;
         while w1 < i1 && ((self.nl_start[w1] - self.nl_start[w0]) as usize) < WINDOW {
@@ -246,6 +254,7 @@ impl<T: TangentialLaw> Dem<T> {
     /// [`TangentialLaw::sphere_block`], the rest (and the lanes the block leaves) to the
     /// one-contact kernel ([`Dem::pair`]); each entry's output depends on its own history only,
     /// so the results are the one-contact kernel's, entry for entry.
+    #[inline(always)]
     pub(crate) fn pair_outputs(
         &self,
         w0: usize,
@@ -260,29 +269,30 @@ impl<T: TangentialLaw> Dem<T> {
         outs.f.resize(hist.len(), SphereForces::default());
         outs.pq.resize(hist.len(), [APART, 0]);
         let mut pend = Pending::default();
+        let arr = self.arrays();
         for i in w0..w1 {
             let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
-            let (xi, ri, id_i) = (self.x[i], self.r[i], self.id[i]);
+            let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
             for (k, &j) in (a..b).zip(&self.nl_j[a..b]) {
                 let j = j as usize;
                 let o = k - base;
-                let d = self.grid.min_image(self.x[j] - xi);
-                let rs = ri + self.r[j];
+                let d = self.grid.min_image(arr.x[j] - xi);
+                let rs = ri + arr.r[j];
                 let h = &mut hist[o];
                 if d.dot(d) < rs * rs && !h.is_virgin() {
-                    let (p, q, dpq) = if id_i < self.id[j] {
+                    let (p, q, dpq) = if id_i < arr.id[j] {
                         (i, j, d)
                     } else {
                         (j, i, -d)
                     };
                     let ci = self
                         .table
-                        .pair_index(self.mat[p] as usize, self.mat[q] as usize);
+                        .pair_index(arr.mat[p] as usize, arr.mat[q] as usize);
                     if block_supports(&self.table.pairs[ci]) {
                         if pend.len > 0 && pend.constants != ci {
                             self.flush(&mut pend, hist, dt, outs);
                         }
-                        let xp = self.x[p];
+                        let xp = arr.x[p];
                         let l = pend.len;
                         pend.constants = ci;
                         pend.entry[l] = (o as u32, i as u32, j as u32, p as u32, q as u32);
@@ -291,14 +301,14 @@ impl<T: TangentialLaw> Dem<T> {
                             &SpherePair {
                                 xp,
                                 xq: xp + dpq,
-                                rp: self.r[p],
-                                rq: self.r[q],
-                                vp: self.v[p],
-                                vq: self.v[q],
-                                wp: self.w[p],
-                                wq: self.w[q],
-                                mp: self.mass[p],
-                                mq: self.mass[q],
+                                rp: arr.r[p],
+                                rq: arr.r[q],
+                                vp: arr.v[p],
+                                vq: arr.v[q],
+                                wp: arr.w[p],
+                                wq: arr.w[q],
+                                mp: arr.mass[p],
+                                mq: arr.mass[q],
                             },
                         );
                         pend.len += 1;
@@ -308,7 +318,7 @@ impl<T: TangentialLaw> Dem<T> {
                         continue;
                     }
                 }
-                self.pair_out(i, j, &mut hist[o], dt, o, outs);
+                self.pair_out(&arr, i, j, &mut hist[o], dt, o, outs);
             }
         }
         if pend.len > 0 {
@@ -346,15 +356,18 @@ impl<T: TangentialLaw> Dem<T> {
             if mask >> l & 1 == 1 {
                 outs.pq[o] = [p, q];
             } else {
-                self.pair_out(i as usize, j as usize, &mut hist[o], dt, o, outs);
+                self.pair_out_rare(i as usize, j as usize, &mut hist[o], dt, o, outs);
             }
         }
         pend.len = 0;
     }
 
-    /// [`Dem::pair`] into window entry `o` of `outs`.
-    #[inline]
-    fn pair_out(
+    /// [`Dem::pair_out`] for the lanes the block kernel leaves (rare: a contact that opens,
+    /// or whose normal turned far): out of line, so that it does not crowd the loop (the
+    /// baseline copy only).
+    #[inline(never)]
+    #[cold]
+    fn pair_out_rare(
         &self,
         i: usize,
         j: usize,
@@ -363,7 +376,23 @@ impl<T: TangentialLaw> Dem<T> {
         o: usize,
         outs: &mut WindowOut,
     ) {
-        match self.pair(i, j, h, dt) {
+        self.pair_out(&self.arrays(), i, j, h, dt, o, outs);
+    }
+
+    /// [`Dem::pair`] into window entry `o` of `outs`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn pair_out(
+        &self,
+        a: &Arrays<'_>,
+        i: usize,
+        j: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+        o: usize,
+        outs: &mut WindowOut,
+    ) {
+        match self.pair_in(a, i, j, h, dt) {
             Ok((p, q, out)) => {
                 outs.pq[o] = [p as u32, q as u32];
                 outs.f[o] = SphereForces {
@@ -383,6 +412,19 @@ impl<T: TangentialLaw> Dem<T> {
     }
 
     fn wall_forces(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
+        crate::kernels::dispatch!(self.kernels, wall_forces_avx2<T>(
+            dem: &mut Dem<T> = self,
+            dt: f64 = dt,
+            counts: &mut DemCounts = counts,
+            energy: &mut DemEnergy = energy,
+        ) -> () {
+            dem.wall_forces_body(dt, counts, energy)
+        })
+    }
+
+    /// [`Dem::wall_forces`]' loop, inlined into each compiled copy (`kernels`).
+    #[inline(always)]
+    fn wall_forces_body(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         for f in &mut self.wall_force {
             *f = Vec3::ZERO;
         }
@@ -396,7 +438,7 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// The contact of wall-list entry `e` (the wall is p): the kernel's output when touching,
     /// else the energy its history released.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn wall_pair(
         &self,
         e: usize,
@@ -433,7 +475,7 @@ impl<T: TangentialLaw> Dem<T> {
     }
 
     /// Adds wall-list entry `e`'s output to its particle, its wall and the tallies.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn apply_wall(
         &mut self,
         e: usize,
@@ -506,6 +548,7 @@ pub(crate) fn add_partial(
     energy.truncation += e.truncation;
 }
 
+#[inline(always)]
 pub(crate) fn tally(
     counts: &mut DemCounts,
     energy: &mut DemEnergy,
@@ -520,7 +563,7 @@ pub(crate) fn tally(
     );
 }
 
-#[inline]
+#[inline(always)]
 fn tally_parts(
     counts: &mut DemCounts,
     energy: &mut DemEnergy,
@@ -561,6 +604,104 @@ pub(crate) struct WindowOut {
     pub(crate) f: Vec<SphereForces>,
 }
 
+/// The per-particle arrays the contact kernels read, each sliced to the particle count (one
+/// bounds check of an index serves every array), with the grid and the material table.
+/// `arrays!(dem)` borrows the fields one by one, so that the force arrays stay free.
+macro_rules! arrays {
+    ($d:expr) => {{
+        let n = $d.x.len();
+        $crate::step::Arrays {
+            grid: &$d.grid,
+            table: &$d.table,
+            x: &$d.x[..n],
+            v: &$d.v[..n],
+            w: &$d.w[..n],
+            r: &$d.r[..n],
+            mass: &$d.mass[..n],
+            mat: &$d.mat[..n],
+            id: &$d.id[..n],
+        }
+    }};
+}
+pub(crate) use arrays;
+
+/// The per-particle arrays the contact kernels read, each sliced to the particle count: one
+/// bounds check of an index serves every array.
+#[derive(Clone, Copy)]
+pub(crate) struct Arrays<'a> {
+    pub(crate) grid: &'a crate::grid::Grid,
+    pub(crate) table: &'a crate::MaterialTable,
+    pub(crate) x: &'a [Vec3],
+    pub(crate) v: &'a [Vec3],
+    pub(crate) w: &'a [Vec3],
+    pub(crate) r: &'a [f64],
+    pub(crate) mass: &'a [f64],
+    pub(crate) mat: &'a [u32],
+    pub(crate) id: &'a [u32],
+}
+
+impl Arrays<'_> {
+    /// [`Dem::pair`] on these arrays.
+    #[inline(always)]
+    pub(crate) fn pair<T: TangentialLaw>(
+        &self,
+        i: usize,
+        j: usize,
+        h: &mut ContactHistory<T>,
+        dt: f64,
+    ) -> Result<(usize, usize, creep_law::pair::PairForces), f64> {
+        let a = self;
+        let d = a.grid.min_image(a.x[j] - a.x[i]);
+        let rs = a.r[i] + a.r[j];
+        if d.dot(d) >= rs * rs {
+            if h.is_virgin() {
+                return Err(0.0);
+            }
+            let c = a.table.pair(a.mat[i] as usize, a.mat[j] as usize);
+            return Err(release(
+                c,
+                Surface::Sphere(a.r[i]),
+                Surface::Sphere(a.r[j]),
+                h,
+            ));
+        }
+        let (p, q, dpq) = if a.id[i] < a.id[j] {
+            (i, j, d)
+        } else {
+            (j, i, -d)
+        };
+        let xp = a.x[p];
+        let xq = xp + dpq;
+        let c = a.table.pair(a.mat[p] as usize, a.mat[q] as usize);
+        let Some(geo) = ContactGeometry::sphere_sphere(xp, a.r[p], xq, a.r[q]) else {
+            return Err(release(
+                c,
+                Surface::Sphere(a.r[p]),
+                Surface::Sphere(a.r[q]),
+                h,
+            ));
+        };
+        let out = pair_force(c, &a.body(p, xp), &a.body(q, xq), &geo, h, dt);
+        if out.touching {
+            Ok((p, q, out))
+        } else {
+            Err(out.dissipation.slip)
+        }
+    }
+
+    /// Particle `i` as body of a pair, at `position` \[m\].
+    #[inline(always)]
+    pub(crate) fn body(&self, i: usize, position: Vec3) -> PairBody {
+        PairBody {
+            position,
+            velocity: self.v[i],
+            angular_velocity: self.w[i],
+            surface: Surface::Sphere(self.r[i]),
+            mass: self.mass[i],
+        }
+    }
+}
+
 /// The `p` of an entry whose pair is apart.
 pub(crate) const APART: u32 = u32::MAX;
 
@@ -575,7 +716,7 @@ struct Pending {
 }
 
 /// [`tally`] of a window entry's outputs.
-#[inline]
+#[inline(always)]
 pub(crate) fn tally_block(counts: &mut DemCounts, energy: &mut DemEnergy, out: &SphereForces) {
     tally_parts(
         counts,

@@ -8,12 +8,14 @@
 //! 3. oblique impact on a wall: gross sliding vs Coulomb's impulse; sticking vs an independent
 //!    quadrature of Mindlin's no-slip law (exact tier);
 //! 4. energy bookkeeping of a settling packing (kinetic + potential + elastic + dissipated);
-//! 5. the neighbour list against a brute-force search, periodic boundaries, determinism.
+//! 5. the neighbour list against a brute-force search, periodic boundaries, determinism (also
+//!    between the portable and the AVX2 copies of the force loops).
 //!
 //! `cargo test -p creep-dem --test particle -- --nocapture` prints the numbers.
 
 use creep_dem::{
-    Cheap, Dem, DemConfig, Exact, ExternalForces, ExternalView, MaterialTable, Particle, Wall,
+    Cheap, Dem, DemConfig, Exact, ExternalForces, ExternalView, Kernels, MaterialTable, Particle,
+    Wall,
 };
 use creep_law::pair::TangentialLaw;
 use creep_law::{CreepModel, Material, Vec3};
@@ -553,6 +555,82 @@ fn set_skin_carries_the_histories_and_keeps_the_physics() {
 /// `par.rs`), so also identical run to run, over a settling run whose contacts amplify any
 /// rounding difference (the sums in different orders drifted 4e-14 to 3.5e-7 m apart in
 /// 1500 steps, depending on the Cattaneo-Mindlin memory's rounding).
+/// The portable and the AVX2 copies of the force loops (`Kernels`) step a settling packing
+/// (sliding, creeping, walls, list rebuilds) to the same bits, serial and (with the `parallel`
+/// feature) on two threads.
+#[test]
+fn kernels_give_the_same_bits() {
+    same_bits_both_kernels::<Exact>();
+    same_bits_both_kernels::<Cheap>();
+}
+
+fn same_bits_both_kernels<T: TangentialLaw>() {
+    if !Kernels::Avx2.available() {
+        println!("kernels: this CPU has no AVX2 and FMA, only the portable copy runs");
+        assert!(
+            Dem::<T>::new(DemConfig::default(), table1(), &[], &[])
+                .unwrap()
+                .set_kernels(Kernels::Avx2)
+                .is_err()
+        );
+        return;
+    }
+    let bits = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+    let run = |kernels: Kernels, parallel: bool| {
+        let threads = if parallel { 2 } else { 1 };
+        creep_dem::with_threads(threads, || {
+            let mut d = settling::<T>(8, 0.2, parallel, false);
+            d.set_kernels(kernels).unwrap();
+            assert_eq!(d.kernels(), kernels);
+            for _ in 0..1500 {
+                d.step().unwrap();
+            }
+            let state = (0..d.len())
+                .map(|i| {
+                    let p = d.particle(i);
+                    [bits(p.position), bits(p.velocity), bits(p.angular_velocity)]
+                })
+                .collect::<Vec<_>>();
+            let e = d.energy();
+            let energy = [e.damping, e.slip, e.creep, e.rolling, e.truncation].map(f64::to_bits);
+            let walls = (0..d.walls().len())
+                .map(|k| bits(d.wall_force(k)))
+                .collect::<Vec<_>>();
+            (state, energy, d.counts(), walls)
+        })
+        .unwrap()
+    };
+    let mut variants = vec![false];
+    if cfg!(feature = "parallel") {
+        variants.push(true);
+    }
+    for parallel in variants {
+        let p = run(Kernels::Portable, parallel);
+        let a = run(Kernels::Avx2, parallel);
+        assert!(
+            p.2.contacts > 100 && p.2.sliding > 0 && p.2.creeping > 0,
+            "{:?}",
+            p.2
+        );
+        let differ = a.0.iter().zip(&p.0).filter(|(x, y)| x != y).count();
+        println!(
+            "kernels ({}, parallel {parallel}): avx2 vs portable after 1500 steps: {differ} \
+             particles differ in any bit",
+            T::NAME
+        );
+        assert_eq!(differ, 0);
+        assert_eq!(a.1, p.1, "energies");
+        assert_eq!(a.2, p.2, "counts");
+        assert_eq!(a.3, p.3, "wall forces");
+    }
+}
+
+/// A one-material table (glass, friction 0.5, Kuhn's creep).
+fn table1() -> MaterialTable {
+    let glass = Material::new(29e6, 0.23, 0.5, 2500.0).unwrap();
+    MaterialTable::new(&[glass], 0.5, Some(CreepModel::Kuhn), None).unwrap()
+}
+
 #[cfg(feature = "parallel")]
 #[test]
 fn parallel_force_loop_is_deterministic() {

@@ -31,6 +31,7 @@
 use crate::hertz;
 use crate::material::PairMaterial;
 use crate::mindlin::{MindlinState, MindlinStep};
+use crate::pair::finite;
 use crate::steady_law::{CreepModel, SteadyLaw};
 use crate::transient_law;
 use crate::vector::Vec2;
@@ -246,8 +247,8 @@ impl CreepState {
         let roll = du_roll.length();
         let q = self.mindlin.force();
         let q_abs = q.length();
-        let open = !(p > 0.0 && p.is_finite() && a > 0.0);
-        let rolling = roll > 0.0 && roll.is_finite();
+        let open = !(p > 0.0 && finite(p) && a > 0.0);
+        let rolling = roll > 0.0 && finite(roll);
         let mut creep_vec = Vec2::ZERO;
         let mut creep_dissipation = 0.0;
         if model == CreepModel::FittedTransient && (open || !self.lag.iter().all(|v| v.is_finite()))
@@ -297,7 +298,7 @@ impl CreepState {
                 if creep * k_t > q_abs {
                     creep = creep.min(unload_to_zero(q_abs, mu_p, k_t));
                 }
-                if creep.is_finite() && creep > 0.0 {
+                if finite(creep) && creep > 0.0 {
                     creep_vec = q * (creep / q_abs);
                     creep_dissipation = q_abs * creep;
                 }

@@ -95,6 +95,7 @@
 
 use crate::hertz;
 use crate::material::PairMaterial;
+use crate::pair::finite;
 use crate::vector::Vec2;
 
 /// The most pieces (annuli of distinct load history) one contact remembers: the capacity of
@@ -283,8 +284,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
         let () = Self::CAPACITY_OK;
-        let a = if a.is_finite() && a > 0.0 { a } else { 0.0 };
-        let du = if !du.is_finite() {
+        let a = if finite(a) && a > 0.0 { a } else { 0.0 };
+        let du = if !(finite(du.x) && finite(du.y)) {
             Vec2::ZERO
         } else if du.length() > MAX_INCREMENT {
             du * (MAX_INCREMENT / du.length())
@@ -372,6 +373,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         let mut x_lo = 0.0;
         let k2 = kappa * kappa;
         let mut split_bits: u32 = 0;
+        // The depth at the inner end of the piece: the last piece's outer one (`a^2` at 0).
+        let mut s_lo = a2;
         for (i, (p, cut_out)) in self.pieces[..self.n]
             .iter()
             .zip(cuts.iter_mut())
@@ -380,7 +383,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
             // them so and `from_array` refuses other states.
             let hi = p.x_hi;
-            let mut cut = stick_cut(p, kappa, k2, a, a2, x_lo, hi);
+            let s_hi = depth(a, hi);
+            let mut cut = stick_cut(p, kappa, k2, a2, (x_lo, hi), (s_lo, s_hi));
             if cut < hi {
                 // A cut within rounding of an end of the piece is at that end: a sliver of
                 // springs split off by rounding would take a slot of the memory (and change
@@ -397,24 +401,10 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             }
             *cut_out = cut;
             x_lo = hi;
+            s_lo = s_hi;
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
-        let slip = |p: &Piece, cut: f64, dissipated: &mut f64| {
-            let onset = if da2 == 0.0 {
-                Onset::Constant
-            } else if p.x_hi > a_old {
-                Onset::Entering
-            } else {
-                Onset::Shifted(da2)
-            };
-            let (e, work) = slip_piece(p, kappa, a, cut, p.x_hi, onset);
-            *dissipated += 8.0 * pair.g_star * work;
-            Piece {
-                x_hi: p.x_hi,
-                beta: e * kappa,
-                c: Vec2::ZERO,
-            }
-        };
+        let g_star = pair.g_star;
         let (n, d_u2) = if splits == 0 {
             let mut x_lo = 0.0;
             for (i, (p, &cut)) in self.pieces[..self.n]
@@ -424,7 +414,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             {
                 let x_hi = p.x_hi;
                 if cut < x_hi && x_hi > x_lo {
-                    *p = slip(p, cut, &mut dissipated);
+                    *p = slip_to_limit(p, cut, kappa, a, a_old, da2, g_star, &mut dissipated);
                     touched |= 1 << i;
                 }
                 x_lo = x_hi.max(x_lo);
@@ -455,7 +445,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                     pos += 1;
                 }
                 if cut < p.x_hi {
-                    self.pieces[pos] = slip(&p, cut, &mut dissipated);
+                    self.pieces[pos] =
+                        slip_to_limit(&p, cut, kappa, a, a_old, da2, g_star, &mut dissipated);
                     touched_out |= 1 << pos;
                     pos += 1;
                 }
@@ -477,7 +468,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                     m += 1;
                 }
                 if cut < p.x_hi {
-                    out[m] = slip(p, cut, &mut dissipated);
+                    out[m] = slip_to_limit(p, cut, kappa, a, a_old, da2, g_star, &mut dissipated);
                     touched_out |= 1 << m;
                     m += 1;
                 }
@@ -527,6 +518,39 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
     }
 }
 
+/// Puts the springs of the trial piece `p` outside `cut` onto the slip limit (the piece's
+/// slipping part, `u = kappa s e`) and adds its slip work to `dissipated` \[J\]; the slip is
+/// booked at the force the springs had while they slipped (see [`Onset`]): contact radius `a`
+/// \[m\] (`a_old` before the step), `da2 = a^2 - a_old^2` [m^2], shear modulus `g_star` \[Pa\].
+/// Always inlined into its three uses in the update.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn slip_to_limit(
+    p: &Piece,
+    cut: f64,
+    kappa: f64,
+    a: f64,
+    a_old: f64,
+    da2: f64,
+    g_star: f64,
+    dissipated: &mut f64,
+) -> Piece {
+    let onset = if da2 == 0.0 {
+        Onset::Constant
+    } else if p.x_hi > a_old {
+        Onset::Entering
+    } else {
+        Onset::Shifted(da2)
+    };
+    let (e, work) = slip_piece(p, kappa, a, cut, p.x_hi, onset);
+    *dissipated += 8.0 * g_star * work;
+    Piece {
+        x_hi: p.x_hi,
+        beta: e * kappa,
+        c: Vec2::ZERO,
+    }
+}
+
 /// `kappa = mu E* / (4 G* R*)` [1/m]: the slip limit is `L(x) = kappa (a^2 - x^2)`; `+inf` for
 /// `mu = +inf`.
 #[inline]
@@ -557,12 +581,19 @@ fn piece_u2(p: &Piece, a: f64, x1: f64, x2: f64) -> f64 {
 /// `s* = |c|^2 / (sqrt(D) - beta.c)`, `D = (beta.c)^2 + (kappa^2 - |beta|^2) |c|^2`, and its
 /// square root `x = sqrt(a^2 - s*)`. Springs entering the contact can bring `|beta| > kappa`,
 /// and huge or non-finite values may overflow the squares: those go to [`stick_radius`].
+/// `s_lo`, `s_hi` are the depths at `x_lo` and `hi` ([`depth`], shared by neighbours).
 #[inline(always)]
-fn stick_cut(p: &Piece, kappa: f64, k2: f64, a: f64, a2: f64, x_lo: f64, hi: f64) -> f64 {
+fn stick_cut(
+    p: &Piece,
+    kappa: f64,
+    k2: f64,
+    a2: f64,
+    (x_lo, hi): (f64, f64),
+    (s_lo, s_hi): (f64, f64),
+) -> f64 {
     let b2 = p.beta.length_squared();
     // Pieces at the limit have `|beta| = kappa` to rounding (`e kappa` with `|e| = 1 +- eps`).
     if b2 <= k2 * (1.0 + 1e-12) && k2 < f64::INFINITY {
-        let (s_hi, s_lo) = (depth(a, hi), depth(a, x_lo));
         let u_hi = p.beta * s_hi + p.c;
         let q_hi = k2 * (s_hi * s_hi) - u_hi.length_squared();
         if q_hi >= 0.0 {
@@ -577,7 +608,7 @@ fn stick_cut(p: &Piece, kappa: f64, k2: f64, a: f64, a2: f64, x_lo: f64, hi: f64
         let d = bc * bc + (k2 - b2).max(0.0) * c2;
         let den = d.sqrt() - bc;
         let s_star = c2 / den;
-        if q_hi.is_finite() && q_lo.is_finite() && s_star.is_finite() && den > 0.0 {
+        if finite(q_hi) && finite(q_lo) && finite(s_star) && den > 0.0 {
             let r2 = a2 - s_star;
             return if r2 > 0.0 {
                 r2.sqrt().clamp(x_lo, hi)
@@ -661,7 +692,7 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> 
     let is2 = int_s2(a, x1, x2);
     let trial = p.beta * is + p.c * (x2 - x1);
     let l = trial.length();
-    let e = if l > 0.0 && l.is_finite() {
+    let e = if l > 0.0 && finite(l) {
         trial * (1.0 / l)
     } else {
         Vec2::new(1.0, 0.0)
@@ -679,8 +710,8 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> 
 /// `integral (F_on + kappa s) / 2 (b0 + (b1 - kappa) s) dx` [m^3] over `x1 < x <= x2` for
 /// [`Onset::Shifted`]: `F_on = min(kappa (s - da2), b0 + b1 s)`, where `b0 + b1 s` is the trial
 /// displacement along the slip direction; `is`, `is2` are `int_s`, `int_s2` over the annulus.
-/// Kept out of line so that the constant-`P` path stays small.
-#[inline(never)]
+/// Inlined: in a DEM step the normal force changes every step, so this is the common case.
+#[inline(always)]
 fn shifted_slip_work(
     kappa: f64,
     a: f64,
@@ -943,7 +974,7 @@ fn at_limit(p: &Piece, kappa: f64) -> bool {
 fn limit_union(p: &Piece, q: &Piece, a: f64, kappa: f64, lo: f64) -> Piece {
     let sum = p.beta * int_s(a, lo, p.x_hi) + q.beta * int_s(a, p.x_hi, q.x_hi);
     let l = sum.length();
-    let e = if l > 0.0 && l.is_finite() {
+    let e = if l > 0.0 && finite(l) {
         sum * (1.0 / l)
     } else {
         Vec2::new(1.0, 0.0)

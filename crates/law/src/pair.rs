@@ -4,8 +4,8 @@
 //! reporting the energy terms. The compliant regime of creep-rapier and the creep-dem engine
 //! both call it, so their forces on the same configuration agree to rounding; a LAMMPS pair
 //! style can call it through a C ABI (the history is a flat `[f64]`, see
-//! [`ContactHistory::write`] / [`ContactHistory::read`]). For the cheap tier,
-//! [`cheap_sphere_block`] steps [`LANES`] sphere-sphere contacts at once (vector
+//! [`ContactHistory::write`] / [`ContactHistory::read`]). [`cheap_sphere_block`] and
+//! [`exact_sphere_block`] step [`LANES`] sphere-sphere contacts at once (vector
 //! instructions), the same bits as [`pair_force`] lane by lane.
 //!
 //! # The law (all in f64)
@@ -50,7 +50,10 @@ mod history;
 mod kernel;
 mod tiers;
 
-pub use block::{LANES, SphereForces, SphereLanes, SpherePair, block_supports, cheap_sphere_block};
+pub use block::{
+    LANES, SphereForces, SphereLanes, SpherePair, block_supports, cheap_sphere_block,
+    exact_sphere_block,
+};
 pub use constants::{ContactGeometry, PairBody, PairConstants};
 pub use damping::{MIN_RESTITUTION, damping_coefficient};
 pub use history::ContactHistory;

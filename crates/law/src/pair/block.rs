@@ -1,4 +1,6 @@
-//! Four sphere-sphere contacts of the [`Cheap`] tier at once: [`cheap_sphere_block`].
+//! Four sphere-sphere contacts at once: [`cheap_sphere_block`] for the [`Cheap`] tier,
+//! [`exact_sphere_block`] for the [`Exact`] tier (whose Cattaneo-Mindlin memory, a short list
+//! of annuli per contact, runs lane by lane between the shared vector parts described below).
 //!
 //! The same arithmetic as [`pair_force`](super::pair_force) for two movable spheres with the
 //! cheap tier, no rolling resistance and (with creep) Kuhn's steady law, operation for
@@ -21,8 +23,9 @@
 //! `block_equals_the_one_contact_kernel`).
 
 use super::kernel::finite;
-use super::{Cheap, ContactHistory, PairConstants, PairDissipation};
+use super::{Cheap, ContactHistory, Exact, PairConstants, PairDissipation, TangentialLaw};
 use crate::kalker;
+use crate::material::{PairMaterial, Surface};
 use crate::steady_law::SteadyLaw;
 use crate::vector::{Vec2, Vec3};
 
@@ -308,34 +311,40 @@ impl V {
     }
 }
 
-/// The cheap tier's step on [`LANES`] sphere-sphere contacts with the same constants `c`
-/// (which [`block_supports`]), bodies `pairs` and histories `hist[idx[l]]` (none virgin; the
-/// first `used` lanes are contacts, the others repeat one of them and are not written), time
-/// step `dt` \[s\]: for each lane whose bit the returned mask sets, its history is updated
-/// and `out[idx[l]]` holds the contact's outputs, the same bits as [`pair_force`](super::pair_force)
-/// gives on that lane; the other lanes (see the module docs) are left as they were for the
-/// caller's one-contact kernel.
+/// The part of [`pair_force`](super::pair_force) before the tangential law, on [`LANES`]
+/// sphere pairs (either tier): geometry, `R*` and `m*`, Kuhn & Bagi's rates, the carried
+/// basis, Hertz + Tsuji, the displacements in the basis.
+struct Front {
+    /// The lanes the block can take so far.
+    ok: M,
+    n: V,
+    t1: V,
+    t2: V,
+    delta: F,
+    a: F,
+    p_el: F,
+    p_tot: F,
+    damping: F,
+    dux: F,
+    duy: F,
+    drx: F,
+    dry: F,
+    rho_p: F,
+    rho_q: F,
+    r_star: F,
+}
+
+/// [`Front`] of the pairs `pairs` with constants `c`, histories `h` and step `dt` \[s\]: the
+/// one-contact kernel's arithmetic, operation for operation.
 #[inline(always)]
-pub fn cheap_sphere_block(
+fn sphere_front<T: TangentialLaw>(
     c: &PairConstants,
     pairs: &SphereLanes,
-    hist: &mut [ContactHistory<Cheap>],
-    out: &mut [SphereForces],
-    idx: [usize; LANES],
-    used: usize,
+    h: &[&ContactHistory<T>; LANES],
     dt: f64,
-) -> u32 {
-    let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
+) -> Front {
     let pm = &c.material;
     let creep_on = c.creep.is_some();
-    let c11 = match c.steady {
-        SteadyLaw::Kuhn { c11 } => c11,
-        _ if !creep_on => 0.0,
-        _ => return 0,
-    };
-    if c.rolling.is_some() {
-        return 0;
-    }
     let xp = V::load(&pairs.xp);
     let xq = V::load(&pairs.xq);
     let (rp, rq, mp, mq) = (F(pairs.rp), F(pairs.rq), F(pairs.mp), F(pairs.mq));
@@ -439,6 +448,73 @@ pub fn cheap_sphere_block(
     } else {
         (F::splat(0.0), F::splat(0.0))
     };
+
+    Front {
+        ok,
+        n,
+        t1,
+        t2,
+        delta,
+        a,
+        p_el,
+        p_tot,
+        damping,
+        dux,
+        duy,
+        drx,
+        dry,
+        rho_p,
+        rho_q,
+        r_star,
+    }
+}
+
+/// The cheap tier's step on [`LANES`] sphere-sphere contacts with the same constants `c`
+/// (which [`block_supports`]), bodies `pairs` and histories `hist[idx[l]]` (none virgin; the
+/// first `used` lanes are contacts, the others repeat one of them and are not written), time
+/// step `dt` \[s\]: for each lane whose bit the returned mask sets, its history is updated
+/// and `out[idx[l]]` holds the contact's outputs, the same bits as [`pair_force`](super::pair_force)
+/// gives on that lane; the other lanes (see the module docs) are left as they were for the
+/// caller's one-contact kernel.
+#[inline(always)]
+pub fn cheap_sphere_block(
+    c: &PairConstants,
+    pairs: &SphereLanes,
+    hist: &mut [ContactHistory<Cheap>],
+    out: &mut [SphereForces],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+) -> u32 {
+    let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
+    let pm = &c.material;
+    let creep_on = c.creep.is_some();
+    let c11 = match c.steady {
+        SteadyLaw::Kuhn { c11 } => c11,
+        _ if !creep_on => 0.0,
+        _ => return 0,
+    };
+    if c.rolling.is_some() {
+        return 0;
+    }
+    let Front {
+        mut ok,
+        n,
+        t1,
+        t2,
+        delta,
+        a,
+        p_el,
+        p_tot,
+        damping,
+        dux,
+        duy,
+        drx,
+        dry,
+        rho_p,
+        rho_q,
+        r_star: _,
+    } = sphere_front(c, pairs, &h, dt);
 
     // The cheap tier (`Cheap::step`).
     ok = ok
@@ -564,6 +640,112 @@ pub fn cheap_sphere_block(
                 damping: damping.0[l],
                 slip: slip.0[l],
                 creep: creep_e.0[l],
+                rolling: 0.0,
+                truncation: truncation.0[l],
+            },
+        };
+    }
+    done
+}
+
+/// The exact tier's step on [`LANES`] sphere-sphere contacts with the same constants `c`
+/// (which [`block_supports`]), bodies `pairs` and histories `hist[idx[l]]` (none virgin; the
+/// first `used` lanes are contacts, the others repeat one of them and are not written), time
+/// step `dt` \[s\]: [`cheap_sphere_block`]'s contract for [`Exact`]. The part before the
+/// tangential law and the outputs run on the lanes at once; the Cattaneo-Mindlin memory with
+/// Kuhn's creep ([`Exact`]'s step, the one-contact kernel's call) lane by lane. The same bits
+/// as [`pair_force`](super::pair_force) on every lane taken (test
+/// `block_equals_the_one_contact_kernel`).
+#[inline(always)]
+pub fn exact_sphere_block(
+    c: &PairConstants,
+    pairs: &SphereLanes,
+    hist: &mut [ContactHistory<Exact>],
+    out: &mut [SphereForces],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+) -> u32 {
+    if c.rolling.is_some() {
+        return 0;
+    }
+    let f = {
+        let h: [&ContactHistory<Exact>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
+        sphere_front(c, pairs, &h, dt)
+    };
+    let pm = &c.material;
+    let zero = F::splat(0.0);
+    // The lanes the tangential law takes: the front's, with a loaded contact (the one-contact
+    // kernel's other cases go to it).
+    let ok =
+        f.ok.and(f.p_el.gt(zero))
+            .and(f.a.gt(zero))
+            .and(f.p_el.finite())
+            .and(f.a.finite())
+            .0;
+    let (mut q_x, mut q_y) = (zero, zero);
+    let (mut cx, mut cy) = (zero, zero);
+    let (mut slip, mut creep, mut truncation) = (zero, zero, zero);
+    let mut done = 0;
+    for l in 0..used.min(LANES) {
+        if bits(ok[l]) == 0 {
+            continue;
+        }
+        done |= 1 << l;
+        // The one-contact kernel's pair material (`reduced_mass_and_material`).
+        let lane_pm = PairMaterial {
+            r_star: f.r_star.0[l],
+            surface_p: Surface::Sphere(pairs.rp[l]),
+            surface_q: Surface::Sphere(pairs.rq[l]),
+            ..*pm
+        };
+        let hl = &mut hist[idx[l]];
+        let s = Exact::step(
+            &mut hl.tangential,
+            c,
+            &lane_pm,
+            f.p_el.0[l],
+            f.a.0[l],
+            Vec2::new(f.dux.0[l], f.duy.0[l]),
+            Vec2::new(f.drx.0[l], f.dry.0[l]),
+        );
+        (q_x.0[l], q_y.0[l]) = (s.q.x, s.q.y);
+        (cx.0[l], cy.0[l]) = (s.creep_displacement.x, s.creep_displacement.y);
+        (slip.0[l], creep.0[l], truncation.0[l]) = (s.slip, s.creep, s.truncation);
+        hl.t1 = f.t1.lane(l);
+        hl.normal = f.n.lane(l);
+        hl.overlap = f.delta.0[l];
+    }
+
+    // Outputs (the one-contact kernel's, as `cheap_sphere_block`'s).
+    let (t1, t2, n) = (f.t1, f.t2, f.n);
+    let q_world = t1 * q_x + t2 * q_y;
+    let limit = F::splat((1.0 - 1e-9) * pm.mu) * f.p_el;
+    let mu_finite = finite(pm.mu);
+    let sliding = (q_x * q_x + q_y * q_y).ge(limit * limit);
+    let f_p = q_world - n * f.p_tot;
+    let nf = t2 * q_x - t1 * q_y;
+    let v0 = V {
+        x: zero,
+        y: zero,
+        z: zero,
+    };
+    let torque_p = nf * f.rho_p - v0;
+    let torque_q = nf * f.rho_q + v0;
+    for l in 0..used.min(LANES) {
+        if done >> l & 1 == 0 {
+            continue;
+        }
+        out[idx[l]] = SphereForces {
+            force_p: f_p.lane(l),
+            torque_p: torque_p.lane(l),
+            torque_q: torque_q.lane(l),
+            sliding: mu_finite && bits(sliding.0[l]) != 0,
+            creep_displacement: Vec2::new(cx.0[l], cy.0[l]),
+            dissipation: PairDissipation {
+                damping: f.damping.0[l],
+                slip: slip.0[l],
+                creep: creep.0[l],
                 rolling: 0.0,
                 truncation: truncation.0[l],
             },

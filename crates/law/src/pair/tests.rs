@@ -647,6 +647,11 @@ fn carried_tangent_is_the_rotation_to_second_order() {
 
 #[test]
 fn block_equals_the_one_contact_kernel() {
+    block_equals_one_contact::<Cheap>();
+    block_equals_one_contact::<Exact>();
+}
+
+fn block_equals_one_contact<T: TangentialLaw>() {
     // Random sphere pairs in contact, stepped a few times from a loaded history (sticking,
     // sliding and creeping contacts, small and large spins, normals that turn far): every lane
     // the block takes has the one-contact kernel's outputs and history, bit for bit, and the
@@ -670,7 +675,7 @@ fn block_equals_the_one_contact_kernel() {
         let c = constants(mu, 0.6, creep);
         assert!(block_supports(&c));
         let mut pairs = SphereLanes::default();
-        let mut hist = [ContactHistory::<Cheap>::default(); LANES];
+        let mut hist = [ContactHistory::<T>::default(); LANES];
         let mut bodies = Vec::new();
         for l in 0..LANES {
             let (rp, rq) = (0.001 * (1.0 + 0.4 * rnd()), 0.001 * (1.0 + 0.4 * rnd()));
@@ -720,7 +725,7 @@ fn block_equals_the_one_contact_kernel() {
         let before = hist;
         let mut out = [SphereForces::default(); LANES];
         let idx = std::array::from_fn(|l| l);
-        let mask = cheap_sphere_block(&c, &pairs, &mut hist, &mut out, idx, LANES, dt);
+        let mask = T::sphere_block(&c, &pairs, &mut hist, &mut out, idx, LANES, dt);
         for l in 0..LANES {
             lanes += 1;
             if mask >> l & 1 == 0 {
@@ -761,15 +766,15 @@ fn block_equals_the_one_contact_kernel() {
                 [x.damping, x.slip, x.creep, x.rolling, x.truncation].map(f64::to_bits)
             };
             assert_eq!(d(o.dissipation), d(f.dissipation), "case {case} lane {l}");
-            let hb = |h: &ContactHistory<Cheap>| {
-                let mut v = [0.0; ContactHistory::<Cheap>::LEN];
+            let hb = |h: &ContactHistory<T>| {
+                let mut v = vec![0.0; ContactHistory::<T>::LEN];
                 h.write(&mut v).unwrap();
-                v.map(f64::to_bits)
+                v.into_iter().map(f64::to_bits).collect::<Vec<_>>()
             };
             assert_eq!(hb(&hist[l]), hb(&h), "case {case} lane {l}: history");
         }
     }
-    println!("block took {taken} of {lanes} lanes");
+    println!("block ({}) took {taken} of {lanes} lanes", T::NAME);
     assert!(
         taken * 10 > lanes * 6,
         "block took {taken} of {lanes} lanes"

@@ -1,7 +1,7 @@
 //! The tangential tiers: the [`TangentialLaw`] trait, [`Exact`] (Cattaneo-Mindlin memory with
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
-use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block};
+use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block, exact_sphere_block};
 use super::kernel::finite;
 use super::{ContactHistory, PairConstants};
 use crate::LawError;
@@ -63,12 +63,18 @@ pub trait TangentialLaw:
     /// ([`TangentialLaw::sphere_block`]).
     const HAS_BLOCK: bool = false;
 
+    /// Whether the block kernel pays only where four `f64` fit one vector register (AVX): a
+    /// host's build for two-lane registers (SSE2) then runs the one-contact kernel (the same
+    /// bits). The exact tier's, whose memory runs lane by lane between its vector parts.
+    const BLOCK_NEEDS_WIDE: bool = false;
+
     /// [`LANES`] sphere-sphere contacts at once with constants `c`, bodies `pairs`, histories
     /// `hist[idx[l]]` (none virgin; lanes from `n` on repeat one of the first and are not
     /// written) and step `dt` \[s\]: the mask of the lanes done (their histories updated, their
     /// outputs in `out[idx[l]]`, the same bits as [`pair_force`](super::pair_force)'s); the others are
-    /// left for the one-contact kernel. None by default; the cheap tier's is
-    /// [`cheap_sphere_block`](super::cheap_sphere_block).
+    /// left for the one-contact kernel. None by default; the tiers' are
+    /// [`cheap_sphere_block`](super::cheap_sphere_block) and
+    /// [`exact_sphere_block`](super::exact_sphere_block).
     #[inline(always)]
     fn sphere_block(
         c: &PairConstants,
@@ -130,6 +136,22 @@ impl TangentialLaw for Exact {
 
     fn elastic_energy(h: &CreepState, pm: &PairMaterial) -> f64 {
         h.mindlin().elastic_energy(pm)
+    }
+
+    const HAS_BLOCK: bool = true;
+    const BLOCK_NEEDS_WIDE: bool = true;
+
+    #[inline(always)]
+    fn sphere_block(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        out: &mut [SphereForces],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+    ) -> u32 {
+        exact_sphere_block(c, pairs, hist, out, idx, n, dt)
     }
 
     fn write(h: &CreepState, out: &mut [f64]) {
