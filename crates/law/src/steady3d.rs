@@ -505,10 +505,10 @@ pub enum Coverage {
     /// `nu`): within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment on the
     /// error map.
     Table,
-    /// Between two computed `a/b`, linear in `ln(a/b)`: within 3.5 % of `mu P` in each force
+    /// Between two computed `a/b`, linear in `ln(a/b)`: within 4.5 % of `mu P` in each force
     /// and 4 % of `mu P a` in the moment on the error map and its off-grid validation (worst
-    /// measured: Fx 3.28 % at `a/b = 0.85`, `nu = 0.4`; Mz 3.71 % at `a/b = 0.7`, between the
-    /// computed `0.5` and `1`).
+    /// measured: Fy 4.08 % at `a/b = 1.4`, `nu = 0.5`, between the computed `1` and `2`; Mz
+    /// 3.71 % at `a/b = 0.7`, between `0.5` and `1`).
     BetweenRatios,
     /// The fitted law (no computed `a/b` on both sides, or `nu` outside the computed ones).
     Fitted,
