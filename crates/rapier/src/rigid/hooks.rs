@@ -69,6 +69,33 @@ pub(super) fn shard_of(_: ColliderHandle, _: ColliderHandle) -> usize {
 /// nothing for a non-sensor pair and the hooks keep Rapier's default for sensors.
 const CLEARING_MARK: ActiveHooks = ActiveHooks::FILTER_INTERSECTION_PAIR;
 
+/// The flag by which a collider's pairs keep Rapier's contact recycling with the hook on
+/// (feature `rapier-patched`: `ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS`, whose engine then
+/// calls `modify_recycled_solver_contacts` on recycled steps); none without the feature.
+#[cfg(feature = "rapier-patched")]
+const RECYCLE: ActiveHooks = ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS;
+/// (Without the feature `rapier-patched`, crates.io's Rapier has no such flag.)
+#[cfg(not(feature = "rapier-patched"))]
+const RECYCLE: ActiveHooks = ActiveHooks::empty();
+
+/// The recycling opt-in of a registered collider whose hook is on ([`RECYCLE`]): every shape
+/// but a wheel (a cylinder), whose rotation-gap correction (`dist`, crate module `gap`) must
+/// follow each step's spin and cannot be rewritten on a recycled contact. A ball's recycled
+/// contacts get this step's slip target (the hook's recycled path); on the patched engine no
+/// other shape's contacts carry anything that changes from step to step.
+fn recycle_opt_in(co: &Collider) -> ActiveHooks {
+    if RECYCLE.is_empty()
+        || matches!(
+            crate::shape::supported_shape(co),
+            Some(crate::SupportedShape::Wheel { .. })
+        )
+    {
+        ActiveHooks::empty()
+    } else {
+        RECYCLE
+    }
+}
+
 /// Whether a collider's hook is in its clearing step or off (below the activation speed); a
 /// collider no longer in the set counts as quiet.
 pub(super) fn quiet_collider(co: Option<&Collider>) -> bool {
@@ -345,7 +372,7 @@ impl CreepHooks {
                 // Out of Rapier's contact solve altogether (no solver contacts, no hook), so its
                 // pairs keep Rapier's contact recycling: the compliant regime needs only the
                 // narrow phase's pair list, and computes the geometry itself.
-                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS;
+                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS - RECYCLE;
                 if (flags != co.active_hooks() || co.solver_groups() != InteractionGroups::none())
                     && let Some(co) = colliders.get_mut(handle)
                 {
@@ -363,14 +390,16 @@ impl CreepHooks {
                 });
             let flags = co.active_hooks();
             // Active (flag on) -> clearing (flag on, marked: pairs of two quiet colliders are
-            // left as Rapier built them) -> off (flag off: recycled clean).
+            // left as Rapier built them) -> off (flag off: recycled clean). With the feature
+            // `rapier-patched`, an active collider also opts in to recycling ([`RECYCLE`]);
+            // the clearing mark still keeps its pairs from being recycled.
             let modify = ActiveHooks::MODIFY_SOLVER_CONTACTS;
             let wanted = if moving {
-                (flags | modify) - CLEARING_MARK
+                (flags | modify | recycle_opt_in(co)) - CLEARING_MARK
             } else if flags.contains(modify) && !flags.contains(CLEARING_MARK) {
                 flags | CLEARING_MARK
             } else {
-                flags - modify - CLEARING_MARK
+                flags - modify - RECYCLE - CLEARING_MARK
             };
             let on = wanted.contains(modify);
             if wanted != flags
