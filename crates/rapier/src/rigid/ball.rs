@@ -118,8 +118,12 @@ pub(crate) fn recycled_ball_manifold(
     // Rapier localizes a side's anchors in its body's centre-of-mass frame when that side is
     // not dominance-superior (pair_update.rs, "Localize solver contacts"); the lever arm is
     // then relative to the centre of mass, else a world point.
-    let com1 = m.bodies[0].filter(|_| rel_dom <= 0).map(|rb| v3(rb.center_of_mass()));
-    let com2 = m.bodies[1].filter(|_| rel_dom >= 0).map(|rb| v3(rb.center_of_mass()));
+    let com1 = m.bodies[0]
+        .filter(|_| rel_dom <= 0)
+        .map(|rb| v3(rb.center_of_mass()));
+    let com2 = m.bodies[1]
+        .filter(|_| rel_dom >= 0)
+        .map(|rb| v3(rb.center_of_mass()));
     counts.recycled += contacts.len();
     for i in 0..contacts.len() {
         let cid = (contacts.as_slice()[i].contact_id[0] & !NEW_CONTACT_BIT) as usize;
