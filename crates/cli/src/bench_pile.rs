@@ -7,8 +7,9 @@
 //! `creep bench pile --moving --n N [--steps S]`: the cost of the plugin on a poured pile while
 //! it moves. `N` spheres (rounded to a cube `n^3`) fall into a box and settle; plain Rapier
 //! (the plugin's integration parameters), the plugin at `Fidelity::Auto` and the plugin with
-//! creep on every contact step from the same state, in turn each step; the last line prints the
-//! medians of the per-step ratios (`creep_scenes::pile::moving_ratios`).
+//! creep on every contact step from the same state, in turn each step; prints the medians of
+//! the per-step ratios over the pour (the first `creep_scenes::pile::POUR_STEPS` steps) and,
+//! last, over all the steps (`creep_scenes::pile::moving_ratios`).
 
 use std::io::Write;
 
@@ -108,6 +109,11 @@ pub fn run(args: &PileArgs, out: &mut dyn Write) -> Res {
         r.steps,
         r.contacts,
         r.plain_step * 1e3
+    )?;
+    writeln!(
+        out,
+        "median per-step ratios over the pour ({} steps): auto/plain {:.3} creep/plain {:.3}",
+        r.pour_steps, r.pour_auto, r.pour_creep
     )?;
     writeln!(
         out,

@@ -73,8 +73,13 @@
 //!
 //! # Cost
 //! Where things move, most of the plugin's cost is not the hook's: a pair with any active hook
-//! flag is never recycled by Rapier (docs/RAPIER_CONTACT_RECYCLING.md), so a pair that creeps
-//! pays a full contact update and the solver-graph upkeep every step. Inside the hook the
+//! flag is never recycled by crates.io's Rapier (docs/RAPIER_CONTACT_RECYCLING.md), so a pair
+//! that creeps pays a full contact update and the solver-graph upkeep every step. With the
+//! feature `rapier-patched` (the patch series in `upstream/rapier/`) an `Auto` or `Creep`
+//! collider moving slower than 0.1 m/s opts in to recycling
+//! (`ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS`; not a wheel), and on a recycled step the
+//! hook rewrites each ball contact's slip target on the kept solver contacts from this step's
+//! state, as on a full update ([`StepCounts::recycled`] counts them). Inside the hook the
 //! per-pair constants are cached (`creep_law::rigid::RigidPairCache`) and each collider's shape is read once
 //! (one typed-shape call); what remains is the shard's lock, the record's lookup and the law.
 //! `creep bench pile --moving` measures it. Where things rest the hooks go off below

@@ -17,10 +17,11 @@
 //! the one-step lag 2.5e-5 of E0 against the bound 1e-6; 1.0e-7 with the 3-D solve alone). In
 //! the poured pile almost every contact spins, so the shortcut would have saved little there.
 
-use creep_law::kinematics::contact_rates;
+use creep_law::kinematics::{BodyMotion, contact_rates};
 use creep_law::rigid::{RigidContact, RigidPair, ball_creep};
 use creep_law::{PairMaterial, Surface, Vec3};
-use rapier3d::geometry::NEW_CONTACT_BIT;
+use rapier3d::geometry::{ContactData, NEW_CONTACT_BIT};
+use rapier3d::parry::query::TrackedContact;
 use rapier3d::prelude::*;
 
 use super::counts::StepCounts;
@@ -65,8 +66,6 @@ pub(crate) fn ball_manifold(
     store: &mut ContactStore,
     counts: &mut StepCounts,
 ) {
-    let (c1, c2) = m.colliders;
-    let (h1, h2) = m.handles;
     let (s1, s2) = m.surfaces;
     let dt = m.dt;
     let n = v3(*rigid.normal);
@@ -85,65 +84,147 @@ pub(crate) fn ball_manifold(
         let Some(point) = rigid.manifold.points.get(cid) else {
             continue;
         };
-        let key = ContactKey {
-            collider1: c1,
-            collider2: c2,
-            feature1: point.fid1.0,
-            feature2: point.fid2.0,
-        };
-        let c = (a1 + a2) * 0.5;
-        let rec = store.touch(key);
-        rec.bodies = (h1, h2);
-        let normal_impulse = f64::from(point.data.impulse);
-        let p_force = normal_impulse / dt;
-        rec.p = p_force;
-        let n_prev = std::mem::replace(&mut rec.normal, n);
-        rec.torque = Vec3::ZERO;
-        rec.spin_torque = Vec3::ZERO;
-        // Contact-torque rolling resistance (computed here, applied after the step).
-        if let Some(model) = m.rolling {
-            let rates = contact_rates(&p_motion, &q_motion, c, n);
-            counts.rolling_torque += 1;
-            rec.torque = rolling_torque(
-                &model,
-                rec,
-                m.body_set,
-                (h1, h2),
-                &m.pair,
-                p_force,
-                rates.w_roll,
-                n,
-                dt,
-            );
-        }
-        if m.fidelity == Fidelity::Coulomb {
-            counts.coulomb_requested += 1;
-            rec.target = Vec3::ZERO;
-            continue;
-        }
-        // Last step's friction impulse on body 1: in the solver's tangent basis of that step's
-        // normal. (`warmstart_tangent_world` holds the last substep only and reads zero on
-        // most rolling steps: a direction taken from it never follows a reversal.)
-        let (t1, t2) = solver_tangents(if n_prev == Vec3::ZERO { n } else { n_prev });
-        let ti = point.data.tangent_impulse;
-        let contact = RigidContact {
+        let contact = BallContact {
             normal: n,
-            point: c,
+            point: (a1 + a2) * 0.5,
             p: p_motion,
             q: q_motion,
-            normal_impulse,
-            tangent_impulse: t1 * f64::from(ti.x) + t2 * f64::from(ti.y),
-            last_target: rec.target,
-            dt,
-            auto_tolerance: m.auto_tolerance,
         };
-        let out = ball_creep(&m.pair, m.consts, &contact, |d| {
-            inverse_mass_of(m.bodies, vf(c), vf(d), vf(d))
-        });
-        counts.book(&out, 1);
-        rec.set_creep(&out);
-        if out.creeps() {
-            sc.tangent_velocity += vf(out.target);
+        if let Some(target) = ball_contact(m, &contact, point, store, counts) {
+            sc.tangent_velocity += vf(target);
         }
     }
+}
+
+/// The creep slip targets of one ball manifold that Rapier recycled this step (feature
+/// `rapier-patched`: `ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS`): the solver contacts are
+/// those of the pair's last full update, localized, so the contact point is rebuilt as the
+/// solver rebuilds it (the lever arms `solver_dp1/dp2` frozen at that update, from each body's
+/// current centre of mass, or in world space for a world-attached side) and the normal is the
+/// manifold's, frozen with them. Each contact's `tangent_velocity` is rewritten with this
+/// step's target, as [`ball_manifold`] would set it on a full update (the patched engine needs
+/// no rotation-gap correction on a ball, so the target is all it holds).
+#[cfg(feature = "rapier-patched")]
+pub(crate) fn recycled_ball_manifold(
+    m: &BallManifold,
+    manifold: &ContactManifold,
+    contacts: &mut rapier3d::pipeline::RecycledSolverContacts,
+    store: &mut ContactStore,
+    counts: &mut StepCounts,
+) {
+    let (s1, s2) = m.surfaces;
+    let n = v3(manifold.data.normal);
+    let rel_dom = manifold.data.relative_dominance;
+    // Rapier localizes a side's anchors in its body's centre-of-mass frame when that side is
+    // not dominance-superior (pair_update.rs, "Localize solver contacts"); the lever arm is
+    // then relative to the centre of mass, else a world point.
+    let com1 = m.bodies[0]
+        .filter(|_| rel_dom <= 0)
+        .map(|rb| v3(rb.center_of_mass()));
+    let com2 = m.bodies[1]
+        .filter(|_| rel_dom >= 0)
+        .map(|rb| v3(rb.center_of_mass()));
+    counts.recycled += contacts.len();
+    for i in 0..contacts.len() {
+        let cid = (contacts.as_slice()[i].contact_id[0] & !NEW_CONTACT_BIT) as usize;
+        let Some(point) = manifold.points.get(cid) else {
+            continue;
+        };
+        let c1 = com1.unwrap_or(Vec3::ZERO) + v3(point.data.solver_dp1);
+        let c2 = com2.unwrap_or(Vec3::ZERO) + v3(point.data.solver_dp2);
+        let c = (c1 + c2) * 0.5;
+        let contact = BallContact {
+            normal: n,
+            point: c,
+            p: body_motion(m.bodies[0], c - n, s1),
+            q: body_motion(m.bodies[1], c + n, s2),
+        };
+        let target = ball_contact(m, &contact, point, store, counts);
+        contacts.set_tangent_velocity(i, target.map_or(Vector::ZERO, vf));
+    }
+}
+
+/// One contact of a ball manifold as the law reads it.
+struct BallContact {
+    /// The manifold's normal (from body 1 to body 2).
+    normal: Vec3,
+    /// The contact point \[m\] (world).
+    point: Vec3,
+    /// Body 1's motion.
+    p: BodyMotion,
+    /// Body 2's motion.
+    q: BodyMotion,
+}
+
+/// One contact of a ball manifold: its record, the contact-torque rolling moment, the kernel's
+/// creep (booked in `counts`). Returns the slip target to add to the contact's
+/// `tangent_velocity` when the contact creeps.
+fn ball_contact(
+    m: &BallManifold,
+    contact: &BallContact,
+    point: &TrackedContact<ContactData>,
+    store: &mut ContactStore,
+    counts: &mut StepCounts,
+) -> Option<Vec3> {
+    let (c1, c2) = m.colliders;
+    let (h1, h2) = m.handles;
+    let dt = m.dt;
+    let (n, c) = (contact.normal, contact.point);
+    let key = ContactKey {
+        collider1: c1,
+        collider2: c2,
+        feature1: point.fid1.0,
+        feature2: point.fid2.0,
+    };
+    let rec = store.touch(key);
+    rec.bodies = (h1, h2);
+    let normal_impulse = f64::from(point.data.impulse);
+    let p_force = normal_impulse / dt;
+    rec.p = p_force;
+    let n_prev = std::mem::replace(&mut rec.normal, n);
+    rec.torque = Vec3::ZERO;
+    rec.spin_torque = Vec3::ZERO;
+    // Contact-torque rolling resistance (computed here, applied after the step).
+    if let Some(model) = m.rolling {
+        let rates = contact_rates(&contact.p, &contact.q, c, n);
+        counts.rolling_torque += 1;
+        rec.torque = rolling_torque(
+            &model,
+            rec,
+            m.body_set,
+            (h1, h2),
+            &m.pair,
+            p_force,
+            rates.w_roll,
+            n,
+            dt,
+        );
+    }
+    if m.fidelity == Fidelity::Coulomb {
+        counts.coulomb_requested += 1;
+        rec.target = Vec3::ZERO;
+        return None;
+    }
+    // Last step's friction impulse on body 1: in the solver's tangent basis of that step's
+    // normal. (`warmstart_tangent_world` holds the last substep only and reads zero on
+    // most rolling steps: a direction taken from it never follows a reversal.)
+    let (t1, t2) = solver_tangents(if n_prev == Vec3::ZERO { n } else { n_prev });
+    let ti = point.data.tangent_impulse;
+    let rigid_contact = RigidContact {
+        normal: n,
+        point: c,
+        p: contact.p,
+        q: contact.q,
+        normal_impulse,
+        tangent_impulse: t1 * f64::from(ti.x) + t2 * f64::from(ti.y),
+        last_target: rec.target,
+        dt,
+        auto_tolerance: m.auto_tolerance,
+    };
+    let out = ball_creep(&m.pair, m.consts, &rigid_contact, |d| {
+        inverse_mass_of(m.bodies, vf(c), vf(d), vf(d))
+    });
+    counts.book(&out, 1);
+    rec.set_creep(&out);
+    out.creeps().then_some(out.target)
 }

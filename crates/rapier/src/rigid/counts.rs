@@ -26,6 +26,11 @@ pub struct StepCounts {
     pub creep: usize,
     /// Contacts with a contact-torque rolling model.
     pub rolling_torque: usize,
+    /// Ball contacts, among the above, of pairs whose contacts Rapier recycled this step
+    /// (kept from the pair's last full update) and whose slip target the hook rewrote on the
+    /// kept solver contacts. Nonzero only with the feature `rapier-patched`, whose engine
+    /// recycles hooked pairs that opt in (`ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS`).
+    pub recycled: usize,
     /// Power dissipated by creep, `sum Q . v_disp` \[W\] (>= 0).
     pub creep_power: f64,
     /// Largest loop gain `g` of the Q -> slip -> Q feedback this step (see the module docs).
@@ -61,6 +66,7 @@ impl StepCounts {
         self.coulomb_auto += o.coulomb_auto;
         self.creep += o.creep;
         self.rolling_torque += o.rolling_torque;
+        self.recycled += o.recycled;
         self.creep_power += o.creep_power;
         self.max_loop_gain = self.max_loop_gain.max(o.max_loop_gain);
         self.hooks_on += o.hooks_on;

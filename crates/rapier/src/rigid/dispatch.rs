@@ -6,12 +6,16 @@ use std::sync::atomic::Ordering;
 use creep_law::Surface;
 use rapier3d::prelude::*;
 
+#[cfg(feature = "rapier-patched")]
+use super::ball::recycled_ball_manifold;
 use super::ball::{BallManifold, ball_manifold};
 use super::hooks::{CreepHooks, Shard, quiet_collider, shard_of};
 use super::wheel::{WheelCtx, wheel_manifold};
 use crate::convert::{body_motion, v3, vf};
 use crate::gap::rotation_gap_correction;
-use crate::registry::{Fidelity, Regime, RollingResistance};
+use creep_law::rigid::RigidPairCache;
+
+use crate::registry::{CreepMaterial, Fidelity, Regime, RollingResistance};
 
 impl PhysicsHooks for CreepHooks {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
@@ -92,45 +96,31 @@ impl PhysicsHooks for CreepHooks {
             h1.and_then(|h| bodies.get(h)),
             h2.and_then(|h| bodies.get(h)),
         ];
-        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
-        // A ball on either side of a supported shape: the ball path (module `ball`), with
-        // the pair's constants computed once per pair of materials (`creep_law::rigid::RigidPairCache`).
         let mu = f64::from(*rigid.friction);
-        let ball = match (law1, law2) {
-            (Some(s1), Some(s2)) if is_sphere(s1) || is_sphere(s2) => pairs
-                .get(&m1.material, &m2.material, mu, self.settings.creep_model)
-                .and_then(|k| k.pair_for(s1, s2).map(|p| (s1, s2, k, p))),
-            _ => None,
-        };
-        if let Some((s1, s2, consts, pair)) = ball {
-            let rolling = match (m1.rolling, m2.rolling) {
-                (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
-                _ => None,
-            };
-            let manifold = BallManifold {
-                colliders: (c1, c2),
-                handles: (h1, h2),
-                bodies: rbs,
-                body_set: bodies,
-                surfaces: (s1, s2),
-                pair,
-                consts,
-                fidelity,
-                rolling,
-                dt: self.dt,
-                // The patched Rapier (feature `rapier-patched`) reads no rotation gap on a
-                // ball: nothing to correct (crate::gap).
-                gap_substeps: (self.settings.anchor_drift_correction
-                    && !cfg!(feature = "rapier-patched"))
-                .then_some(self.substeps),
-                auto_tolerance: (fidelity == Fidelity::Auto)
-                    .then_some(self.settings.auto_tolerance),
-            };
+        // The patched Rapier (feature `rapier-patched`) reads no rotation gap on a ball:
+        // nothing to correct (crate::gap).
+        let gap_substeps = (self.settings.anchor_drift_correction
+            && !cfg!(feature = "rapier-patched"))
+        .then_some(self.substeps);
+        let ball = self.ball_of(
+            (c1, c2),
+            (h1, h2),
+            (m1, m2),
+            (law1, law2),
+            mu,
+            rbs,
+            bodies,
+            pairs,
+            fidelity,
+            gap_substeps,
+        );
+        if let Some(manifold) = ball {
             // (The rotation-gap correction below is done there, contact by contact, on the
             // same motions as the creep.)
             ball_manifold(&manifold, rigid, store, counts);
             return;
         }
+        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
         if self.settings.anchor_drift_correction {
             // Every registered pair, whatever its shapes and fidelity: Rapier's rotation gap
             // (see `rotation_gap`) is the engine's, not creep's.
@@ -182,6 +172,120 @@ impl PhysicsHooks for CreepHooks {
             // No supported shape, or a ball pair the law refuses (a bad radius or friction).
             _ => counts.coulomb_unsupported += n_contacts,
         }
+    }
+    /// A recycled step's hook (feature `rapier-patched`; the colliders that opt in are set by
+    /// [`CreepHooks::update_activation`]): a ball manifold gets this step's slip targets on
+    /// the solver contacts kept from the pair's last full update (module `ball`), as on a full
+    /// update; any other manifold keeps what the full update wrote (its rotation-gap correction
+    /// is zero on the patched engine, and wheels do not opt in) and is counted as there.
+    #[cfg(feature = "rapier-patched")]
+    fn modify_recycled_solver_contacts(&self, context: &mut RecycledContactModificationContext) {
+        let (c1, c2) = (context.collider1, context.collider2);
+        let (h1, h2) = (context.rigid_body1, context.rigid_body2);
+        let (bodies, colliders, manifold) = (context.bodies, context.colliders, context.manifold);
+        let contacts = &mut context.solver_contacts;
+        let n_contacts = contacts.len();
+        if !self.prepared {
+            self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
+            return;
+        }
+        let mut shard = self.shards[shard_of(c1, c2)]
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        let Shard {
+            store,
+            counts,
+            pairs,
+            ..
+        } = &mut *shard;
+        let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
+            counts.coulomb_unregistered += n_contacts;
+            return;
+        };
+        let (co1, co2) = (colliders.get(c1), colliders.get(c2));
+        // (A compliant pair has no solver contacts, so it is never called here.)
+        let Regime::Rigid(fidelity) = m1.regime.pair(m2.regime) else {
+            return;
+        };
+        if quiet_collider(co1) && quiet_collider(co2) {
+            counts.quiet += n_contacts;
+            return;
+        }
+        let (law1, _) = co1.map_or((None, None), shape_surfaces);
+        let (law2, _) = co2.map_or((None, None), shape_surfaces);
+        let rbs = [
+            h1.and_then(|h| bodies.get(h)),
+            h2.and_then(|h| bodies.get(h)),
+        ];
+        let ball = self.ball_of(
+            (c1, c2),
+            (h1, h2),
+            (m1, m2),
+            (law1, law2),
+            f64::from(manifold.data.friction),
+            rbs,
+            bodies,
+            pairs,
+            fidelity,
+            None,
+        );
+        if let Some(m) = ball {
+            recycled_ball_manifold(&m, manifold, contacts, store, counts);
+            return;
+        }
+        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
+        match (law1, law2) {
+            (Some(s1), Some(s2)) if !is_sphere(s1) && !is_sphere(s2) => {
+                counts.coulomb_no_sphere += n_contacts;
+            }
+            _ => counts.coulomb_unsupported += n_contacts,
+        }
+    }
+}
+
+impl CreepHooks {
+    /// The ball path's view of a manifold (module `ball`) when a ball is on either side of a
+    /// supported shape and the law takes the pair, with the pair's constants computed once per
+    /// pair of materials (`creep_law::rigid::RigidPairCache`); `None` otherwise.
+    #[allow(clippy::too_many_arguments)]
+    fn ball_of<'a>(
+        &self,
+        colliders: (ColliderHandle, ColliderHandle),
+        handles: (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
+        (m1, m2): (&CreepMaterial, &CreepMaterial),
+        laws: (Option<Surface>, Option<Surface>),
+        mu: f64,
+        bodies: [Option<&'a RigidBody>; 2],
+        body_set: &'a RigidBodySet,
+        pairs: &'a mut RigidPairCache,
+        fidelity: Fidelity,
+        gap_substeps: Option<usize>,
+    ) -> Option<BallManifold<'a>> {
+        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
+        let (s1, s2, consts, pair) = match laws {
+            (Some(s1), Some(s2)) if is_sphere(s1) || is_sphere(s2) => pairs
+                .get(&m1.material, &m2.material, mu, self.settings.creep_model)
+                .and_then(|k| k.pair_for(s1, s2).map(|p| (s1, s2, k, p)))?,
+            _ => return None,
+        };
+        let rolling = match (m1.rolling, m2.rolling) {
+            (RollingResistance::Torque(m), _) | (_, RollingResistance::Torque(m)) => Some(m),
+            _ => None,
+        };
+        Some(BallManifold {
+            colliders,
+            handles,
+            bodies,
+            body_set,
+            surfaces: (s1, s2),
+            pair,
+            consts,
+            fidelity,
+            rolling,
+            dt: self.dt,
+            gap_substeps,
+            auto_tolerance: (fidelity == Fidelity::Auto).then_some(self.settings.auto_tolerance),
+        })
     }
 }
 

@@ -12,7 +12,7 @@ use super::counts::StepCounts;
 use super::crowns::Crowns;
 use super::settings::{CreepSettings, check_parameters};
 use crate::error::PluginError;
-use crate::registry::{CreepMaterial, Fidelity, MaterialRegistry, RollingResistance};
+use crate::registry::{CreepMaterial, Fidelity, MaterialRegistry, Regime, RollingResistance};
 use crate::rolling::apply_rolling_impulse;
 use crate::store::{ContactKey, ContactRecord, ContactStore};
 use crate::warning::{CreepWarning, ROTATION_GAP_TURN, WarnedSet};
@@ -68,6 +68,48 @@ pub(super) fn shard_of(_: ColliderHandle, _: ColliderHandle) -> usize {
 /// hooks) steps exactly as the original. `FILTER_INTERSECTION_PAIR` is used because it does
 /// nothing for a non-sensor pair and the hooks keep Rapier's default for sensors.
 const CLEARING_MARK: ActiveHooks = ActiveHooks::FILTER_INTERSECTION_PAIR;
+
+/// The flag by which a collider's pairs keep Rapier's contact recycling with the hook on
+/// (feature `rapier-patched`: `ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS`, whose engine then
+/// calls `modify_recycled_solver_contacts` on recycled steps); none without the feature.
+#[cfg(feature = "rapier-patched")]
+const RECYCLE: ActiveHooks = ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS;
+/// (Without the feature `rapier-patched`, crates.io's Rapier has no such flag.)
+#[cfg(not(feature = "rapier-patched"))]
+const RECYCLE: ActiveHooks = ActiveHooks::empty();
+
+/// Speed \[m/s\] (`|v| + |w| r`, as for [`CreepSettings::activation_speed`]) below which an
+/// active collider opts in to recycling ([`recycle_opt_in`]). A recycled contact keeps the
+/// lever arms of its pair's last full update, and Rapier's friction position bias reads the
+/// bodies' motion since then as a tangential offset: on a rolling contact that is a spurious
+/// slip (the friction drive's Coulomb run, 0.05 m steel spheres turning at 10 rad/s, 1/240 s:
+/// 2.9e-4 recycled against 6e-7 fully updated each step, above the creepage of steel at low
+/// load, 1e-4). Below this speed a pair drifts at most 1.7 mm in a 1/60 s step.
+const RECYCLE_SPEED: f32 = 0.1;
+
+/// The recycling opt-in of a registered collider whose hook is on ([`RECYCLE`]): a collider
+/// of `Auto` or `Creep` fidelity whose body moves slower than [`RECYCLE_SPEED`], and not a
+/// wheel (a cylinder), whose rotation-gap correction (`dist`, crate module `gap`) must follow
+/// each step's spin and cannot be rewritten on a recycled contact. A ball's recycled contacts
+/// get this step's slip target (the hook's recycled path); on the patched engine no other
+/// shape's contacts carry anything that changes from step to step. (A `Coulomb` collider's
+/// contacts get nothing from the hook: it keeps Rapier's full updates while its hook is on.)
+fn recycle_opt_in(co: &Collider, mat: &CreepMaterial, bodies: &RigidBodySet) -> ActiveHooks {
+    if RECYCLE.is_empty()
+        || !matches!(mat.regime, Regime::Rigid(Fidelity::Auto | Fidelity::Creep))
+        || matches!(
+            crate::shape::supported_shape(co),
+            Some(crate::SupportedShape::Wheel { .. })
+        )
+    {
+        return ActiveHooks::empty();
+    }
+    let slow = co.parent().and_then(|h| bodies.get(h)).is_none_or(|rb| {
+        let r = co.shape().compute_local_bounding_sphere().radius;
+        rb.linvel().length() + rb.angvel().length() * r < RECYCLE_SPEED
+    });
+    if slow { RECYCLE } else { ActiveHooks::empty() }
+}
 
 /// Whether a collider's hook is in its clearing step or off (below the activation speed); a
 /// collider no longer in the set counts as quiet.
@@ -345,7 +387,7 @@ impl CreepHooks {
                 // Out of Rapier's contact solve altogether (no solver contacts, no hook), so its
                 // pairs keep Rapier's contact recycling: the compliant regime needs only the
                 // narrow phase's pair list, and computes the geometry itself.
-                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS;
+                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS - RECYCLE;
                 if (flags != co.active_hooks() || co.solver_groups() != InteractionGroups::none())
                     && let Some(co) = colliders.get_mut(handle)
                 {
@@ -363,14 +405,17 @@ impl CreepHooks {
                 });
             let flags = co.active_hooks();
             // Active (flag on) -> clearing (flag on, marked: pairs of two quiet colliders are
-            // left as Rapier built them) -> off (flag off: recycled clean).
+            // left as Rapier built them) -> off (flag off: recycled clean). With the feature
+            // `rapier-patched`, an active collider may opt in to recycling ([`RECYCLE`],
+            // [`recycle_opt_in`]); the clearing mark still keeps its pairs from being recycled.
             let modify = ActiveHooks::MODIFY_SOLVER_CONTACTS;
             let wanted = if moving {
-                (flags | modify) - CLEARING_MARK
+                let opt_in = recycle_opt_in(co, mat, bodies);
+                (flags | modify | opt_in) - CLEARING_MARK - (RECYCLE - opt_in)
             } else if flags.contains(modify) && !flags.contains(CLEARING_MARK) {
                 flags | CLEARING_MARK
             } else {
-                flags - modify - CLEARING_MARK
+                flags - modify - RECYCLE - CLEARING_MARK
             };
             let on = wanted.contains(modify);
             if wanted != flags
