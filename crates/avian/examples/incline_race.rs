@@ -12,7 +12,7 @@
 //! Keys: F cycles the creep lane's fidelity (Creep, Auto, Coulomb), M cycles the material
 //! (steel, glass, rubber), R restarts, Space pauses, +/- physics steps per frame, Esc quits.
 //!
-//! Run: `cargo run --release -p creep-avian --features render --example incline_race --ignore-rust-version`
+//! Run: `cargo run -p creep-avian --features render --example incline_race --ignore-rust-version`
 //! (`-- --screenshot out.png --frames 60` renders 60 frames, saves a screenshot and exits).
 
 use std::path::PathBuf;
@@ -278,7 +278,16 @@ fn main() {
         .add_systems(Startup, setup)
         .add_systems(
             Update,
-            (keys, restart, run_physics, follow_camera, panel, draw_lanes, frames).chain(),
+            (
+                keys,
+                restart,
+                run_physics,
+                follow_camera,
+                panel,
+                draw_lanes,
+                frames,
+            )
+                .chain(),
         )
         .run();
 }
@@ -669,8 +678,7 @@ fn panel(
     );
     let names = ["Coulomb twin", "creep ball"];
     let fidelities = [Fidelity::Coulomb, race.fidelity];
-    for k in 0..2 {
-        let l = &race.lanes[k];
+    for (k, l) in race.lanes.iter().enumerate() {
         s += &format!(
             "{:>12} ({:?}): x {:6.3} m  v {:5.3} m/s  slip {}\n",
             names[k],
@@ -703,11 +711,7 @@ fn panel(
     }
     // The figure: Kalker's creepage, the measured creep slip, the twin's own slip.
     let figures = [kalker, measured, slips[0]];
-    let scale = figures
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, x| m.max(x.abs()))
-        * 1.1;
+    let scale = figures.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs())) * 1.1;
     for (mut node, bar) in &mut bars {
         let w = match figures[bar.0] {
             Some(x) if scale > 0.0 => (x.abs() / scale) as f32 * BAR_WIDTH,
