@@ -15,7 +15,8 @@
 //!
 //! `-- --count CASE [--blend] [--passes P]` evaluates one variant only (`CASE` 0-7: the
 //! table's cases in order; `--blend`: `Steady3d::two_row_blend`; `CASE` `fss`: `F_ss`; `P`
-//! passes over the 4096 inputs, default 20) in the function `count_batch`, for a load-free
+//! passes over the 4096 inputs, default 20; `--far` in both modes: the inputs times ten, beyond
+//! the law's box) in the function `count_batch`, for a load-free
 //! instruction count per evaluation:
 //! `valgrind --tool=callgrind --toggle-collect='*count_batch*' BENCH_BINARY --count 2`
 //! (instructions of `count_batch` / (4096 P)). `-- --time CASE [--blend]` prints that
@@ -275,9 +276,19 @@ fn count_batch(xs: &[[f64; 3]], passes: usize, f: &dyn Fn(&[f64; 3]) -> f64) -> 
     acc
 }
 
+/// The inputs of the `--count` and `--time` modes: [`table_inputs`], times ten with `--far`
+/// (beyond the law's box, `Steady3d::loads`).
+fn mode_inputs() -> Vec<[f64; 3]> {
+    let mut xs = table_inputs();
+    if std::env::args().any(|a| a == "--far") {
+        xs.iter_mut().for_each(|v| *v = v.map(|c| 10.0 * c));
+    }
+    xs
+}
+
 /// The `--count` mode (module documentation).
 fn count_mode(case: &str, blend: bool, passes: usize) {
-    let xs = table_inputs();
+    let xs = mode_inputs();
     let acc = if case == "fss" {
         let kuhn = SteadyLaw::Kuhn {
             c11: kalker::c11(0.25),
@@ -302,7 +313,7 @@ fn count_mode(case: &str, blend: bool, passes: usize) {
 /// The `--time` mode (module documentation): CPU ns per evaluation of one variant, the median
 /// of 3 measurements of 1000 passes (for alternating two binaries in a script).
 fn time_mode(case: &str, blend: bool) {
-    let xs = table_inputs();
+    let xs = mode_inputs();
     let (ab, nu) = if case == "fss" {
         (1.0, 0.25)
     } else {

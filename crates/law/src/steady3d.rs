@@ -25,15 +25,25 @@
 //! rolling direction): `xi -> -xi` negates `Fx`; `(eta, phi) -> -(eta, phi)` negates `Fy` and
 //! `Mz`. Within the grid the loads are trilinear in `(xi_n, eta_n, phi_n)` (a convex combination
 //! of the eight corners: `|F| <= mu P` holds since it holds at every node, where the
-//! extrapolation's excess is scaled onto it); beyond it the creepage is scaled onto the grid's
-//! box along its direction (deep in full slip the loads depend on the direction only: the
-//! traction is `mu p` along the rigid slip). Between two computed `nu` of one `a/b` the two
+//! extrapolation's excess is scaled onto it); beyond it see "Beyond the box". Between two
+//! computed `nu` of one `a/b` the two
 //! tables' loads are blended linearly in `nu`; between two computed `a/b` whose rows both cover
 //! `nu`, the two rows' loads are blended linearly in `ln(a/b)` ([`Coverage::BetweenRatios`],
 //! looser bounds). Elsewhere (an `a/b` below the lowest or above the highest computed one, or a
 //! `nu` outside the computed ones) the fitted law below ([`Steady3d::coverage`] says which).
 //! The computed nodes are listed by [`lut::nodes`] and in docs/CREEP3D.md. The inverse at zero spin,
 //! [`Steady3d::creepages_for_force`], is the fitted law's everywhere.
+//!
+//! # Beyond the box
+//!
+//! Beyond the box `|xi_n|, |eta_n| <= 2`, `|phi_n| <= 4` (the table's, and the fitted law's as
+//! well), with `s > 1` the largest of `|xi_n|/2, |eta_n|/2, |phi_n|/4`, the loads are
+//! `L = L_fs + (L_edge - L_fs)/s`: `L_edge` the loads where the ray of the creepage leaves the
+//! box, `L_fs` the loads of full slip in its direction ([`full_slip`]: the traction `mu p` along
+//! the rigid slip everywhere, Kalker 1990, sec. 2.2). A spin keeps a sticking patch around its
+//! pole that shrinks as `1/s` (the boundary elements along rays, creep-reference's example
+//! `steady3d_far`); a translation is in full slip at the edge already. docs/CREEP3D.md,
+//! "Beyond the box", grades it.
 //!
 //! Regenerate a node with `cargo run --release -p creep-reference --example steady3d_lut --
 //! solve AB NU [N]` (resumable; the CSV in `crates/reference/data/steady3d_lut/`) and the data
@@ -394,6 +404,8 @@ pub struct Steady3d {
     /// The boundary-element table where it covers `(a/b, nu)` (module documentation, "The
     /// table"); `None`: the fitted law above.
     lut: Option<lut::Lut>,
+    /// The loads of full slip at this `a/b` (beyond the box, module documentation).
+    fs: full_slip::FullSlip,
 }
 
 /// Normalised loads `(Fx/(mu P), Fy/(mu P), Mz/(mu P c))`.
@@ -559,6 +571,7 @@ impl Steady3d {
             rows: [row, SpinRow { w: 0.0, ..row }],
             corr: correction::SpinCorrection::OFF,
             lut: None,
+            fs: full_slip::FullSlip::at(ab),
         })
     }
 
@@ -623,7 +636,7 @@ impl Steady3d {
     }
 
     /// [`Steady3d::loads`] for inputs not finite (zero loads), beyond [`CREEPAGE_CLAMP`]
-    /// (clamped: far in full slip the loads no longer change, to ~1e-6, and clamping keeps
+    /// (clamped: the loads there are full slip's to ~1e-6 of `mu P`, and clamping keeps
     /// the squares below finite overflow for any finite input) or all below
     /// [`TINY_CREEPAGE`] (Kalker's linear theory, exact to rounding there, where the products
     /// of the shared divisions would underflow).
@@ -649,9 +662,42 @@ impl Steady3d {
         self.loads_in_range(xi_n, eta_n, phi_n)
     }
 
-    /// [`Steady3d::loads`] for finite creepages within the clamp, not all tiny.
+    /// [`Steady3d::loads`] for finite creepages within the clamp, not all tiny: within the
+    /// box `|xi_n|, |eta_n| <= 2`, `|phi_n| <= 4` the table or the fitted law; beyond it,
+    /// [`Steady3d::beyond_the_box`].
     #[inline(always)]
     fn loads_in_range(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+        let (ax, ay) = (xi_n.abs(), eta_n.abs());
+        let m = if ax > ay { ax } else { ay };
+        let s = (m * (1.0 / lut::XI_MAX)).max(phi_n.abs() * (1.0 / lut::PHI_MAX));
+        if s > 1.0 {
+            return self.beyond_the_box(xi_n, eta_n, phi_n, s);
+        }
+        self.in_the_box(xi_n, eta_n, phi_n)
+    }
+
+    /// Beyond the box (`s > 1` the largest of `|xi_n|/2, |eta_n|/2, |phi_n|/4`): the loads
+    /// approach full slip's ([`full_slip`], a function of the creepage's direction) as `1/s`,
+    /// `L = L_fs + (L_edge - L_fs)/s` from the loads `L_edge` where the ray of the creepage
+    /// leaves the box. Where a spin keeps a sticking patch around its pole, the boundary
+    /// elements show this decay (the patch shrinks as `1/s`; `steady3d_far`, creep-reference);
+    /// where a translation dominates, the edge is in full slip already. A convex combination of
+    /// two loads within Coulomb's bound, so within it.
+    #[inline(never)]
+    fn beyond_the_box(&self, xi_n: f64, eta_n: f64, phi_n: f64, s: f64) -> Loads {
+        let k = 1.0 / s;
+        let e = self.in_the_box(xi_n * k, eta_n * k, phi_n * k);
+        let f = self.fs.loads(xi_n, eta_n, phi_n);
+        Loads {
+            fx: f.fx + (e.fx - f.fx) * k,
+            fy: f.fy + (e.fy - f.fy) * k,
+            mz: f.mz + (e.mz - f.mz) * k,
+        }
+    }
+
+    /// The loads within the box: the table where it covers the contact, else the fitted law.
+    #[inline(always)]
+    fn in_the_box(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         if let Some(t) = &self.lut {
             return t.loads(xi_n, eta_n, phi_n);
         }
@@ -932,6 +978,8 @@ fn turn_weight(beta: f64, x: f64, s: f64) -> f64 {
 
 mod between;
 mod correction;
+pub mod full_slip;
+mod full_slip_data;
 pub mod lut;
 mod lut_data;
 mod row;

@@ -106,8 +106,8 @@ fn solve(ab: f64, nu: f64, grid: usize) -> Result<(), Box<dyn std::error::Error>
                     ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
                 } else {
                     (
-                        coarse.solve_normalised(xi, eta, phi)?,
-                        fine.solve_normalised(xi, eta, phi)?,
+                        solve_point(&mut coarse, contact, grid / 2, (xi, eta, phi))?,
+                        solve_point(&mut fine, contact, grid, (xi, eta, phi))?,
                     )
                 };
                 let e = extrapolate(q, p);
@@ -126,6 +126,32 @@ fn solve(ab: f64, nu: f64, grid: usize) -> Result<(), Box<dyn std::error::Error>
         all.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// One point, warm-started from the solver's last solution; where the Gauss-Seidel iteration
+/// does not converge from there, again from rest, then from rest with ten times the sweeps
+/// (the warm start can sit in a slow basin when a spin step turns the slip zone).
+fn solve_point(
+    solver: &mut EllipticSteadySolver,
+    contact: EllipticContact,
+    grid: usize,
+    (xi, eta, phi): (f64, f64, f64),
+) -> Result<(f64, f64, f64), Box<dyn std::error::Error>> {
+    if let Ok(v) = solver.solve_normalised(xi, eta, phi) {
+        return Ok(v);
+    }
+    solver.reset();
+    if let Ok(v) = solver.solve_normalised(xi, eta, phi) {
+        eprintln!("({xi}, {eta}, {phi}) grid {grid}: converged from rest");
+        return Ok(v);
+    }
+    let patient = SolverOptions {
+        max_sweeps: 10 * SolverOptions::default().max_sweeps,
+        ..SolverOptions::with_grid(grid)
+    };
+    let v = EllipticSteadySolver::new(contact, patient)?.solve_normalised(xi, eta, phi)?;
+    eprintln!("({xi}, {eta}, {phi}) grid {grid}: converged with ten times the sweeps");
+    Ok(v)
 }
 
 /// `(a/b, nu, grid)` from a table file's name and its comment.

@@ -40,6 +40,7 @@ pub mod material;
 pub mod mindlin;
 pub mod parallel;
 pub mod steady3d;
+pub mod steady3d_far;
 pub mod steady3d_map;
 pub mod tiers;
 

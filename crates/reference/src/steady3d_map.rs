@@ -302,33 +302,7 @@ pub fn worst<'a>(errors: impl IntoIterator<Item = &'a MapError>) -> [f64; 4] {
 /// pressure's square root is `cos(al)`): the integrand is bounded, discontinuous only at the
 /// pole of the slip field; `n = 200` is within 1e-4.
 pub fn full_slip_loads(ab: f64, dir: [f64; 3], n: usize) -> [f64; 3] {
-    let (a, b) = (ab.sqrt(), 1.0 / ab.sqrt());
-    let [xi, eta, phi] = dir;
-    let (da, dt) = (
-        std::f64::consts::FRAC_PI_2 / n as f64,
-        std::f64::consts::TAU / (4 * n) as f64,
-    );
-    let mut out = [0.0; 3];
-    for i in 0..n {
-        let al = (i as f64 + 0.5) * da;
-        let (s, c) = al.sin_cos();
-        // mu p dA = 3/(2 pi) cos(al) * sin(al) cos(al) dal dth (a b = 1).
-        let wgt = 1.5 / std::f64::consts::PI * c * c * s * da * dt;
-        for j in 0..4 * n {
-            let th = (j as f64 + 0.5) * dt;
-            let (st, ct) = th.sin_cos();
-            let (x, y) = (a * s * ct, b * s * st);
-            let (wx, wy) = (xi - phi * y, eta + phi * x);
-            let m = wx.hypot(wy);
-            if m > 0.0 {
-                let (ux, uy) = (wx / m, wy / m);
-                out[0] += wgt * ux;
-                out[1] += wgt * uy;
-                out[2] += wgt * (x * uy - y * ux);
-            }
-        }
-    }
-    out
+    creep_law::steady3d::full_slip::rigid_slip_loads(ab, dir, n)
 }
 
 /// `(a/b, nu)` of the off-grid validation table ([`solve_validation`]): off the law's node rows

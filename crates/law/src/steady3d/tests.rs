@@ -475,9 +475,10 @@ fn creepage_sweep(k: usize) -> (f64, f64, f64) {
 
 #[test]
 fn between_rows_one_translation_is_the_documented_law() {
-    // Between rows `loads` evaluates one translation (steps 3-5 as documented) on the
-    // tabulated blended spin terms (module `correction`), and outside the table's knots on
-    // the two rows' blended terms with the correction's continuation: to rounding.
+    // Between rows the fitted law (`in_the_box`, which `loads` takes within the box)
+    // evaluates one translation (steps 3-5 as documented) on the tabulated blended spin terms
+    // (module `correction`), and outside the table's knots on the two rows' blended terms with
+    // the correction's continuation: to rounding.
     for (ab, nu) in BETWEEN {
         let law = fitted(ab, nu).unwrap();
         assert!(
@@ -490,7 +491,7 @@ fn between_rows_one_translation_is_the_documented_law() {
                 // Spins beyond the table's knots (0.0078 ... 64).
                 cr.2 = if k % 8 == 3 { cr.2 * 1e-3 } else { cr.2 * 1e3 };
             }
-            let a = law.loads(cr.0, cr.1, cr.2);
+            let a = law.in_the_box(cr.0, cr.1, cr.2);
             let (e, ml) = documented_lateral(&law, cr.0, cr.1);
             let (e2, e8) = (e * e, e.powi(8));
             let terms = match law.corr.terms(&law.rows, cr.2, e2, e8) {
@@ -916,7 +917,7 @@ fn table_blends_between_computed_axis_ratios() {
             [0.3, -0.5, 0.7],
             [-1.1, 0.05, -2.0],
             [0.01, 0.002, 0.3],
-            [5.0, -3.0, 9.0],
+            [1.25, -0.75, 2.25],
         ] {
             let (p, q, m) = (
                 la.loads(c[0], c[1], c[2]),
@@ -927,6 +928,16 @@ fn table_blends_between_computed_axis_ratios() {
             assert!((m.fy - ((1.0 - t) * p.fy + t * q.fy)).abs() < 1e-12);
             assert!((m.mz - ((1.0 - t) * p.mz + t * q.mz)).abs() < 1e-12);
             assert!(m.fx.hypot(m.fy) <= 1.0 + 1e-9);
+            // Beyond the box (s = 4 along the ray of c): the loads at the box's edge (a blend
+            // of the rows), carried towards this a/b's full slip as 1/s.
+            let k = 1.0 / (c[0].abs().max(c[1].abs()) / 2.0).max(c[2].abs() / 4.0);
+            let e = lm.loads(k * c[0], k * c[1], k * c[2]);
+            let f = lm.fs.loads(c[0], c[1], c[2]);
+            let far = lm.loads(4.0 * k * c[0], 4.0 * k * c[1], 4.0 * k * c[2]);
+            assert!((far.fx - (f.fx + (e.fx - f.fx) / 4.0)).abs() < 1e-12);
+            assert!((far.fy - (f.fy + (e.fy - f.fy) / 4.0)).abs() < 1e-12);
+            assert!((far.mz - (f.mz + (e.mz - f.mz) / 4.0)).abs() < 1e-12);
+            assert!(far.fx.hypot(far.fy) <= 1.0 + 1e-9);
         }
         checked += 1;
     }
@@ -1016,13 +1027,19 @@ fn table_has_the_exact_symmetries_and_stays_within_friction() {
         assert!(
             (a.fx - b.fx).abs() < 1e-9 && (a.fy - b.fy).abs() < 1e-9 && (a.mz - b.mz).abs() < 1e-9
         );
-        // Beyond the box the creepage's direction: scaling it changes nothing.
-        let (f, g) = (law.loads(4.0, 1.0, 2.0), law.loads(40.0, 10.0, 20.0));
-        assert!(
-            (f.fx - g.fx).abs() < 1e-12
-                && (f.fy - g.fy).abs() < 1e-12
-                && (f.mz - g.mz).abs() < 1e-12
+        // Beyond the box, along a ray: the distance from full slip falls as 1/s from the
+        // box's edge (s = 2 at (4, 1, 2)), and the loads tend to full slip's.
+        let fs = law.fs.loads(4.0, 1.0, 2.0);
+        let dist = |l: Loads| (l.fx - fs.fx).hypot(l.fy - fs.fy).hypot(l.mz - fs.mz);
+        let (e, f, g) = (
+            law.loads(2.0, 0.5, 1.0),
+            law.loads(4.0, 1.0, 2.0),
+            law.loads(40.0, 10.0, 20.0),
         );
+        assert!((dist(f) - dist(e) / 2.0).abs() < 1e-12, "{e:?} {f:?}");
+        assert!((dist(g) - dist(e) / 20.0).abs() < 1e-12, "{e:?} {g:?}");
+        let h = law.loads(4e5, 1e5, 2e5);
+        assert!(dist(h) < 1e-5 * dist(e).max(1e-3), "{h:?} {fs:?}");
         // Far in full slip of one creepage, Coulomb's bound.
         assert!(law.loads(1e5, 0.0, 0.0).fx > 0.97);
         assert_eq!(law.loads(f64::NAN, 0.1, 0.0), Loads::default());
