@@ -29,10 +29,21 @@
 //! computed `nu` of one `a/b` the two
 //! tables' loads are blended linearly in `nu`; between two computed `a/b` whose rows both cover
 //! `nu`, the two rows' loads are blended linearly in `ln(a/b)` ([`Coverage::BetweenRatios`],
-//! looser bounds). Elsewhere (an `a/b` below the lowest or above the highest computed one, or a
-//! `nu` outside the computed ones) the fitted law below ([`Steady3d::coverage`] says which).
+//! looser bounds); a `nu` outside the computed ones is extrapolated ("Beyond the computed nu").
+//! Elsewhere (an `a/b` below the lowest or above the highest computed one) the fitted law below
+//! ([`Steady3d::coverage`] says which).
 //! The computed nodes are listed by [`lut::nodes`] and in docs/CREEP3D.md. The inverse at zero spin,
 //! [`Steady3d::creepages_for_force`], is the fitted law's everywhere.
+//!
+//! # Beyond the computed nu
+//!
+//! A `nu` outside the range that the rows serving the contact's `a/b` compute takes the tables at
+//! the nearest computed `nu_r` with the creepages scaled by Kalker's coefficients ([`kalker3d`]),
+//! `xi_n C11(nu)/C11(nu_r)`, `eta_n C22(nu)/C22(nu_r)`, `phi_n C23(nu)/C23(nu_r)`: the slopes at
+//! small creepage are the contact's own, and the onsets of full slip move with them (Kalker's
+//! simplified theory makes a pure creepage's curve a function of `C x`; Kalker 1990, sec.
+//! 1.5). [`Coverage::ExtrapolatedNu`]; looser bounds (docs/CREEP3D.md, "Beyond the computed
+//! nu").
 //!
 //! # Beyond the box
 //!
@@ -522,7 +533,13 @@ pub enum Coverage {
     /// measured: Fy 4.08 % at `a/b = 1.4`, `nu = 0.5`, between the computed `1` and `2`; Mz
     /// 3.71 % at `a/b = 0.7`, between `0.5` and `1`).
     BetweenRatios,
-    /// The fitted law (no computed `a/b` on both sides, or `nu` outside the computed ones).
+    /// The table at the nearest computed `nu` (a `nu` outside the range its rows compute) with
+    /// the creepages scaled by Kalker's coefficients (module documentation, "Beyond the computed
+    /// nu"): looser, within 9 % of `mu P` in each force and 9 % of `mu P a` in the moment on
+    /// the error map and its off-grid validation (worst measured at `nu = 0`, 0.25 from the
+    /// computed: Fx 7.29 % and Mz 8.91 % at `a/b = 0.5`, Fy 8.79 % at `a/b = 2`).
+    ExtrapolatedNu,
+    /// The fitted law (no computed `a/b` on both sides).
     Fitted,
 }
 
@@ -539,7 +556,7 @@ impl Steady3d {
             // correction that makes its pure spin the blend's (module documentation).
             law.corr = correction::SpinCorrection::build(&law);
         }
-        law.lut = lut::Lut::at(ab, nu);
+        law.lut = lut::Lut::at_with(ab, nu, true);
         Ok(law)
     }
 
@@ -585,6 +602,7 @@ impl Steady3d {
     /// documentation, "The table").
     pub fn coverage(&self) -> Coverage {
         match &self.lut {
+            Some(l) if l.extrapolated() => Coverage::ExtrapolatedNu,
             Some(l) if l.between_ratios() => Coverage::BetweenRatios,
             Some(_) => Coverage::Table,
             None => Coverage::Fitted,

@@ -14,7 +14,7 @@
 //!
 //! `cargo run --release -p creep-reference --example steady3d_map -- bem > crates/reference/data/steady3d_map.csv`
 //! `cargo run --release -p creep-reference --example steady3d_map -- grade`
-use creep_law::steady3d::Steady3d;
+use creep_law::steady3d::{Coverage, Steady3d};
 use creep_reference::bem::{EllipticContact, EllipticSteadySolver, SolverOptions};
 use creep_reference::steady3d::default_grid;
 use creep_reference::steady3d_map::{
@@ -237,10 +237,11 @@ fn grade(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
             } else {
                 "val"
             },
-            if Steady3d::new(*ab, *nu)?.tabulated() {
-                "table"
-            } else {
-                "fitted"
+            match Steady3d::new(*ab, *nu)?.coverage() {
+                Coverage::Table => "table",
+                Coverage::BetweenRatios => "between a/b",
+                Coverage::ExtrapolatedNu => "nu extrapolated",
+                Coverage::Fitted => "fitted",
             },
             100.0 * w[0],
             100.0 * w[1],

@@ -246,11 +246,20 @@ mod tests {
     #[test]
     fn table_is_its_generator_output() {
         let t = &crate::steady3d::full_slip_data::ROWS;
-        for (k, i, j) in [(0, 3, 11), (7, 12, 24), (12, 24, 40), (19, 0, 30), (24, 17, 2)] {
+        for (k, i, j) in [
+            (0, 3, 11),
+            (7, 12, 24),
+            (12, 24, 40),
+            (19, 0, 30),
+            (24, 17, 2),
+        ] {
             let q = rigid_slip_frame(row_ab(k), node_direction(i, j), 240);
             let e = t[k][i * NV + j];
             for c in 0..3 {
-                assert!((f64::from(e[c]) - q[c]).abs() < 1e-6, "{k} {i} {j}: {e:?} {q:?}");
+                assert!(
+                    (f64::from(e[c]) - q[c]).abs() < 1e-6,
+                    "{k} {i} {j}: {e:?} {q:?}"
+                );
             }
         }
     }

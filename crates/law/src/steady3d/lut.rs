@@ -105,6 +105,11 @@ pub struct Lut {
     w: [f64; 4],
     n: usize,
     between_ratios: bool,
+    /// Factors on `(|xi_n|, |eta_n|, phi_n)` before the lookup: 1 within the computed `nu`;
+    /// extrapolated in `nu`, Kalker's `C11, C22, C23` at the contact's `nu` over the tables'
+    /// ([`Lut::at`]).
+    scale: [f64; 3],
+    extrapolated: bool,
 }
 
 impl std::fmt::Debug for Lut {
@@ -113,6 +118,7 @@ impl std::fmt::Debug for Lut {
             .field("tables", &self.n)
             .field("between_ratios", &self.between_ratios)
             .field("w", &&self.w[..self.n])
+            .field("scale", &self.scale)
             .finish()
     }
 }
@@ -122,6 +128,7 @@ impl PartialEq for Lut {
         self.n == o.n
             && self.between_ratios == o.between_ratios
             && self.w == o.w
+            && self.scale == o.scale
             && (0..self.n).all(|i| std::ptr::eq(self.tables[i], o.tables[i]))
     }
 }
@@ -172,19 +179,80 @@ fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
     Some((out, true))
 }
 
+/// The computed `a/b` whose rows serve `ab`: itself (within [`SNAP`]) or the two around it.
+fn rows_of(ab: f64) -> Option<Vec<f64>> {
+    let l = ab.ln();
+    if let Some(n) = nodes().iter().find(|n| (n.ab.ln() - l).abs() < SNAP) {
+        return Some(vec![n.ab]);
+    }
+    let lo = nodes()
+        .iter()
+        .map(|n| n.ab)
+        .filter(|&x| x < ab)
+        .reduce(f64::max)?;
+    let hi = nodes()
+        .iter()
+        .map(|n| n.ab)
+        .filter(|&x| x > ab)
+        .reduce(f64::min)?;
+    Some(vec![lo, hi])
+}
+
+/// The range of `nu` that every row serving `ab` computes (`None` where none is shared).
+fn shared_nu(ab: f64) -> Option<(f64, f64)> {
+    let rows = rows_of(ab)?;
+    let range = |r: f64| {
+        let v = nodes()
+            .iter()
+            .filter(|n| (n.ab.ln() - r.ln()).abs() < SNAP)
+            .map(|n| n.nu);
+        (
+            v.clone().fold(f64::INFINITY, f64::min),
+            v.fold(0.0, f64::max),
+        )
+    };
+    let (lo, hi) = rows
+        .iter()
+        .map(|&r| range(r))
+        .fold((0.0f64, 1.0f64), |(a, b), (c, d)| (a.max(c), b.min(d)));
+    (lo <= hi).then_some((lo, hi))
+}
+
 impl Lut {
-    /// The table at `(a/b, nu)`, or `None` outside its coverage (module documentation).
+    /// The table at `(a/b, nu)`, or `None` outside its coverage (module documentation). With
+    /// `extrapolate`, a `nu` outside the range the rows compute takes the nearest computed
+    /// `nu` with the creepages scaled by Kalker's coefficients (module documentation, "Beyond
+    /// the computed nu").
     pub fn at(ab: f64, nu: f64) -> Option<Lut> {
+        Self::at_with(ab, nu, false)
+    }
+
+    /// [`Lut::at`], extrapolating in `nu` if `extrapolate`.
+    pub fn at_with(ab: f64, nu: f64, extrapolate: bool) -> Option<Lut> {
         if !(ab.is_finite() && ab > 0.0 && nu.is_finite()) {
             return None;
         }
-        let (parts, between_ratios) = tables_at(ab, nu)?;
+        let (parts, between_ratios, scale) = match tables_at(ab, nu) {
+            Some((p, b)) => (p, b, [1.0; 3]),
+            // Beyond the computed nu: the nearest computed nu of the rows, scaled.
+            None if extrapolate => {
+                let (lo, hi) = shared_nu(ab)?;
+                let nu_r = nu.clamp(lo, hi);
+                let (p, b) = tables_at(ab, nu_r)?;
+                let t = crate::kalker3d::coefficients(ab, nu).ok()?;
+                let r = crate::kalker3d::coefficients(ab, nu_r).ok()?;
+                (p, b, [t.c11 / r.c11, t.c22 / r.c22, t.c23 / r.c23])
+            }
+            None => return None,
+        };
         let first = parts[0].0;
         let mut lut = Lut {
             tables: [first; 4],
             w: [0.0; 4],
             n: parts.len(),
             between_ratios,
+            scale,
+            extrapolated: scale != [1.0; 3],
         };
         for (i, (t, w)) in parts.into_iter().enumerate() {
             lut.tables[i] = t;
@@ -201,6 +269,8 @@ impl Lut {
             w: [1.0, 0.0, 0.0, 0.0],
             n: 1,
             between_ratios: false,
+            scale: [1.0; 3],
+            extrapolated: false,
         }
     }
 
@@ -210,6 +280,11 @@ impl Lut {
             return Loads::default();
         }
         self.loads(xi_n, eta_n, phi_n)
+    }
+
+    /// Whether `nu` is outside the computed ones (the creepages scaled, [`Lut::at_with`]).
+    pub fn extrapolated(&self) -> bool {
+        self.extrapolated
     }
 
     /// Whether the tables are blended between two computed `a/b` (linear in `ln(a/b)`).
@@ -235,7 +310,8 @@ impl Lut {
     pub(crate) fn loads(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         let sx = 1.0f64.copysign(xi_n);
         let sy = 1.0f64.copysign(eta_n);
-        let (mut x, mut y, mut p) = (xi_n.abs(), eta_n.abs(), phi_n * sy);
+        let [kx, ky, kp] = self.scale;
+        let (mut x, mut y, mut p) = (xi_n.abs() * kx, eta_n.abs() * ky, phi_n * sy * kp);
         let s = (x.max(y) * (1.0 / XI_MAX)).max(p.abs() * (1.0 / PHI_MAX));
         if s > 1.0 {
             (x, y, p) = to_box(x, y, p, s);

@@ -911,7 +911,7 @@ fn table_blends_between_computed_axis_ratios() {
         assert_eq!(lm.coverage(), Coverage::BetweenRatios, "a/b {ab}, nu {nu}");
         assert_eq!(
             Steady3d::new(ab, n0 - 0.05).unwrap().coverage(),
-            Coverage::Fitted
+            Coverage::ExtrapolatedNu
         );
         for c in [
             [0.3, -0.5, 0.7],
@@ -942,6 +942,52 @@ fn table_blends_between_computed_axis_ratios() {
         checked += 1;
     }
     assert!(checked > 0, "no two computed axis ratios share a nu");
+}
+
+/// Beyond the computed `nu` the table at the nearest computed one, its creepages scaled by
+/// Kalker's coefficients: at small creepage it is Kalker's linear theory at the contact's own
+/// `nu` (`C11`, `C22`, and `C23` of the spin's lateral force; the table's tolerances), not the
+/// computed `nu`'s (`C11` 17 % apart between `nu = 0` and `0.25` on a circle); outside the
+/// computed `a/b` the fitted law.
+#[test]
+fn table_extrapolated_in_nu_keeps_kalkers_slopes() {
+    let lo = lut::nodes()
+        .iter()
+        .map(|n| n.nu)
+        .fold(f64::INFINITY, f64::min);
+    for n in lut::nodes().iter().filter(|n| n.nu == lo) {
+        for nu in [0.0, 0.5 * lo] {
+            let law = Steady3d::new(n.ab, nu).unwrap();
+            assert_eq!(law.coverage(), Coverage::ExtrapolatedNu, "{} {nu}", n.ab);
+            let c = law.coefficients();
+            let e = 1e-3;
+            let rel = |got: f64, want: f64| (got / want - 1.0).abs();
+            let l = law.loads(e, 0.0, 0.0);
+            assert!(rel(l.fx / e, c.c11) < 0.015, "{} {nu}: {}", n.ab, l.fx / e);
+            let l = law.loads(0.0, e, 0.0);
+            assert!(rel(l.fy / e, c.c22) < 0.015, "{} {nu}: {}", n.ab, l.fy / e);
+            let l = law.loads(0.0, 0.0, e);
+            assert!(rel(l.fy / e, c.c23) < 0.03, "{} {nu}: {}", n.ab, l.fy / e);
+            let at = Steady3d::new(n.ab, lo).unwrap().coefficients();
+            assert!(rel(at.c11, c.c11) > 0.05, "the scaling is tested");
+            // Odd, and within Coulomb's bound.
+            for k in 0..50 {
+                let t = k as f64 * 0.41;
+                let (x, y, z) = (2.0 * t.sin(), 1.5 * (1.3 * t).cos(), 3.0 * (0.7 * t).sin());
+                let (a, b) = (law.loads(x, y, z), law.loads(-x, -y, -z));
+                assert!(a.fx.hypot(a.fy) <= 1.0 + 1e-9);
+                assert!((a.fx + b.fx).abs() < 1e-12 && (a.mz + b.mz).abs() < 1e-12);
+            }
+        }
+    }
+    assert_eq!(
+        Steady3d::new(3.0, 0.3).unwrap().coverage(),
+        Coverage::Fitted
+    );
+    assert_eq!(
+        Steady3d::new(0.3, 0.0).unwrap().coverage(),
+        Coverage::Fitted
+    );
 }
 
 /// At small creepage the table is Kalker's linear theory: the first cells are geometric
