@@ -82,7 +82,7 @@ pub enum RunCommand {
     /// only and creep + rolling torque, against Zhou et al.'s (2002) DEM correlation; CSV on
     /// stdout: `mu,rolling,creep,angle_deg,correlation_deg`.
     Repose(crate::repose_cmd::ReposeArgs),
-    /// 3-D creep in the rigid regime (issue #17): a rubber ball spun about the normal while it
+    /// 3-D creep in the rigid regime: a rubber ball spun about the normal while it
     /// rolls (spin decay vs Kalker's linear theory) and driven rubber wheels (line contact vs
     /// Carter, crowned with a/b = 0.5 vs the boundary elements): traction against creepage.
     Wheels,
