@@ -151,7 +151,11 @@ const CASES: [(&str, f64, f64); 8] = [
     ("a/b 0.5, nu 0.125 (table, nu extrapolated)", 0.5, 0.125),
     ("a/b 0.35, nu 0.125 (between rows)", 0.35, 0.125),
     ("a/b 3, nu 0.375 (between rows)", 3.0, 0.375),
-    ("a/b 1.4, nu 0.125 (table, between a/b, nu extrapolated)", 1.4, 0.125),
+    (
+        "a/b 1.4, nu 0.125 (table, between a/b, nu extrapolated)",
+        1.4,
+        0.125,
+    ),
     ("a/b 1, nu 0.3 (table node)", 1.0, 0.3),
     ("a/b 1, nu 0.4 (table, two nodes)", 1.0, 0.4),
     ("a/b 0.7, nu 0.3 (table, between a/b)", 0.7, 0.3),
