@@ -207,6 +207,9 @@ impl<T: TangentialLaw> Dem<T> {
                 for i in i0..i1 {
                     let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
                     for k in a..b {
+                        if let Some(ahead) = hist.get(k + crate::kernels::PREFETCH_AHEAD) {
+                            crate::kernels::prefetch(ahead);
+                        }
                         let j = self.nl_j[k] as usize;
                         match arrays.pair(i, j, &mut hist[k], dt) {
                             Ok((p, q, out)) => {
