@@ -227,7 +227,6 @@ impl CreepState {
     /// [`crate::transient_law`]. Non-finite inputs count as zero motion / open contact.
     /// Switching the model of a live contact is allowed (the lag state starts from its last
     /// value, zero if never used).
-    #[inline]
     pub fn update(&mut self, law: &CreepLaw, step: CreepInput) -> CreepStep {
         let CreepLaw {
             pair,
