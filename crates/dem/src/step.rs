@@ -432,8 +432,11 @@ impl<T: TangentialLaw> Dem<T> {
             *f = Vec3::ZERO;
         }
         let mut hist = std::mem::take(&mut self.wl_h);
-        for (e, h) in hist.iter_mut().enumerate() {
-            let out = self.wall_pair(e, h, dt);
+        for e in 0..hist.len() {
+            if let Some(ahead) = hist.get(e + crate::kernels::PREFETCH_AHEAD) {
+                crate::kernels::prefetch(ahead);
+            }
+            let out = self.wall_pair(e, &mut hist[e], dt);
             self.apply_wall(e, out, counts, energy);
         }
         self.wl_h = hist;
