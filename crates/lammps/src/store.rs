@@ -543,6 +543,11 @@ where
     let tiers_ok =
         (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
     let atoms_ok = atoms_valid(atoms);
+    // One atom type and every atom of it: every pair's model is the same, looked up once
+    // (the per-contact lookup, with its checks of both atoms' types, is then the same model).
+    let single = (table.ntypes == 1 && atoms.kind.iter().fold(true, |ok, &t| ok & (t == 1)))
+        .then(|| (table.model_of)(stride + 1))
+        .flatten();
     let mut counts = ListCounts::default();
     let use_block = T::HAS_BLOCK && atoms_ok;
     let mut pend = Pending::default();
@@ -614,8 +619,11 @@ where
                         ntypes: table.ntypes,
                     })
             };
-            let m = (table.model_of)(kind(p)? * stride + kind(q)?)
-                .ok_or(ModelError::MissingModel(k))?;
+            let m = match single {
+                Some(m) => m,
+                None => (table.model_of)(kind(p)? * stride + kind(q)?)
+                    .ok_or(ModelError::MissingModel(k))?,
+            };
             if !tiers_ok && m.tier() != tier {
                 return Err(ModelError::MixedTiers);
             }
