@@ -16,9 +16,10 @@
 //!   tangential tier a generic parameter ([`creep_law::pair::Exact`]: Cattaneo-Mindlin memory
 //!   with Kuhn's creep; [`creep_law::pair::Cheap`]: incremental `8 G* a` spring, rescaled at
 //!   `mu P`, plus creep), monomorphised; the force loop evaluates a window of list entries
-//!   first, the touching sphere pairs four at a time ([`creep_law::pair::cheap_sphere_block`],
-//!   [`creep_law::pair::exact_sphere_block`]: vector instructions, the same bits as the
-//!   one-contact kernel), then adds the outputs in list order;
+//!   first, the cheap tier's touching sphere pairs four at a time
+//!   ([`creep_law::pair::cheap_sphere_block`]: vector instructions, the same bits as the
+//!   one-contact kernel), then adds the outputs in list order (the exact tier runs the
+//!   one-contact kernel entry by entry: its time is in the memory update of each contact);
 //! * velocity Verlet (Swope et al. 1982) for translation and rotation (spheres: isotropic
 //!   inertia `I = (2/5) m r^2`), the contact forces evaluated at the half-step velocities as in
 //!   LAMMPS;

@@ -207,6 +207,9 @@ impl<T: TangentialLaw> Dem<T> {
                 for i in i0..i1 {
                     let (a, b) = (self.nl_start[i] as usize, self.nl_start[i + 1] as usize);
                     for k in a..b {
+                        if let Some(ahead) = hist.get(k + crate::kernels::PREFETCH_AHEAD) {
+                            crate::kernels::prefetch(ahead);
+                        }
                         let j = self.nl_j[k] as usize;
                         match arrays.pair(i, j, &mut hist[k], dt) {
                             Ok((p, q, out)) => {
@@ -429,8 +432,11 @@ impl<T: TangentialLaw> Dem<T> {
             *f = Vec3::ZERO;
         }
         let mut hist = std::mem::take(&mut self.wl_h);
-        for (e, h) in hist.iter_mut().enumerate() {
-            let out = self.wall_pair(e, h, dt);
+        for e in 0..hist.len() {
+            if let Some(ahead) = hist.get(e + crate::kernels::PREFETCH_AHEAD) {
+                crate::kernels::prefetch(ahead);
+            }
+            let out = self.wall_pair(e, &mut hist[e], dt);
             self.apply_wall(e, out, counts, energy);
         }
         self.wl_h = hist;

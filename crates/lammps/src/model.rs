@@ -121,6 +121,10 @@ pub enum ModelError {
     /// The time step is not finite and >= 0.
     #[error("time step must be finite and >= 0 s, got {0}")]
     TimeStep(f64),
+    /// The environment's choice of compiled kernels is not understood
+    /// ([`creep_dem::KERNELS_ENV`]).
+    #[error("{0}")]
+    Kernels(String),
     /// An atom index outside the host's atom arrays.
     #[error("contact {index}: atom index {atom} outside the {nall} atoms of the arrays")]
     AtomIndex {

@@ -16,7 +16,8 @@
 
 use creep_law::Vec3;
 use creep_law::pair::{
-    Cheap, ContactGeometry, ContactHistory, Exact, PairBody, PairForces, TangentialLaw, pair_force,
+    Cheap, ContactGeometry, ContactHistory, Exact, LANES, PairBody, PairForces, SphereForces,
+    SphereLanes, SpherePair, TangentialLaw, block_supports, pair_force,
 };
 use creep_law::{LawError, Surface};
 
@@ -455,14 +456,69 @@ where
         Slots::Exact(v) => list_pairs(
             table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
         ),
-        Slots::Spring(v) => list_pairs(
-            table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
-        ),
+        Slots::Spring(v) => {
+            #[cfg(target_arch = "x86_64")]
+            if wide_available()? {
+                /// [`list_pairs`] compiled with AVX2 and FMA enabled (the loop, the kernels and
+                /// the block of four contacts inline into it): four `f64` per vector
+                /// instruction, the same bits (Rust never contracts into fused multiply-adds;
+                /// IEEE 754 operations round lane by lane).
+                #[target_feature(enable = "avx2,fma")]
+                #[allow(clippy::too_many_arguments)]
+                fn wide<'a, F, L: HalfList>(
+                    table: &ModelTable<F>,
+                    tier: Tier,
+                    hist: &mut Vec<ContactHistory<Cheap>>,
+                    atoms: &Atoms<'_>,
+                    acc: &mut Accumulators<'_>,
+                    list: &L,
+                    neighmask: i32,
+                    entries: ListEntries<'_>,
+                    dt: f64,
+                    forces: Option<&mut [PairForce]>,
+                ) -> Result<ListCounts, ModelError>
+                where
+                    F: Fn(usize) -> Option<&'a Model>,
+                {
+                    list_pairs(
+                        table, tier, hist, atoms, acc, list, neighmask, entries, dt, forces,
+                    )
+                }
+                // SAFETY: `wide_available` found AVX2 and FMA on this CPU.
+                #[allow(unsafe_code)]
+                return unsafe {
+                    wide(
+                        table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
+                    )
+                };
+            }
+            list_pairs(
+                table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
+            )
+        }
     }
 }
 
-/// [`compute_list`] for one tier (monomorphised: the kernel is inlined into this loop).
+/// Whether the spring tier's loop runs its AVX2 copy: the CPU has AVX2 and FMA, and the
+/// environment does not ask for the portable kernels (creep-dem's
+/// [`creep_dem::KERNELS_ENV`], read once per process; a value other than `portable`, `auto`
+/// or empty is an error).
+#[cfg(target_arch = "x86_64")]
+fn wide_available() -> Result<bool, ModelError> {
+    match creep_dem::Kernels::detected() {
+        Ok(k) => Ok(k == creep_dem::Kernels::Avx2),
+        Err(e) => Err(ModelError::Kernels(e.to_string())),
+    }
+}
+
+/// [`compute_list`] for one tier (monomorphised: the kernel is inlined into this loop, and
+/// the loop into each compiled copy). With a tier that has a block kernel
+/// ([`TangentialLaw::HAS_BLOCK`]: the spring tier) and valid atoms, touching pairs with a
+/// history and constants the block takes wait in a [`Pending`] block of [`LANES`] contacts,
+/// which runs when full, or before any other contact is stepped, so every force is added in
+/// list order and the results are the one-contact kernel's bits.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn list_pairs<'a, T: TangentialLaw, F, L: HalfList>(
     table: &ModelTable<F>,
     tier: Tier,
@@ -487,14 +543,21 @@ where
     let tiers_ok =
         (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
     let atoms_ok = atoms_valid(atoms);
+    // One atom type and every atom of it: every pair's model is the same, looked up once
+    // (the per-contact lookup, with its checks of both atoms' types, is then the same model).
+    let single = (table.ntypes == 1 && atoms.kind.iter().fold(true, |ok, &t| ok & (t == 1)))
+        .then(|| (table.model_of)(stride + 1))
+        .flatten();
     let mut counts = ListCounts::default();
+    let use_block = T::HAS_BLOCK && atoms_ok;
+    let mut pend = Pending::default();
     let mut e0 = 0usize;
     for &ia in list.atoms() {
         // Checked above: the atom is in the list's arrays.
         let i = usize::try_from(ia).map_err(|_| ModelError::ListAtom(ia))?;
         let neigh = list.neighbours(i).ok_or(ModelError::ListAtom(ia))?;
         let n = neigh.len();
-        let (slots, swaps) = (&mut slot[e0..e0 + n], &swap[e0..e0 + n]);
+        let first = e0;
         e0 += n;
         if i >= nall {
             return Err(ModelError::AtomIndex {
@@ -505,7 +568,8 @@ where
         }
         let xi = atoms.x[i];
         let ri = atoms.radius[i];
-        for ((&jraw, s), &sw) in neigh.iter().zip(slots.iter_mut()).zip(swaps) {
+        for (e, &jraw) in (first..).zip(neigh) {
+            let sw = swap[e];
             let j = usize::try_from(jraw & neighmask)
                 .ok()
                 .filter(|&j| j < nall)
@@ -518,10 +582,11 @@ where
             let (dx, dy, dz) = (xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]);
             let rsum = ri + atoms.radius[j];
             if dx * dx + dy * dy + dz * dz >= rsum * rsum {
-                *s = -1; // apart: the history is abandoned (its slot reclaimed at the next build)
+                slot[e] = -1; // apart: the history is abandoned (its slot reclaimed at the next build)
                 continue;
             }
             let k = counts.contacts;
+            let s = &mut slot[e];
             if *s < 0 {
                 let new = i32::try_from(hist.len()).map_err(|_| ModelError::Slot {
                     index: k,
@@ -532,9 +597,9 @@ where
                 *s = new;
             }
             let len = hist.len();
-            let h = usize::try_from(*s)
+            let si = usize::try_from(*s)
                 .ok()
-                .and_then(|s| hist.get_mut(s))
+                .filter(|&s| s < len)
                 .ok_or(ModelError::Slot {
                     index: k,
                     slot: *s,
@@ -554,28 +619,187 @@ where
                         ntypes: table.ntypes,
                     })
             };
-            let m = (table.model_of)(kind(p)? * stride + kind(q)?)
-                .ok_or(ModelError::MissingModel(k))?;
+            let m = match single {
+                Some(m) => m,
+                None => (table.model_of)(kind(p)? * stride + kind(q)?)
+                    .ok_or(ModelError::MissingModel(k))?,
+            };
             if !tiers_ok && m.tier() != tier {
                 return Err(ModelError::MixedTiers);
             }
-            let f = step_contact(k, m, atoms, acc, p, q, h, dt, atoms_ok)?;
-            if !f.touching {
-                *s = -1;
-                counts.dropped += 1;
+            // The atoms' ids for the virial: below nall, which came from C as a count of i32
+            // indices.
+            let ids = if sw != 0 {
+                [jraw & neighmask, ia]
+            } else {
+                [ia, jraw & neighmask]
+            };
+            if use_block && !hist[si].is_virgin() && block_supports(m.constants()) {
+                if pend.len > 0 && pend.model.is_some_and(|pm| !std::ptr::eq(pm, m)) {
+                    pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
+                }
+                pend.push(
+                    m,
+                    atoms,
+                    p,
+                    q,
+                    Lane {
+                        k,
+                        e,
+                        slot: si,
+                        ids,
+                    },
+                );
+                if pend.len == LANES {
+                    pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
+                }
+                continue;
             }
-            if let Some(out) = forces.as_deref_mut() {
-                out[k] = PairForce {
-                    // p and q are below nall, which came from C as a count of i32 indices.
-                    p: if sw != 0 { jraw & neighmask } else { ia },
-                    q: if sw != 0 { ia } else { jraw & neighmask },
-                    force_p: [f.force_p.x, f.force_p.y, f.force_p.z],
-                };
+            if pend.len > 0 {
+                pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
             }
+            let f = step_contact(k, m, atoms, acc, p, q, &mut hist[si], dt, atoms_ok)?;
+            finish_contact(&f, &mut slot[e], ids, k, &mut counts, &mut forces);
         }
+    }
+    if pend.len > 0 {
+        pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
     }
     counts.nslots = hist.len();
     Ok(counts)
+}
+
+/// A stepped contact's bookkeeping: a dropped one (`touching` false) frees its slot (`s`) and
+/// is counted; its force goes to the virial buffer when there is one (entry `k`, atoms `ids`).
+#[inline(always)]
+fn finish_contact(
+    f: &PairForces,
+    s: &mut i32,
+    ids: [i32; 2],
+    k: usize,
+    counts: &mut ListCounts,
+    forces: &mut Option<&mut [PairForce]>,
+) {
+    if !f.touching {
+        *s = -1;
+        counts.dropped += 1;
+    }
+    if let Some(out) = forces.as_deref_mut() {
+        out[k] = PairForce {
+            p: ids[0],
+            q: ids[1],
+            force_p: [f.force_p.x, f.force_p.y, f.force_p.z],
+        };
+    }
+}
+
+/// One waiting contact of a [`Pending`] block: its index in the step (`k`), its list entry
+/// (`e`), its history's slot and its atoms' ids (p, q).
+#[derive(Debug, Clone, Copy, Default)]
+struct Lane {
+    k: usize,
+    e: usize,
+    slot: usize,
+    ids: [i32; 2],
+}
+
+/// Up to [`LANES`] touching contacts of one model waiting for the block kernel, with their
+/// atoms (p, q) and bodies.
+#[derive(Default)]
+struct Pending<'m> {
+    len: usize,
+    model: Option<&'m Model>,
+    lanes: [Lane; LANES],
+    atoms: [(usize, usize); LANES],
+    pairs: SphereLanes,
+}
+
+impl<'m> Pending<'m> {
+    /// Adds the contact `lane` of atoms `p`, `q` with model `m` (the block's model: the caller
+    /// flushes first when it differs).
+    #[inline(always)]
+    fn push(&mut self, m: &'m Model, atoms: &Atoms<'_>, p: usize, q: usize, lane: Lane) {
+        let l = self.len;
+        self.pairs.set(
+            l,
+            &SpherePair {
+                xp: v3(atoms.x[p]),
+                xq: v3(atoms.x[q]),
+                rp: atoms.radius[p],
+                rq: atoms.radius[q],
+                vp: v3(atoms.v[p]),
+                vq: v3(atoms.v[q]),
+                wp: v3(atoms.omega[p]),
+                wq: v3(atoms.omega[q]),
+                mp: atoms.mass[p],
+                mq: atoms.mass[q],
+            },
+        );
+        self.lanes[l] = lane;
+        self.atoms[l] = (p, q);
+        self.model = Some(m);
+        self.len += 1;
+    }
+
+    /// Steps the waiting contacts: the block kernel on copies of their histories (the unused
+    /// lanes repeat the first), then in lane order each lane's history back, its forces into
+    /// the accumulators and its bookkeeping, or, for a lane the block leaves, the one-contact
+    /// kernel ([`step_contact`]): the order and the bits of the one-contact loop.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn flush<T: TangentialLaw>(
+        &mut self,
+        hist: &mut [ContactHistory<T>],
+        atoms: &Atoms<'_>,
+        acc: &mut Accumulators<'_>,
+        slot: &mut [i32],
+        counts: &mut ListCounts,
+        forces: &mut Option<&mut [PairForce]>,
+        dt: f64,
+    ) -> Result<(), ModelError> {
+        let n = self.len;
+        self.len = 0;
+        let Some(m) = self.model else {
+            return Ok(());
+        };
+        for l in n..LANES {
+            self.pairs.copy_lane(0, l);
+        }
+        // Filled in place (`array::from_fn` built the array aside and copied it: a call of
+        // `memcpy` per block, 3 % of the plugin's run).
+        let mut local = [ContactHistory::<T>::default(); LANES];
+        for (l, h) in local.iter_mut().enumerate() {
+            *h = hist[self.lanes[if l < n { l } else { 0 }].slot];
+        }
+        let mut out = [SphereForces::default(); LANES];
+        let mask = T::sphere_block(
+            m.constants(),
+            &self.pairs,
+            &mut local,
+            &mut out,
+            std::array::from_fn(|l| l),
+            n,
+            dt,
+        );
+        for l in 0..n {
+            let lane = self.lanes[l];
+            let (p, q) = self.atoms[l];
+            let f = if mask >> l & 1 == 1 {
+                hist[lane.slot] = local[l];
+                let o = &out[l];
+                add_forces(lane.k, acc, p, q, o.force_p, o.torque_p, o.torque_q)?;
+                PairForces {
+                    force_p: o.force_p,
+                    touching: true,
+                    ..PairForces::default()
+                }
+            } else {
+                step_contact(lane.k, m, atoms, acc, p, q, &mut hist[lane.slot], dt, true)?
+            };
+            finish_contact(&f, &mut slot[lane.e], lane.ids, lane.k, counts, forces);
+        }
+        Ok(())
+    }
 }
 
 /// One contact of [`compute_pairs`] / [`compute_list`] (`k`: its index in the step, for the
@@ -626,26 +850,42 @@ fn step_contact<T: TangentialLaw>(
             Default::default()
         }
     };
-    if !all_finite(&[f.force_p, f.torque_p, f.torque_q]) {
+    add_forces(k, acc, p, q, f.force_p, f.torque_p, f.torque_q)?;
+    Ok(f)
+}
+
+/// Contact `k`'s force on p and torques on p and q added into the owned atoms of `acc`, after
+/// the check that they are finite (an error otherwise, nothing added).
+#[inline(always)]
+fn add_forces(
+    k: usize,
+    acc: &mut Accumulators<'_>,
+    p: usize,
+    q: usize,
+    force_p: Vec3,
+    torque_p: Vec3,
+    torque_q: Vec3,
+) -> Result<(), ModelError> {
+    if !all_finite(&[force_p, torque_p, torque_q]) {
         return Err(ModelError::History {
             index: k,
             source: LawError::OutOfRange {
                 name: "contact force (NaN or infinite history)",
-                value: f.force_p.x,
+                value: force_p.x,
                 range: "finite",
             },
         });
     }
     let nlocal = acc.force.len();
     if p < nlocal {
-        add(&mut acc.force[p], f.force_p);
-        add(&mut acc.torque[p], f.torque_p);
+        add(&mut acc.force[p], force_p);
+        add(&mut acc.torque[p], torque_p);
     }
     if q < nlocal {
-        add(&mut acc.force[q], -f.force_p);
-        add(&mut acc.torque[q], f.torque_q);
+        add(&mut acc.force[q], -force_p);
+        add(&mut acc.torque[q], torque_q);
     }
-    Ok(f)
+    Ok(())
 }
 
 /// The atom arrays all of one length, the accumulators of one length and no longer.
@@ -673,19 +913,27 @@ fn check_arrays(atoms: &Atoms<'_>, acc: &Accumulators<'_>) -> Result<(), ModelEr
 /// accumulation over the arrays (no early exit: the common answer is yes).
 #[allow(clippy::eq_op)] // `x - x` is the point: 0 or NaN
 fn atoms_valid(atoms: &Atoms<'_>) -> bool {
-    // `x - x` is 0 for a finite x and NaN otherwise; a sum of them is 0 iff all are finite.
-    let finite3 = |v: &[[f64; 3]]| {
-        v.iter().fold(0.0, |acc, a| {
-            acc + ((a[0] - a[0]) + (a[1] - a[1]) + (a[2] - a[2]))
-        }) == 0.0
+    // `x - x` is 0 for a finite x and NaN otherwise; a sum of them is 0 iff all are finite,
+    // whatever the order of the sum: eight sums side by side (one chain of dependent
+    // additions was the check's latency, 2 % of the plugin's run), then theirs.
+    let all_zero = |v: &[f64]| {
+        let mut acc = [0.0f64; 8];
+        let chunks = v.chunks_exact(8);
+        let tail = chunks.remainder();
+        for c in chunks {
+            for (s, &x) in acc.iter_mut().zip(c) {
+                *s += x - x;
+            }
+        }
+        for (s, &x) in acc.iter_mut().zip(tail) {
+            *s += x - x;
+        }
+        acc.iter().sum::<f64>() == 0.0
     };
-    let positive = |v: &[f64]| {
-        v.iter().fold(true, |ok, &a| ok & (a > 0.0))
-            && v.iter().fold(0.0, |acc, &a| acc + (a - a)) == 0.0
-    };
-    finite3(atoms.x)
-        && finite3(atoms.v)
-        && finite3(atoms.omega)
+    let positive = |v: &[f64]| v.iter().fold(true, |ok, &a| ok & (a > 0.0)) && all_zero(v);
+    all_zero(atoms.x.as_flattened())
+        && all_zero(atoms.v.as_flattened())
+        && all_zero(atoms.omega.as_flattened())
         && positive(atoms.radius)
         && positive(atoms.mass)
 }

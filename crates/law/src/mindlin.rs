@@ -287,7 +287,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         let a = if finite(a) && a > 0.0 { a } else { 0.0 };
         let du = if !(finite(du.x) && finite(du.y)) {
             Vec2::ZERO
-        } else if du.length() > MAX_INCREMENT {
+        } else if du.length_squared() > MAX_INCREMENT * MAX_INCREMENT {
+            // `|du| > MAX_INCREMENT` without the square root (the two differ only within an
+            // ulp of 1e100 m; an overflowing square is +inf, also > 1e200).
             du * (MAX_INCREMENT / du.length())
         } else {
             du
