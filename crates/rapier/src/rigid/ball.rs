@@ -4,10 +4,11 @@
 //! once per manifold: the two bodies, the pair's constants, the fidelity and the rolling model.
 //!
 //! # Cost
-//! Per contact: the record (one hash lookup in the shard's store), the bodies' motion at the
-//! contact (shared by the rotation-gap correction and the creep), and the kernel (Kuhn & Bagi's
-//! rates, Hertz's radius, the effective mass along the force, the implicit solve). Contacts
-//! that carry no load (a new contact, a separating one) leave the kernel before the rates.
+//! Per manifold: the bodies' motions, read once (shared by the rotation-gap correction and the
+//! creep of every contact). Per contact: the record (one hash lookup in the shard's store) and
+//! the kernel (Kuhn & Bagi's rates, Hertz's radius, the effective mass along the force, the
+//! implicit solve). Contacts that carry no load (a new contact, a separating one) leave the
+//! kernel before the rates.
 //!
 //! A planar shortcut was tried and is not used: with no spin creep and a lateral load within
 //! the solver's noise floor (`creep_law::rigid::solver_noise_force`), solve the contact as
@@ -69,10 +70,16 @@ pub(crate) fn ball_manifold(
     let (s1, s2) = m.surfaces;
     let dt = m.dt;
     let n = v3(*rigid.normal);
+    // The bodies' motions, read once per manifold (a side without a body is at rest at the
+    // contact: `body_motion`'s fallback, per contact).
+    let (p_body, q_body) = (
+        m.bodies[0].map(|rb| body_motion(Some(rb), Vec3::ZERO, s1)),
+        m.bodies[1].map(|rb| body_motion(Some(rb), Vec3::ZERO, s2)),
+    );
     for sc in rigid.solver_contacts.iter_mut() {
         let (a1, a2) = (v3(sc.anchor1), v3(sc.anchor2));
-        let p_motion = body_motion(m.bodies[0], a1 - n, s1);
-        let q_motion = body_motion(m.bodies[1], a2 + n, s2);
+        let p_motion = p_body.unwrap_or_else(|| body_motion(None, a1 - n, s1));
+        let q_motion = q_body.unwrap_or_else(|| body_motion(None, a2 + n, s2));
         if let Some(substeps) = m.gap_substeps {
             // Rapier's rotation gap (crate::gap), on every contact of the pair whatever its
             // fidelity: the engine's error, not creep's.
@@ -124,6 +131,10 @@ pub(crate) fn recycled_ball_manifold(
     let com2 = m.bodies[1]
         .filter(|_| rel_dom >= 0)
         .map(|rb| v3(rb.center_of_mass()));
+    let (p_body, q_body) = (
+        m.bodies[0].map(|rb| body_motion(Some(rb), Vec3::ZERO, s1)),
+        m.bodies[1].map(|rb| body_motion(Some(rb), Vec3::ZERO, s2)),
+    );
     counts.recycled += contacts.len();
     for i in 0..contacts.len() {
         let cid = (contacts.as_slice()[i].contact_id[0] & !NEW_CONTACT_BIT) as usize;
@@ -136,8 +147,8 @@ pub(crate) fn recycled_ball_manifold(
         let contact = BallContact {
             normal: n,
             point: c,
-            p: body_motion(m.bodies[0], c - n, s1),
-            q: body_motion(m.bodies[1], c + n, s2),
+            p: p_body.unwrap_or_else(|| body_motion(None, c - n, s1)),
+            q: q_body.unwrap_or_else(|| body_motion(None, c + n, s2)),
         };
         let target = ball_contact(m, &contact, point, store, counts);
         contacts.set_tangent_velocity(i, target.map_or(Vector::ZERO, vf));

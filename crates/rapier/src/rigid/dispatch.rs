@@ -1,7 +1,18 @@
 //! Rapier's call into the rigid hooks: `modify_solver_contacts` sorts each manifold to its path
-//! (compliant, quiet, ball, wheel, Coulomb) and applies the rotation-gap correction.
+//! (compliant, quiet, ball, wheel, Coulomb) and applies the rotation-gap correction;
+//! `modify_recycled_solver_contacts` (feature `rapier-patched`) refreshes a recycled ball
+//! manifold's slip targets. Both read a manifold's pair through one preamble ([`PairView`]).
+//!
+//! # Cost
+//! Rapier calls the full-update hook for every manifold of a hooked pair, also for those with
+//! no solver contact (the bodies' shapes within the broad phase's margin but apart by more than
+//! the prediction distance: about three in four of a poured pile's manifolds). Such a manifold
+//! has nothing to rewrite, so the hook leaves it after the checks that do not depend on its
+//! contacts (friction, registration, regime) unless a wheel is on it (the wheel path may add
+//! the patch contact, module `wheel`).
 
 use std::sync::atomic::Ordering;
+use std::sync::{Mutex, MutexGuard};
 
 use creep_law::Surface;
 use rapier3d::prelude::*;
@@ -13,9 +24,34 @@ use super::hooks::{CreepHooks, Shard, quiet_collider, shard_of};
 use super::wheel::{WheelCtx, wheel_manifold};
 use crate::convert::{body_motion, v3, vf};
 use crate::gap::rotation_gap_correction;
+use crate::shape::SupportedShape;
 use creep_law::rigid::RigidPairCache;
 
 use crate::registry::{CreepMaterial, Fidelity, Regime, RollingResistance};
+
+/// A manifold's pair as both hooks read it once it is a rigid pair of two registered
+/// colliders, not quiet and with something to rewrite ([`CreepHooks::pair_view`]).
+struct PairView<'a> {
+    /// The two colliders' materials.
+    materials: (&'a CreepMaterial, &'a CreepMaterial),
+    /// The pair's fidelity (`Regime::pair`).
+    fidelity: Fidelity,
+    /// The contact law's surfaces (`SupportedShape::rigid_surface`).
+    laws: (Option<Surface>, Option<Surface>),
+    /// The rotation-gap correction's surfaces (`SupportedShape::gap_surface`).
+    gaps: (Option<Surface>, Option<Surface>),
+    /// The bodies, looked up once per manifold.
+    bodies: [Option<&'a RigidBody>; 2],
+}
+
+/// Why [`CreepHooks::pair_view`] leaves a manifold to its caller as it is.
+enum Skip {
+    /// Counted or nothing to do.
+    Done,
+    /// A compliant pair: the compliant regime applies its forces itself, so the solver gets
+    /// no contact.
+    Compliant,
+}
 
 impl PhysicsHooks for CreepHooks {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
@@ -33,20 +69,7 @@ impl PhysicsHooks for CreepHooks {
             self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
             return;
         }
-        // Only this pair's shard (never a global lock: crate docs of `SHARDS`).
-        let mut shard = self.shards[shard_of(c1, c2)]
-            .lock()
-            .unwrap_or_else(|e| e.into_inner());
-        let Shard {
-            store,
-            counts,
-            laws,
-            crowns,
-            pairs,
-            unregistered,
-            unregistered_seen,
-            bad_friction,
-        } = &mut *shard;
+        let shard = &self.shards[shard_of(c1, c2)];
         let (co1, co2) = (colliders.get(c1), colliders.get(c2));
         // Both colliders' friction (a registered collider's is checked before the step, its
         // partner's only here): the step returns PluginError::Friction, and the pair is
@@ -55,47 +78,36 @@ impl PhysicsHooks for CreepHooks {
             if let Some(co) = co
                 && !(co.friction().is_finite() && co.friction() >= 0.0)
             {
-                *bad_friction = Some((handle, co.friction()));
+                lock(shard).bad_friction = Some((handle, co.friction()));
                 *rigid.friction = 0.0;
                 return;
             }
         }
-        let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
-            counts.coulomb_unregistered += n_contacts;
-            if self.settings.warn_unregistered {
-                let (stranger, known) = if self.registry.get(c1).is_some() {
-                    (c2, c1)
-                } else {
-                    (c1, c2)
-                };
-                if self.registry.get(known).is_some() && unregistered_seen.insert(stranger) {
-                    unregistered.push((stranger, known));
-                }
+        let view = match self.pair_view(shard, (c1, c2), (h1, h2), (co1, co2), bodies, n_contacts) {
+            Ok(view) => view,
+            Err(Skip::Compliant) => {
+                rigid.solver_contacts.clear();
+                return;
             }
-            return;
+            Err(Skip::Done) => return,
         };
-        // A pair with a compliant collider is the compliant regime's (`Regime::pair`), which
-        // applies its forces itself.
-        let Regime::Rigid(fidelity) = m1.regime.pair(m2.regime) else {
-            rigid.solver_contacts.clear();
-            return;
-        };
-        if quiet_collider(co1) && quiet_collider(co2) {
-            // Both below the activation speed: plain Rapier contacts (as with the hook off),
-            // rebuilt clean before Rapier starts recycling them.
-            counts.quiet += n_contacts;
-            return;
-        }
-        // The shapes (one typed-shape call per collider): the contact law's surfaces and, for
-        // Rapier's rotation gap, a wheel (cylinder) turning about its axle like a sphere of its
-        // radius (module `crowns`).
-        let (law1, gap1) = co1.map_or((None, None), shape_surfaces);
-        let (law2, gap2) = co2.map_or((None, None), shape_surfaces);
-        // The bodies, looked up once per manifold.
-        let rbs = [
-            h1.and_then(|h| bodies.get(h)),
-            h2.and_then(|h| bodies.get(h)),
-        ];
+        // Only this pair's shard (never a global lock: crate docs of `SHARDS`).
+        let mut shard = lock(shard);
+        let Shard {
+            store,
+            counts,
+            laws,
+            crowns,
+            pairs,
+            ..
+        } = &mut *shard;
+        let PairView {
+            materials: (m1, m2),
+            fidelity,
+            laws: (law1, law2),
+            gaps: (gap1, gap2),
+            bodies: rbs,
+        } = view;
         let mu = f64::from(*rigid.friction);
         // The patched Rapier (feature `rapier-patched`) reads no rotation gap on a ball:
         // nothing to correct (crate::gap).
@@ -120,7 +132,6 @@ impl PhysicsHooks for CreepHooks {
             ball_manifold(&manifold, rigid, store, counts);
             return;
         }
-        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
         if self.settings.anchor_drift_correction {
             // Every registered pair, whatever its shapes and fidelity: Rapier's rotation gap
             // (see `rotation_gap`) is the engine's, not creep's.
@@ -164,14 +175,7 @@ impl PhysicsHooks for CreepHooks {
                 return;
             }
         }
-        match (law1, law2) {
-            (Some(s1), Some(s2)) if !is_sphere(s1) && !is_sphere(s2) => {
-                // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
-                counts.coulomb_no_sphere += n_contacts;
-            }
-            // No supported shape, or a ball pair the law refuses (a bad radius or friction).
-            _ => counts.coulomb_unsupported += n_contacts,
-        }
+        count_coulomb(counts, (law1, law2), n_contacts);
     }
     /// A recycled step's hook (feature `rapier-patched`; the colliders that opt in are set by
     /// [`CreepHooks::update_activation`]): a ball manifold gets this step's slip targets on
@@ -189,61 +193,136 @@ impl PhysicsHooks for CreepHooks {
             self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
             return;
         }
-        let mut shard = self.shards[shard_of(c1, c2)]
-            .lock()
-            .unwrap_or_else(|e| e.into_inner());
+        let shard = &self.shards[shard_of(c1, c2)];
+        let co = (colliders.get(c1), colliders.get(c2));
+        // (A compliant pair has no solver contacts, so it is never called here.)
+        let Ok(view) = self.pair_view(shard, (c1, c2), (h1, h2), co, bodies, n_contacts) else {
+            return;
+        };
+        let mut shard = lock(shard);
         let Shard {
             store,
             counts,
             pairs,
             ..
         } = &mut *shard;
-        let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
-            counts.coulomb_unregistered += n_contacts;
-            return;
-        };
-        let (co1, co2) = (colliders.get(c1), colliders.get(c2));
-        // (A compliant pair has no solver contacts, so it is never called here.)
-        let Regime::Rigid(fidelity) = m1.regime.pair(m2.regime) else {
-            return;
-        };
-        if quiet_collider(co1) && quiet_collider(co2) {
-            counts.quiet += n_contacts;
-            return;
-        }
-        let (law1, _) = co1.map_or((None, None), shape_surfaces);
-        let (law2, _) = co2.map_or((None, None), shape_surfaces);
-        let rbs = [
-            h1.and_then(|h| bodies.get(h)),
-            h2.and_then(|h| bodies.get(h)),
-        ];
         let ball = self.ball_of(
             (c1, c2),
             (h1, h2),
-            (m1, m2),
-            (law1, law2),
+            view.materials,
+            view.laws,
             f64::from(manifold.data.friction),
-            rbs,
+            view.bodies,
             bodies,
             pairs,
-            fidelity,
+            view.fidelity,
             None,
         );
         if let Some(m) = ball {
             recycled_ball_manifold(&m, manifold, contacts, store, counts);
             return;
         }
-        let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
-        match (law1, law2) {
-            (Some(s1), Some(s2)) if !is_sphere(s1) && !is_sphere(s2) => {
-                counts.coulomb_no_sphere += n_contacts;
-            }
-            _ => counts.coulomb_unsupported += n_contacts,
-        }
+        count_coulomb(counts, view.laws, n_contacts);
     }
 }
 
+/// Counts a manifold that keeps Rapier's Coulomb friction for want of a supported pair of
+/// shapes.
+fn count_coulomb(
+    counts: &mut super::counts::StepCounts,
+    laws: (Option<Surface>, Option<Surface>),
+    n_contacts: usize,
+) {
+    let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
+    match laws {
+        (Some(s1), Some(s2)) if !is_sphere(s1) && !is_sphere(s2) => {
+            // Two flat sides (a box on a box or on a mesh): Hertz needs a curved one.
+            counts.coulomb_no_sphere += n_contacts;
+        }
+        // No supported shape, or a ball pair the law refuses (a bad radius or friction).
+        _ => counts.coulomb_unsupported += n_contacts,
+    }
+}
+
+/// Locks a shard of the hooks' state (a poisoned lock is taken as it is, as everywhere in the
+/// hooks).
+fn lock(shard: &Mutex<Shard>) -> MutexGuard<'_, Shard> {
+    shard.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 impl CreepHooks {
+    /// The preamble both hooks share (module docs), which locks the pair's shard only to count
+    /// or report: the pair's materials (an unregistered
+    /// collider's pair is counted and left to Coulomb, and reported once with
+    /// [`crate::CreepSettings::warn_unregistered`]), its regime (a compliant pair is
+    /// [`Skip::Compliant`]), a pair of quiet colliders (counted, left as Rapier built it), a
+    /// manifold without solver contacts and without a wheel (nothing to rewrite), then the
+    /// shapes and the bodies.
+    fn pair_view<'a>(
+        &'a self,
+        shard: &Mutex<Shard>,
+        (c1, c2): (ColliderHandle, ColliderHandle),
+        (h1, h2): (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
+        (co1, co2): (Option<&'a Collider>, Option<&'a Collider>),
+        bodies: &'a RigidBodySet,
+        n_contacts: usize,
+    ) -> Result<PairView<'a>, Skip> {
+        let (Some(m1), Some(m2)) = (self.registry.get(c1), self.registry.get(c2)) else {
+            let mut shard = lock(shard);
+            shard.counts.coulomb_unregistered += n_contacts;
+            if self.settings.warn_unregistered {
+                let (stranger, known) = if self.registry.get(c1).is_some() {
+                    (c2, c1)
+                } else {
+                    (c1, c2)
+                };
+                if self.registry.get(known).is_some() && shard.unregistered_seen.insert(stranger) {
+                    shard.unregistered.push((stranger, known));
+                }
+            }
+            return Err(Skip::Done);
+        };
+        // A pair with a compliant collider is the compliant regime's (`Regime::pair`), which
+        // applies its forces itself.
+        let Regime::Rigid(fidelity) = m1.regime.pair(m2.regime) else {
+            return Err(Skip::Compliant);
+        };
+        if quiet_collider(co1) && quiet_collider(co2) {
+            // Both below the activation speed: plain Rapier contacts (as with the hook off),
+            // rebuilt clean before Rapier starts recycling them.
+            if n_contacts > 0 {
+                lock(shard).counts.quiet += n_contacts;
+            }
+            return Err(Skip::Done);
+        }
+        // The shapes (one typed-shape call per collider): the contact law's surfaces and, for
+        // Rapier's rotation gap, a wheel (cylinder) turning about its axle like a sphere of its
+        // radius (module `crowns`).
+        let shape1 = co1.and_then(crate::shape::supported_shape);
+        let shape2 = co2.and_then(crate::shape::supported_shape);
+        let wheel = |s: Option<SupportedShape>| matches!(s, Some(SupportedShape::Wheel { .. }));
+        if n_contacts == 0 && !wheel(shape1) && !wheel(shape2) {
+            // Nothing to rewrite (module docs).
+            return Err(Skip::Done);
+        }
+        Ok(PairView {
+            materials: (m1, m2),
+            fidelity,
+            laws: (
+                shape1.and_then(|s| s.rigid_surface()),
+                shape2.and_then(|s| s.rigid_surface()),
+            ),
+            gaps: (
+                shape1.map(|s| s.gap_surface()),
+                shape2.map(|s| s.gap_surface()),
+            ),
+            bodies: [
+                h1.and_then(|h| bodies.get(h)),
+                h2.and_then(|h| bodies.get(h)),
+            ],
+        })
+    }
+
     /// The ball path's view of a manifold (module `ball`) when a ball is on either side of a
     /// supported shape and the law takes the pair, with the pair's constants computed once per
     /// pair of materials (`creep_law::rigid::RigidPairCache`); `None` otherwise.
@@ -286,16 +365,5 @@ impl CreepHooks {
             gap_substeps,
             auto_tolerance: (fidelity == Fidelity::Auto).then_some(self.settings.auto_tolerance),
         })
-    }
-}
-
-/// The surfaces a collider presents to the rigid hook, from one typed-shape call
-/// ([`crate::supported_shape`]): the contact law's ([`crate::SupportedShape::rigid_surface`])
-/// and the rotation-gap correction's (the same, and a wheel as a sphere of its radius: it turns
-/// about its axle).
-fn shape_surfaces(co: &Collider) -> (Option<Surface>, Option<Surface>) {
-    match crate::shape::supported_shape(co) {
-        Some(shape) => (shape.rigid_surface(), Some(shape.gap_surface())),
-        None => (None, None),
     }
 }
