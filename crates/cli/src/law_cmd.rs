@@ -435,6 +435,32 @@ mod tests {
         }
     }
 
+    /// The documented command far in slip (a lateral creepage with spin, ten times beyond the
+    /// box): the loads of full slip in that direction (the rigid-slip quadrature), within 2 %
+    /// of `mu P` and `mu P c`, in Kalker's signs.
+    #[test]
+    fn steady3d_far_in_slip_is_full_slip() {
+        let out = run_str(&LawCommand::Steady3d {
+            nu: 0.28,
+            ab: 1.0,
+            xi: 0.0,
+            eta: 20.0,
+            phi: 25.0,
+        })
+        .unwrap();
+        let v: Vec<f64> = out
+            .lines()
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect();
+        let q = creep_law::steady3d::full_slip::rigid_slip_loads(1.0, [0.0, 20.0, 25.0], 100);
+        assert!((v[4] + q[1]).abs() < 0.02, "Fy {} vs {}", v[4], -q[1]);
+        assert!((v[5] + q[2]).abs() < 0.02, "Mz {} vs {}", v[5], -q[2]);
+        assert!(q[1] > 0.1, "the direction keeps a lateral force ({})", q[1]);
+    }
+
     #[test]
     fn tour_runs() {
         let mut buf = Vec::new();
