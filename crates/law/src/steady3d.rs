@@ -536,8 +536,8 @@ pub enum Coverage {
     /// The table at the nearest computed `nu` (a `nu` outside the range its rows compute) with
     /// the creepages scaled by Kalker's coefficients (module documentation, "Beyond the computed
     /// nu"): looser, within 9 % of `mu P` in each force and 9 % of `mu P a` in the moment on
-    /// the error map and its off-grid validation (worst measured at `nu = 0`, 0.25 from the
-    /// computed: Fx 7.29 % and Mz 8.91 % at `a/b = 0.5`, Fy 8.79 % at `a/b = 2`).
+    /// the error map and its off-grid validation (worst measured at `nu = 0`, 0.5 from the
+    /// computed: Fx 6.80 % at `a/b = 1.4`, Fy 8.79 % and Mz 4.88 % of `mu P a` at `a/b = 2`).
     ExtrapolatedNu,
     /// The fitted law (no computed `a/b` on both sides).
     Fitted,

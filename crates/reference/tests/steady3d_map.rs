@@ -138,7 +138,8 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
     // a/b = 0.2), every a/b and nu; with the turn stopping at the onset of full slip the
     // forces were 11.6 % / 12.7 % off at (2, 2, 0), a/b = 0.2, nu = 0.5.
     // A `nu` extrapolated from the table (`Coverage::ExtrapolatedNu`) carries the anisotropic
-    // scaling of its creepages into full slip: 7.0 % / 6.3 % at (2, 2, 0), a/b = 0.5, nu = 0.
+    // scaling of its creepages into full slip: 6.2 % / 5.8 % at (2, 2, 0) and (2, 0.8, 0),
+    // a/b = 1.4, nu = 0.
     use creep_law::steady3d::{Coverage, Steady3d};
     let extrapolated =
         |ab: f64, nu: f64| Steady3d::new(ab, nu).unwrap().coverage() == Coverage::ExtrapolatedNu;
@@ -174,9 +175,9 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
 /// at `a/b = 0.7` between `0.5` and `1`; Fy 4.08 % at `a/b = 1.4`, `nu = 0.5`, between `1` and
 /// `2`; 3.28 %, 2.29 %, 3.35 % on the off-grid case `a/b = 0.85`, `nu = 0.4`). A `nu` outside
 /// the computed ones (`Coverage::ExtrapolatedNu`, the nearest computed `nu` with the creepages
-/// scaled by Kalker's coefficients): 9 % of `mu P` and 9 % of `mu P a` (measured Fx 7.29 % and
-/// Mz 8.91 % at `a/b = 0.5`, `nu = 0`; Fy 8.79 % at `a/b = 2`, `nu = 0`; 4.24 %, 4.33 %, 4.51 %
-/// on the off-grid case `a/b = 0.6`, `nu = 0.1`).
+/// scaled by Kalker's coefficients): 9 % of `mu P` and 9 % of `mu P a` (measured Fx 6.80 % at
+/// `a/b = 1.4`, `nu = 0`; Fy 8.79 % and Mz 4.88 % at `a/b = 2`, `nu = 0`; 4.47 %, 4.61 %,
+/// 4.02 % on the off-grid case `a/b = 1.2`, `nu = 0.3`).
 #[test]
 fn table_meets_the_bounds_where_it_covers_the_map() {
     use creep_law::steady3d::{Coverage, Steady3d};
