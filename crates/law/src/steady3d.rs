@@ -592,8 +592,9 @@ impl Steady3d {
         })
     }
 
-    /// Whether the boundary-element table covers this contact (module documentation, "The
-    /// table"): then [`Steady3d::loads`] interpolates it; otherwise the fitted law.
+    /// Whether the boundary-element table answers for this contact, at its `nu` or extrapolated
+    /// in `nu` (module documentation, "The table"): then [`Steady3d::loads`] interpolates it;
+    /// otherwise the fitted law ([`Steady3d::coverage`] says which).
     pub fn tabulated(&self) -> bool {
         self.lut.is_some()
     }

@@ -219,15 +219,15 @@ fn shared_nu(ab: f64) -> Option<(f64, f64)> {
 }
 
 impl Lut {
-    /// The table at `(a/b, nu)`, or `None` outside its coverage (module documentation). With
-    /// `extrapolate`, a `nu` outside the range the rows compute takes the nearest computed
-    /// `nu` with the creepages scaled by Kalker's coefficients (module documentation, "Beyond
-    /// the computed nu").
+    /// The table at `(a/b, nu)` within the computed `nu`, or `None` outside its coverage
+    /// (module documentation; [`Lut::at_with`] extrapolates in `nu`).
     pub fn at(ab: f64, nu: f64) -> Option<Lut> {
         Self::at_with(ab, nu, false)
     }
 
-    /// [`Lut::at`], extrapolating in `nu` if `extrapolate`.
+    /// [`Lut::at`]; with `extrapolate`, a `nu` outside the range the rows compute takes the
+    /// nearest computed `nu` with the creepages scaled by Kalker's coefficients (module
+    /// documentation of [`super`], "Beyond the computed nu").
     pub fn at_with(ab: f64, nu: f64, extrapolate: bool) -> Option<Lut> {
         if !(ab.is_finite() && ab > 0.0 && nu.is_finite()) {
             return None;
