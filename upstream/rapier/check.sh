@@ -65,7 +65,9 @@ cp "$root/Cargo.lock" "$rapier/Cargo.lock"
   cd "$rapier"
   export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$root/target}
   if [ "${RAPIER_TESTS:-}" = all ]; then
-    cargo test --no-fail-fast
+    # RAPIER_PROFILE=release: optimised (soft_bodies.rs alone runs 5.5 min so, far longer in
+    # the debug profile).
+    cargo test --no-fail-fast ${RAPIER_PROFILE:+--profile "$RAPIER_PROFILE"}
   else
     cargo test --lib
     cargo test --test ball_rolling_substeps --test speed_cap --test recycled_contact_modification \

@@ -527,3 +527,30 @@ fn crowned_wheel_force_is_the_combined_law_at_its_creepages() {
         }
     }
 }
+
+/// The implicit solve's residual stop (`solve_translation`) assumes `F(q)/q` never falls with
+/// `q`: checked for every creep model at `nu` over `[0, 0.5]`.
+#[test]
+fn creepage_over_force_never_falls() {
+    use crate::steady_law::SteadyLaw;
+    for model in [
+        crate::CreepModel::Kuhn,
+        crate::CreepModel::Fitted,
+        crate::CreepModel::FittedTransient,
+    ] {
+        for k in 0..=10 {
+            let law = SteadyLaw::new(model, 0.05 * k as f64);
+            let mut last = 0.0;
+            for i in 1..=2000 {
+                let q = i as f64 / 2000.0;
+                let r = law.creepage_for_force(q, 1.0, 1.0, 1.0) / q;
+                assert!(
+                    r >= last * (1.0 - 1e-12),
+                    "{model:?} nu {} q {q}: {r} < {last}",
+                    0.05 * k as f64
+                );
+                last = r;
+            }
+        }
+    }
+}

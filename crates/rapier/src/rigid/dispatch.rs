@@ -7,9 +7,9 @@
 //! Rapier calls the full-update hook for every manifold of a hooked pair, also for those with
 //! no solver contact (the bodies' shapes within the broad phase's margin but apart by more than
 //! the prediction distance: about three in four of a poured pile's manifolds). Such a manifold
-//! has nothing to rewrite, so the hook leaves it after the checks that do not depend on its
-//! contacts (friction, registration, regime) unless a wheel is on it (the wheel path may add
-//! the patch contact, module `wheel`).
+//! has nothing to rewrite, so the hook leaves it at once unless a cylinder is on it (a wheel:
+//! the wheel path may add the patch contact, module `wheel`): a collider's bad friction and an
+//! unregistered partner are reported from the pair's first solver contact on.
 
 use std::sync::atomic::Ordering;
 use std::sync::{Mutex, MutexGuard};
@@ -69,8 +69,13 @@ impl PhysicsHooks for CreepHooks {
             self.outside.fetch_add(n_contacts.max(1), Ordering::Relaxed);
             return;
         }
-        let shard = &self.shards[shard_of(c1, c2)];
         let (co1, co2) = (colliders.get(c1), colliders.get(c2));
+        if n_contacts == 0 && !cylinder(co1) && !cylinder(co2) {
+            // Nothing to rewrite and no wheel to give a patch contact (module docs): the
+            // checks below would change nothing for this manifold.
+            return;
+        }
+        let shard = &self.shards[shard_of(c1, c2)];
         // Both colliders' friction (a registered collider's is checked before the step, its
         // partner's only here): the step returns PluginError::Friction, and the pair is
         // solved without friction meanwhile so that no NaN reaches the bodies.
@@ -244,6 +249,14 @@ fn count_coulomb(
     }
 }
 
+/// Whether a collider is a cylinder, the one shape whose manifold the hook may give a contact
+/// Rapier did not (a wheel's patch contact, module `wheel`). One virtual call, cheaper than the
+/// typed shape of [`crate::shape::supported_shape`].
+#[inline]
+fn cylinder(co: Option<&Collider>) -> bool {
+    co.is_some_and(|co| co.shape().shape_type() == ShapeType::Cylinder)
+}
+
 /// Locks a shard of the hooks' state (a poisoned lock is taken as it is, as everywhere in the
 /// hooks).
 fn lock(shard: &Mutex<Shard>) -> MutexGuard<'_, Shard> {
@@ -258,6 +271,7 @@ impl CreepHooks {
     /// [`Skip::Compliant`]), a pair of quiet colliders (counted, left as Rapier built it), a
     /// manifold without solver contacts and without a wheel (nothing to rewrite), then the
     /// shapes and the bodies.
+    #[inline]
     fn pair_view<'a>(
         &'a self,
         shard: &Mutex<Shard>,
