@@ -212,6 +212,7 @@ impl CreepPipeline {
     ) -> Result<(), PluginError> {
         self.hooks.select_colliders(islands, bodies, colliders);
         self.check_friction(colliders)?;
+        self.hooks.gather_coincident(narrow_phase);
         self.hooks.begin_step(params)?;
         self.hooks.lift_rotation_cap(bodies, colliders);
         self.hooks.update_activation(bodies, colliders);

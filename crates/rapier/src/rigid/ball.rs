@@ -58,6 +58,9 @@ pub(crate) struct BallManifold<'a> {
     pub gap_substeps: Option<usize>,
     /// [`crate::CreepSettings::auto_tolerance`] for an `Auto` pair, else `None`.
     pub auto_tolerance: Option<f64>,
+    /// Whether the other side is a triangle mesh or a heightfield, whose contacts with a ball
+    /// may coincide ([`crate::diagnostics::CoincidentLoad`]).
+    pub on_mesh: bool,
 }
 
 /// The creep slip targets of one ball manifold (module docs).
@@ -96,6 +99,7 @@ pub(crate) fn ball_manifold(
             point: (a1 + a2) * 0.5,
             p: p_motion,
             q: q_motion,
+            subshapes: (rigid.manifold.subshape1, rigid.manifold.subshape2),
         };
         if let Some(target) = ball_contact(m, &contact, point, store, counts) {
             sc.tangent_velocity += vf(target);
@@ -149,10 +153,30 @@ pub(crate) fn recycled_ball_manifold(
             point: c,
             p: p_body.unwrap_or_else(|| body_motion(None, c - n, s1)),
             q: q_body.unwrap_or_else(|| body_motion(None, c + n, s2)),
+            subshapes: (manifold.subshape1, manifold.subshape2),
         };
         let target = ball_contact(m, &contact, point, store, counts);
         contacts.set_tangent_velocity(i, target.map_or(Vector::ZERO, vf));
     }
+}
+
+/// The features of a contact in its [`ContactKey`]: Rapier's feature ids, with the part of a
+/// triangle mesh or heightfield folded in (`subshapes`, the manifold's `subshape1/2`) when the
+/// pair is `on_mesh`: there each manifold is one triangle and its feature ids are the
+/// triangle's own (vertex, edge or face 0-2), so two triangles' contacts would share a key.
+/// The part goes in the id's index bits above the local index (parry's packed feature id:
+/// two header bits, 30 index bits); a mesh of more than 2^28 parts may alias.
+#[inline]
+pub(crate) fn contact_features(
+    fids: (u32, u32),
+    subshapes: (u32, u32),
+    on_mesh: bool,
+) -> (u32, u32) {
+    if !on_mesh {
+        return fids;
+    }
+    let fold = |fid: u32, part: u32| (fid & 0xC000_0003) | ((part << 2) & 0x3FFF_FFFC);
+    (fold(fids.0, subshapes.0), fold(fids.1, subshapes.1))
 }
 
 /// One contact of a ball manifold as the law reads it.
@@ -165,6 +189,8 @@ struct BallContact {
     p: BodyMotion,
     /// Body 2's motion.
     q: BodyMotion,
+    /// The manifold's parts of composite shapes (`subshape1`, `subshape2`).
+    subshapes: (u32, u32),
 }
 
 /// One contact of a ball manifold: its record, the contact-torque rolling moment, the kernel's
@@ -181,16 +207,23 @@ fn ball_contact(
     let (h1, h2) = m.handles;
     let dt = m.dt;
     let (n, c) = (contact.normal, contact.point);
+    let (feature1, feature2) =
+        contact_features((point.fid1.0, point.fid2.0), contact.subshapes, m.on_mesh);
     let key = ContactKey {
         collider1: c1,
         collider2: c2,
-        feature1: point.fid1.0,
-        feature2: point.fid2.0,
+        feature1,
+        feature2,
     };
+    if m.on_mesh {
+        store.on_meshes.push(key);
+    }
     let rec = store.touch(key);
     rec.bodies = (h1, h2);
     let normal_impulse = f64::from(point.data.impulse);
     let p_force = normal_impulse / dt;
+    rec.point = c;
+    let coincident = rec.coincident.take();
     rec.p = p_force;
     let n_prev = std::mem::replace(&mut rec.normal, n);
     rec.torque = Vec3::ZERO;
@@ -221,7 +254,7 @@ fn ball_contact(
     // most rolling steps: a direction taken from it never follows a reversal.)
     let (t1, t2) = solver_tangents(if n_prev == Vec3::ZERO { n } else { n_prev });
     let ti = point.data.tangent_impulse;
-    let rigid_contact = RigidContact {
+    let mut rigid_contact = RigidContact {
         normal: n,
         point: c,
         p: contact.p,
@@ -232,9 +265,23 @@ fn ball_contact(
         dt,
         auto_tolerance: m.auto_tolerance,
     };
-    let out = ball_creep(&m.pair, m.consts, &rigid_contact, |d| {
+    // A contact that coincided with others in the last solve (a ball on a shared edge of a
+    // mesh) is solved from the group's load: the same target for every member, and this
+    // member's share of the group's moment and power (`CoincidentLoad`).
+    let mut share = 1.0;
+    if let Some(g) = coincident.filter(|g| g.normal_impulse > 0.0) {
+        share = (normal_impulse / g.normal_impulse).clamp(0.0, 1.0);
+        rigid_contact.normal_impulse = g.normal_impulse;
+        rigid_contact.tangent_impulse = g.tangent_impulse;
+        rigid_contact.last_target = g.target;
+    }
+    let mut out = ball_creep(&m.pair, m.consts, &rigid_contact, |d| {
         inverse_mass_of(m.bodies, vf(c), vf(d), vf(d))
     });
+    if share != 1.0 {
+        out.moment = out.moment * share;
+        out.power *= share;
+    }
     counts.book(&out, 1);
     rec.set_creep(&out);
     out.creeps().then_some(out.target)

@@ -24,7 +24,7 @@ use super::hooks::{CreepHooks, Shard, quiet_collider, shard_of};
 use super::wheel::{WheelCtx, wheel_manifold};
 use crate::convert::{body_motion, v3, vf};
 use crate::gap::rotation_gap_correction;
-use crate::shape::SupportedShape;
+use crate::shape::{FlatShape, SupportedShape};
 use creep_law::rigid::RigidPairCache;
 
 use crate::registry::{CreepMaterial, Fidelity, Regime, RollingResistance};
@@ -42,6 +42,9 @@ struct PairView<'a> {
     gaps: (Option<Surface>, Option<Surface>),
     /// The bodies, looked up once per manifold.
     bodies: [Option<&'a RigidBody>; 2],
+    /// Whether a side is a triangle mesh or a heightfield (its contacts with a ball may
+    /// coincide: `crate::diagnostics::CoincidentLoad`).
+    on_mesh: bool,
 }
 
 /// Why [`CreepHooks::pair_view`] leaves a manifold to its caller as it is.
@@ -112,6 +115,7 @@ impl PhysicsHooks for CreepHooks {
             laws: (law1, law2),
             gaps: (gap1, gap2),
             bodies: rbs,
+            on_mesh,
         } = view;
         let mu = f64::from(*rigid.friction);
         // The patched Rapier (feature `rapier-patched`) reads no rotation gap on a ball:
@@ -130,6 +134,7 @@ impl PhysicsHooks for CreepHooks {
             pairs,
             fidelity,
             gap_substeps,
+            on_mesh,
         );
         if let Some(manifold) = ball {
             // (The rotation-gap correction below is done there, contact by contact, on the
@@ -222,6 +227,7 @@ impl PhysicsHooks for CreepHooks {
             pairs,
             view.fidelity,
             None,
+            view.on_mesh,
         );
         if let Some(m) = ball {
             recycled_ball_manifold(&m, manifold, contacts, store, counts);
@@ -319,6 +325,14 @@ impl CreepHooks {
             // Nothing to rewrite (module docs).
             return Err(Skip::Done);
         }
+        let mesh = |s: Option<SupportedShape>| {
+            matches!(
+                s,
+                Some(SupportedShape::Flat(
+                    FlatShape::TriMesh | FlatShape::HeightField
+                ))
+            )
+        };
         Ok(PairView {
             materials: (m1, m2),
             fidelity,
@@ -334,6 +348,7 @@ impl CreepHooks {
                 h1.and_then(|h| bodies.get(h)),
                 h2.and_then(|h| bodies.get(h)),
             ],
+            on_mesh: mesh(shape1) || mesh(shape2),
         })
     }
 
@@ -353,6 +368,7 @@ impl CreepHooks {
         pairs: &'a mut RigidPairCache,
         fidelity: Fidelity,
         gap_substeps: Option<usize>,
+        on_mesh: bool,
     ) -> Option<BallManifold<'a>> {
         let is_sphere = |s: Surface| matches!(s, Surface::Sphere(_));
         let (s1, s2, consts, pair) = match laws {
@@ -378,6 +394,7 @@ impl CreepHooks {
             dt: self.dt,
             gap_substeps,
             auto_tolerance: (fidelity == Fidelity::Auto).then_some(self.settings.auto_tolerance),
+            on_mesh,
         })
     }
 }

@@ -528,6 +528,55 @@ impl CreepHooks {
         }
     }
 
+    /// Groups the coincident ball contacts on triangle meshes and heightfields of the last
+    /// step (`crate::diagnostics::CoincidentLoad`), before the next: for each pair whose ball
+    /// contacts the hook listed (`ContactStore::on_meshes`), the contacts at one point (within
+    /// `1e-6 m + 1e-6 |c|`) along one normal (within 1.4 mrad) get the group's summed normal
+    /// and friction impulses of the last solve, read from the narrow phase, and its
+    /// share-weighted last target. Costs nothing in a scene without such pairs.
+    ///
+    /// Only with more than one solver substep (those of the last step): there the solver's
+    /// split between coincident contacts changes from substep to substep and their own
+    /// targets work against each other (a rubber ball at 2 m/s on a mesh edge, 1/30 s, four
+    /// substeps: 3.9e-4 of E0 gained, plain Rapier 2.6e-5; grouped, 2.6e-5). With one substep
+    /// the split holds and the full matrix is the same either way within its noise (worst mesh
+    /// gain 2.0e-5 both), so the contacts stay apart there.
+    pub(crate) fn gather_coincident(&mut self, narrow_phase: &NarrowPhase) {
+        let grouping = self.substeps > 1;
+        for shard in self.shards.iter_mut() {
+            let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
+            let store = &mut shard.store;
+            if !grouping {
+                store.on_meshes.clear();
+            }
+            if store.on_meshes.is_empty() {
+                continue;
+            }
+            let keys = std::mem::take(&mut store.on_meshes);
+            // A pair's contacts were listed one after the other (one call per manifold, the
+            // pair's manifolds in one pass).
+            let mut start = 0;
+            while start < keys.len() {
+                let pair_of = |k: &ContactKey| (k.collider1, k.collider2);
+                let end = start
+                    + keys[start..]
+                        .iter()
+                        .take_while(|k| pair_of(k) == pair_of(&keys[start]))
+                        .count();
+                if end - start >= 2
+                    && let Some(pair) =
+                        narrow_phase.contact_pair(keys[start].collider1, keys[start].collider2)
+                {
+                    group_coincident(&keys[start..end], pair, &mut store.records);
+                }
+                start = end;
+            }
+            let mut keys = keys;
+            keys.clear();
+            store.on_meshes = keys;
+        }
+    }
+
     /// Records what Rapier quarantined in the step (rapier3d's `PhysicsPipeline::quarantine`):
     /// in [`StepCounts::quarantined_bodies`] and `quarantined_colliders`, each body also as a
     /// [`CreepWarning::Quarantined`].
@@ -642,5 +691,87 @@ impl CreepHooks {
             .lock()
             .unwrap_or_else(|e| e.into_inner());
         shard.store.records.get(key).copied()
+    }
+}
+
+/// The coincident groups among one pair's listed contacts (`keys`, all of one collider pair;
+/// [`CreepHooks::gather_coincident`]): each member's last solved impulses from the pair's
+/// manifold points, the groups by point and normal, their loads written to the members'
+/// records.
+fn group_coincident(
+    keys: &[ContactKey],
+    pair: &ContactPair,
+    records: &mut crate::store::FastMap<ContactKey, ContactRecord>,
+) {
+    use crate::store::CoincidentLoad;
+    const MAX: usize = 16;
+    if pair.collider1 != keys[0].collider1 || keys.len() > MAX {
+        return;
+    }
+    // (normal impulse, friction impulse on body 1 in the world, point, normal, target)
+    let mut members: [(f64, Vec3, Vec3, Vec3, Vec3); MAX] = [Default::default(); MAX];
+    let mut found = [false; MAX];
+    for m in pair.manifolds() {
+        let subshapes = (m.subshape1, m.subshape2);
+        for pt in &m.points {
+            let features = super::ball::contact_features((pt.fid1.0, pt.fid2.0), subshapes, true);
+            let Some(i) = keys
+                .iter()
+                .position(|k| (k.feature1, k.feature2) == features)
+            else {
+                continue;
+            };
+            let Some(rec) = records.get(&keys[i]) else {
+                continue;
+            };
+            let (t1, t2) = crate::convert::solver_tangents(rec.normal);
+            let ti = pt.data.tangent_impulse;
+            members[i] = (
+                f64::from(pt.data.impulse),
+                t1 * f64::from(ti.x) + t2 * f64::from(ti.y),
+                rec.point,
+                rec.normal,
+                rec.target,
+            );
+            found[i] = true;
+        }
+    }
+    let n = keys.len();
+    let mut grouped = [false; MAX];
+    for i in 0..n {
+        if !found[i] || grouped[i] {
+            continue;
+        }
+        let (_, _, ci, ni, _) = members[i];
+        let tol = 1e-6 * (1.0 + ci.length());
+        let mut group = [0usize; MAX];
+        let mut k = 0;
+        for j in i..n {
+            let (_, _, cj, nj, _) = members[j];
+            if found[j] && !grouped[j] && (cj - ci).length() <= tol && ni.dot(nj) >= 1.0 - 1e-6 {
+                group[k] = j;
+                k += 1;
+            }
+        }
+        if k < 2 {
+            continue;
+        }
+        let mut load = CoincidentLoad::default();
+        for &j in &group[..k] {
+            load.normal_impulse += members[j].0;
+            load.tangent_impulse += members[j].1;
+        }
+        if !(load.normal_impulse > 0.0) {
+            continue;
+        }
+        for &j in &group[..k] {
+            load.target += members[j].4 * (members[j].0 / load.normal_impulse);
+            grouped[j] = true;
+        }
+        for &j in &group[..k] {
+            if let Some(rec) = records.get_mut(&keys[j]) {
+                rec.coincident = Some(load);
+            }
+        }
     }
 }
