@@ -227,6 +227,10 @@ impl CreepState {
     /// [`crate::transient_law`]. Non-finite inputs count as zero motion / open contact.
     /// Switching the model of a live contact is allowed (the lag state starts from its last
     /// value, zero if never used).
+    ///
+    /// Always inlined (with the Cattaneo-Mindlin update), so that a host's loop compiled for a
+    /// wider instruction set compiles the update for it too (the same bits).
+    #[inline(always)]
     pub fn update(&mut self, law: &CreepLaw, step: CreepInput) -> CreepStep {
         let CreepLaw {
             pair,

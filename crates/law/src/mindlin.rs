@@ -282,6 +282,10 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
 
     /// [`MindlinState::update`] with the contact radius `a` \[m\] given directly (e.g. from the
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
+    ///
+    /// Always inlined, so that a host's loop compiled for a wider instruction set (creep-dem's
+    /// AVX2 copy of the force loops) compiles the update for it too (the same bits).
+    #[inline(always)]
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
         let () = Self::CAPACITY_OK;
         let a = if finite(a) && a > 0.0 { a } else { 0.0 };
@@ -407,7 +411,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let g_star = pair.g_star;
-        let (n, d_u2) = if splits == 0 {
+        // Branches that keep the pieces in place end with one `merge` of `self.pieces` (one
+        // inlined copy); the rare overflow into a scratch list merges out of line.
+        let in_place = if splits == 0 {
             let mut x_lo = 0.0;
             for (i, (p, &cut)) in self.pieces[..self.n]
                 .iter_mut()
@@ -421,7 +427,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 }
                 x_lo = x_hi.max(x_lo);
             }
-            merge::<N, COALESCE>(&mut self.pieces, self.n, a, kappa, touched)
+            Ok((self.n, touched))
         } else if self.n + splits <= MAX_PIECES + 1 {
             // The split pieces fit in the storage: expand in place. First move every piece to
             // its final slot (from the outermost, so nothing unread is overwritten; a split
@@ -454,7 +460,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 }
                 x_lo = p.x_hi;
             }
-            merge::<N, COALESCE>(&mut self.pieces, pos, a, kappa, touched_out)
+            Ok((pos, touched_out))
         } else {
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
             let mut m = 0;
@@ -476,11 +482,15 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 }
                 x_lo = p.x_hi;
             }
-            let (n, d_u2) = merge::<N, COALESCE>(&mut out, m, a, kappa, touched_out);
+            let (n, d_u2) = merge_outlined::<N, COALESCE>(&mut out, m, a, kappa, touched_out);
             for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
                 *dst = *src;
             }
-            (n, d_u2)
+            Err((n, d_u2))
+        };
+        let (n, d_u2) = match in_place {
+            Ok((m, touched)) => merge::<N, COALESCE>(&mut self.pieces, m, a, kappa, touched),
+            Err(done) => done,
         };
         self.a = a;
         self.n = n;
@@ -505,6 +515,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
     }
 
     /// `Q = 8 G* sum_pieces integral u(x) dx` (each boundary's depth evaluated once).
+    #[inline(always)]
     fn integrate_force(&self, pair: &PairMaterial) -> Vec2 {
         let a = self.a;
         let mut x_lo = 0.0;
@@ -769,6 +780,9 @@ fn shifted_slip_work(
 /// over it (taken only if within the limit and not adding energy); as a last resort the inner
 /// piece whose absorption by its outer neighbour
 /// (extended inwards) adds the least energy.
+///
+/// Inlined into the update (its common part; over the capacity it calls [`enforce_capacity`]).
+#[inline(always)]
 fn merge<const N: usize, const COALESCE: u32>(
     out: &mut [Piece],
     m: usize,
@@ -821,6 +835,35 @@ fn merge<const N: usize, const COALESCE: u32>(
         }
         x_lo = p.x_hi;
     }
+    if n > N {
+        enforce_capacity::<N>(out, n, a, kappa)
+    } else {
+        (n, 0.0)
+    }
+}
+
+/// [`merge`] kept out of line, for the update's rare overflow into a scratch list.
+#[inline(never)]
+fn merge_outlined<const N: usize, const COALESCE: u32>(
+    out: &mut [Piece],
+    m: usize,
+    a: f64,
+    kappa: f64,
+    touched: u32,
+) -> (usize, f64) {
+    merge::<N, COALESCE>(out, m, a, kappa, touched)
+}
+
+/// The capacity rule of [`merge`] for `n > N` pieces: returns the number kept and the change
+/// of `integral |u|^2 dx` [m^3] it caused. Out of line: most updates do not need it.
+#[inline(never)]
+fn enforce_capacity<const N: usize>(
+    out: &mut [Piece],
+    mut n: usize,
+    a: f64,
+    kappa: f64,
+) -> (usize, f64) {
+    let a2 = a * a;
     let mut d_u2 = 0.0;
     while n > N {
         // The adjacent pair of limit pieces with the closest directions, if any.

@@ -106,7 +106,9 @@ impl TangentialLaw for Exact {
         true
     }
 
-    #[inline]
+    /// Always inlined (down to the Cattaneo-Mindlin update), so that a host's loop compiled
+    /// for a wider instruction set compiles the memory update for it too (the same bits).
+    #[inline(always)]
     fn step(
         h: &mut CreepState,
         c: &PairConstants,
