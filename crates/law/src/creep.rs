@@ -262,8 +262,9 @@ impl CreepState {
         if rolling && !open {
             let mu_p = pair.mu * p;
             // Steady creep rate of the current force (Kuhn: Kalker's F_ss).
+            // (Kuhn's closed form inlined, the same bits: `pair::kuhn_creepage`.)
             let f = if q_abs > 0.0 {
-                steady.creepage_for_force(q_abs, mu_p, pair.g, a)
+                crate::pair::kuhn_creepage(steady, q_abs, mu_p, pair.g, a)
             } else {
                 0.0
             };

@@ -60,6 +60,7 @@ pub use history::ContactHistory;
 pub(crate) use kernel::finite;
 pub use kernel::{PairDissipation, PairForces, pair_force, release, rotate_about, rotate_to};
 pub use tiers::{Cheap, CheapHistory, Exact, TangentialLaw, TangentialStep};
+pub(crate) use tiers::kuhn_creepage;
 
 #[cfg(test)]
 mod tests;
