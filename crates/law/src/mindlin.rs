@@ -411,8 +411,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let g_star = pair.g_star;
-        // Branches that keep the pieces in place end with one `merge` of `self.pieces` (one
-        // inlined copy); the rare overflow into a scratch list merges out of line.
+        // The branches that keep the pieces in place end with one `merge` of `self.pieces`;
+        // the overflow into a scratch list merges there.
         let in_place = if splits == 0 {
             let mut x_lo = 0.0;
             for (i, (p, &cut)) in self.pieces[..self.n]
@@ -482,7 +482,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 }
                 x_lo = p.x_hi;
             }
-            let (n, d_u2) = merge_outlined::<N, COALESCE>(&mut out, m, a, kappa, touched_out);
+            let (n, d_u2) = merge::<N, COALESCE>(&mut out, m, a, kappa, touched_out);
             for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
                 *dst = *src;
             }
@@ -840,18 +840,6 @@ fn merge<const N: usize, const COALESCE: u32>(
     } else {
         (n, 0.0)
     }
-}
-
-/// [`merge`] kept out of line, for the update's rare overflow into a scratch list.
-#[inline(never)]
-fn merge_outlined<const N: usize, const COALESCE: u32>(
-    out: &mut [Piece],
-    m: usize,
-    a: f64,
-    kappa: f64,
-    touched: u32,
-) -> (usize, f64) {
-    merge::<N, COALESCE>(out, m, a, kappa, touched)
 }
 
 /// The capacity rule of [`merge`] for `n > N` pieces: returns the number kept and the change
