@@ -347,10 +347,13 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             }
         }
         // (i) The depth shifts uniformly: s_new(x) = s_old(x) + (a^2 - a_old^2), so
-        //     u = s_old beta + c = s_new beta + (c - da2 beta); (ii) every spring moves by du
-        //     (applied to each piece in the return-mapping pass below).
+        //     u = s_old beta + c = s_new beta + (c - da2 beta); (ii) every spring moves by du.
+        //     (A pass of its own: folded into the cuts' pass below, the step ran 9 % slower.)
         let da2 = a2 - a2_old;
         let n_old = self.n;
+        for p in &mut self.pieces[..n_old] {
+            p.c += du - p.beta * da2;
+        }
         // Springs entering during the step: the one at x entered when a(t)^2 = x^2 and, with the
         // displacement linear in a^2 over the step, took du (a^2 - x^2) / da2, i.e. beta = du / da2.
         // They always get a piece of their own (the spare slot when the memory is full; the merge
@@ -367,8 +370,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         }
 
         // (iii)-(iv) Return-map every piece: it splits into a stuck inner part and a slipping
-        // outer part. First the cuts (with the shift of (i)-(ii)), then one pass that writes
-        // the parts, inner to outer, and merges them as they come ([`Merge`]).
+        // outer part. First the cuts, then one pass that writes the parts, inner to outer, and
+        // merges them as they come ([`Merge`]).
         let mut cuts = [0.0f64; MAX_PIECES + 1];
         let mut splits = 0;
         let mut x_lo = 0.0;
@@ -378,10 +381,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         let mut s_lo = a2;
         let m_in = self.n;
         for i in 0..m_in {
-            let p = &mut self.pieces[i];
-            if i < n_old {
-                p.c += du - p.beta * da2;
-            }
+            let p = &self.pieces[i];
             // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
             // them so and `from_array` refuses other states.
             let hi = p.x_hi;
