@@ -380,7 +380,11 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         // The depth at the inner end of the piece: the last piece's outer one (`a^2` at 0).
         let mut s_lo = a2;
         let m_in = self.n;
-        for (i, (p, cut_out)) in self.pieces[..m_in].iter().zip(cuts.iter_mut()).enumerate() {
+        // An index loop: the iterator forms (`zip` with the cuts, or `enumerate`) compiled
+        // into a loop that ran the step 2-3 % slower on the peers' packing.
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..m_in {
+            let p = &self.pieces[i];
             // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
             // them so and `from_array` refuses other states.
             let hi = p.x_hi;
@@ -400,7 +404,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                     split_bits |= 1 << i;
                 }
             }
-            *cut_out = cut;
+            cuts[i] = cut;
             x_lo = hi;
             s_lo = s_hi;
         }
