@@ -3,8 +3,9 @@
 //! The contact loops (the pair entries of the serial step, and each block of entries of the
 //! parallel step) are compiled twice: once for the target's baseline (x86-64: SSE2, two `f64`
 //! per vector instruction) and, on x86-64, once inside a function compiled with AVX2 and FMA
-//! enabled, into which the kernels inline (creep-law's [`pair_force`] and the cheap tier's
-//! block of four contacts): four `f64` per instruction, three-operand forms. The engine takes
+//! enabled, into which the kernels inline (creep-law's [`pair_force`], down to the exact
+//! tier's Cattaneo-Mindlin memory update, and the cheap tier's block of four contacts): four
+//! `f64` per instruction, three-operand forms. The engine takes
 //! the AVX2 copy where the CPU has both features ([`Kernels::detected`], checked once per
 //! process), so a default `cargo build --release` runs at the speed of a `-C target-cpu`
 //! build on such CPUs and still runs everywhere.

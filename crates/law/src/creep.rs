@@ -227,6 +227,10 @@ impl CreepState {
     /// [`crate::transient_law`]. Non-finite inputs count as zero motion / open contact.
     /// Switching the model of a live contact is allowed (the lag state starts from its last
     /// value, zero if never used).
+    ///
+    /// Always inlined (with the Cattaneo-Mindlin update), so that a host's loop compiled for a
+    /// wider instruction set compiles the update for it too (the same bits).
+    #[inline(always)]
     pub fn update(&mut self, law: &CreepLaw, step: CreepInput) -> CreepStep {
         let CreepLaw {
             pair,
@@ -258,8 +262,9 @@ impl CreepState {
         if rolling && !open {
             let mu_p = pair.mu * p;
             // Steady creep rate of the current force (Kuhn: Kalker's F_ss).
+            // (Kuhn's closed form inlined, the same bits: `pair::kuhn_creepage`.)
             let f = if q_abs > 0.0 {
-                steady.creepage_for_force(q_abs, mu_p, pair.g, a)
+                crate::pair::kuhn_creepage(steady, q_abs, mu_p, pair.g, a)
             } else {
                 0.0
             };

@@ -33,7 +33,7 @@
 //! when the path turns, the springs of one slipping piece are given one common direction (that of
 //! their summed trial force) — the one approximation, which vanishes as steps get small.
 //! Pieces are merged when equal, and coalesced when both at the slip limit in nearly the same
-//! direction (see "Coalescing"); a contact keeps at most [`MAX_PIECES`] (see `merge`: two pieces
+//! direction (see "Coalescing"); a contact keeps at most [`MAX_PIECES`] (see `Merge`: two pieces
 //! at the slip limit become one along their summed force, or else the narrowest pair whose
 //! least-squares fit — or, when the fit's slope exceeds the limit's, the fit with its slope cut
 //! to the limit's and the same force — stays within the limit and adds no energy becomes that
@@ -48,7 +48,7 @@
 //! microradians; [`COALESCE_URAD`] = 0.3 rad for [`MindlinState`]) are made one piece at the
 //! limit at once, `u = kappa s e` with `e` the direction of their summed force
 //! `F1 + F2 = 8 G* kappa (w1 e1 + w2 e2)`, `w_i = integral_i s dx`. This is the capacity rule
-//! `merge` has always preferred (two annuli at the limit become one along their summed force),
+//! the merge has always preferred (two annuli at the limit become one along their summed force),
 //! applied eagerly, so that the memory stays below its capacity and later updates visit fewer
 //! pieces (on creep-dem's 4,096 packing 6.0 instead of 7.3 pieces, 2.6 instead of 3.2 slipping
 //! per update). What it changes, exactly:
@@ -81,7 +81,7 @@
 //! between sticking and slipping), for any `mu` including `+inf`. Within a step `a^2` is taken
 //! linear in time, like the displacement, and three rules follow from it. Springs entering the
 //! contact always get a piece of their own, `u = (a^2 - x^2) du / d(a^2)` (when the memory is
-//! full, the spare slot holds it until `merge` makes room; extending the outermost piece
+//! full, the spare slot holds it until the merge makes room; extending the outermost piece
 //! outwards instead gave them that piece's `c`, which after a small `d(a^2)` is huge: energy no
 //! work paid for, orders of magnitude more than the work at large `mu`). Springs leaving the
 //! contact release the energy they had when they left, not at the start of the step. And the
@@ -193,7 +193,7 @@ pub type MindlinUncoalesced = MindlinMemory<MAX_PIECES, 0>;
 
 /// Load-history state of one contact's Cattaneo-Mindlin tangential law, remembering at most `N`
 /// pieces (`1 <= N <= MAX_PIECES`, checked at compile time): a smaller memory merges sooner
-/// (see `merge`), trading accuracy of long 2-D histories for speed. Two neighbouring pieces
+/// (see `Merge`), trading accuracy of long 2-D histories for speed. Two neighbouring pieces
 /// that an update leaves at the slip limit in directions at most `COALESCE` microradians apart
 /// are made one at once (module docs, "Coalescing"; 0: only when over the capacity). The
 /// storage is the same for every `N` and `COALESCE` (`MAX_PIECES + 1` slots, the flat layout
@@ -205,7 +205,7 @@ pub struct MindlinMemory<const N: usize, const COALESCE: u32 = COALESCE_URAD> {
     /// Number of pieces in use.
     n: usize,
     /// The pieces, inner to outer. Between updates `n <= N`; the spare slot holds the
-    /// springs that enter the contact during an update until `merge` has made room for them.
+    /// springs that enter the contact during an update until the merge has made room for them.
     pieces: [Piece; MAX_PIECES + 1],
     /// Tangential force after the last update \[N\].
     q: Vec2,
@@ -282,6 +282,10 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
 
     /// [`MindlinState::update`] with the contact radius `a` \[m\] given directly (e.g. from the
     /// overlap in a DEM code: `a = sqrt(R* delta)`).
+    ///
+    /// Always inlined, so that a host's loop compiled for a wider instruction set (creep-dem's
+    /// AVX2 copy of the force loops) compiles the update for it too (the same bits).
+    #[inline(always)]
     pub fn update_with_radius(&mut self, pair: &PairMaterial, a: f64, du: Vec2) -> MindlinStep {
         let () = Self::CAPACITY_OK;
         let a = if finite(a) && a > 0.0 { a } else { 0.0 };
@@ -344,22 +348,20 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         }
         // (i) The depth shifts uniformly: s_new(x) = s_old(x) + (a^2 - a_old^2), so
         //     u = s_old beta + c = s_new beta + (c - da2 beta); (ii) every spring moves by du.
+        //     (A pass of its own: folded into the cuts' pass below, the step ran 9 % slower.)
         let da2 = a2 - a2_old;
-        for p in &mut self.pieces[..self.n] {
+        let n_old = self.n;
+        for p in &mut self.pieces[..n_old] {
             p.c += du - p.beta * da2;
         }
         // Springs entering during the step: the one at x entered when a(t)^2 = x^2 and, with the
         // displacement linear in a^2 over the step, took du (a^2 - x^2) / da2, i.e. beta = du / da2.
-        // They always get a piece of their own (the spare slot when the memory is full; `merge`
+        // They always get a piece of their own (the spare slot when the memory is full; the merge
         // then makes room): giving them the outermost piece's field extended outwards instead
         // would let them enter with that piece's `c` (after a small `da2`, `c = du - beta da2`
         // with a huge `beta`), energy that no work paid for.
-        // Pieces whose field this update changes other than by the common `du` (entering and
-        // slipping springs), one bit per index: only they can become equal to a neighbour.
-        let mut touched: u32 = 0;
         if da2 > 0.0 {
-            touched |= 1 << self.n;
-            self.pieces[self.n] = Piece {
+            self.pieces[n_old] = Piece {
                 x_hi: a,
                 beta: du * (1.0 / da2),
                 c: Vec2::ZERO,
@@ -368,8 +370,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         }
 
         // (iii)-(iv) Return-map every piece: it splits into a stuck inner part and a slipping
-        // outer part. Pieces that only stick or only slip are updated in place; a split needs
-        // a scratch list.
+        // outer part. First the cuts, then one pass that writes the parts, inner to outer, and
+        // merges them as they come ([`Merge`]).
         let mut cuts = [0.0f64; MAX_PIECES + 1];
         let mut splits = 0;
         let mut x_lo = 0.0;
@@ -377,11 +379,12 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         let mut split_bits: u32 = 0;
         // The depth at the inner end of the piece: the last piece's outer one (`a^2` at 0).
         let mut s_lo = a2;
-        for (i, (p, cut_out)) in self.pieces[..self.n]
-            .iter()
-            .zip(cuts.iter_mut())
-            .enumerate()
-        {
+        let m_in = self.n;
+        // An index loop: the iterator forms (`zip` with the cuts, or `enumerate`) compiled
+        // into a loop that ran the step 2-3 % slower on the peers' packing.
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..m_in {
+            let p = &self.pieces[i];
             // The pieces are non-empty and increasing (`x_lo < p.x_hi`): an update keeps
             // them so and `from_array` refuses other states.
             let hi = p.x_hi;
@@ -390,7 +393,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             if cut < hi {
                 // A cut within rounding of an end of the piece is at that end: a sliver of
                 // springs split off by rounding would take a slot of the memory (and change
-                // which pieces `merge` joins later) for a field it cannot resolve.
+                // which pieces the merge joins later) for a field it cannot resolve.
                 if hi - cut <= SLIVER * a {
                     cut = hi;
                 } else if cut - x_lo <= SLIVER * a {
@@ -401,82 +404,58 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                     split_bits |= 1 << i;
                 }
             }
-            *cut_out = cut;
+            cuts[i] = cut;
             x_lo = hi;
             s_lo = s_hi;
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let g_star = pair.g_star;
-        let (n, d_u2) = if splits == 0 {
-            let mut x_lo = 0.0;
-            for (i, (p, &cut)) in self.pieces[..self.n]
-                .iter_mut()
-                .zip(cuts.iter())
-                .enumerate()
-            {
-                let x_hi = p.x_hi;
-                if cut < x_hi && x_hi > x_lo {
-                    *p = slip_to_limit(p, cut, kappa, a, a_old, da2, g_star, &mut dissipated);
-                    touched |= 1 << i;
-                }
-                x_lo = x_hi.max(x_lo);
-            }
-            merge::<N, COALESCE>(&mut self.pieces, self.n, a, kappa, touched)
-        } else if self.n + splits <= MAX_PIECES + 1 {
-            // The split pieces fit in the storage: expand in place. First move every piece to
-            // its final slot (from the outermost, so nothing unread is overwritten; a split
-            // piece's stuck part keeps its slot and its slipping part takes the next), then
-            // write the pieces inner to outer (the slips in the same order as below).
-            let n0 = self.n;
+        let (n, d_u2) = if m_in + splits <= MAX_PIECES + 1 {
+            // The parts fit in the storage: first move every piece to the slot of its first
+            // part (from the outermost, so nothing unread is overwritten; a split piece's
+            // slipping part takes the next slot), then write and merge in place (the merged
+            // list never runs ahead of the pieces still to read).
             let mut off = splits;
-            for i in (0..n0).rev() {
+            for i in (0..m_in).rev() {
                 if off == 0 {
                     break;
                 }
                 off -= (split_bits >> i & 1) as usize;
                 self.pieces[i + off] = self.pieces[i];
             }
-            let mut x_lo = 0.0;
+            let mut st = Merge::new(a, kappa, a2);
             let mut pos = 0;
-            let mut touched_out: u32 = 0;
-            for (i, &cut) in cuts[..n0].iter().enumerate() {
+            for (i, &cut) in cuts[..m_in].iter().enumerate() {
                 let p = self.pieces[pos];
-                if cut > x_lo {
-                    self.pieces[pos].x_hi = cut;
-                    touched_out |= (touched >> i & 1) << pos;
-                    pos += 1;
-                }
-                if cut < p.x_hi {
-                    self.pieces[pos] =
-                        slip_to_limit(&p, cut, kappa, a, a_old, da2, g_star, &mut dissipated);
-                    touched_out |= 1 << pos;
-                    pos += 1;
-                }
-                x_lo = p.x_hi;
+                let entering = i == n_old;
+                pos += split_bits as usize >> i & 1;
+                pos += 1;
+                st.piece::<COALESCE>(
+                    &mut self.pieces,
+                    &p,
+                    cut,
+                    entering,
+                    (a_old, da2, g_star),
+                    &mut dissipated,
+                );
             }
-            merge::<N, COALESCE>(&mut self.pieces, pos, a, kappa, touched_out)
+            merge_capacity::<N>(&mut self.pieces, st.n, a, kappa)
         } else {
+            // Into a scratch list (a full memory with a split piece).
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
-            let mut m = 0;
-            let mut x_lo = 0.0;
-            let mut touched_out: u32 = 0;
-            for (i, (p, &cut)) in self.pieces[..self.n].iter().zip(cuts.iter()).enumerate() {
-                if p.x_hi <= x_lo {
-                    continue;
-                }
-                if cut > x_lo {
-                    out[m] = Piece { x_hi: cut, ..*p };
-                    touched_out |= (touched >> i & 1) << m;
-                    m += 1;
-                }
-                if cut < p.x_hi {
-                    out[m] = slip_to_limit(p, cut, kappa, a, a_old, da2, g_star, &mut dissipated);
-                    touched_out |= 1 << m;
-                    m += 1;
-                }
-                x_lo = p.x_hi;
+            let mut st = Merge::new(a, kappa, a2);
+            for (i, &cut) in cuts[..m_in].iter().enumerate() {
+                let p = self.pieces[i];
+                st.piece::<COALESCE>(
+                    &mut out,
+                    &p,
+                    cut,
+                    i == n_old,
+                    (a_old, da2, g_star),
+                    &mut dissipated,
+                );
             }
-            let (n, d_u2) = merge::<N, COALESCE>(&mut out, m, a, kappa, touched_out);
+            let (n, d_u2) = merge_capacity::<N>(&mut out, st.n, a, kappa);
             for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
                 *dst = *src;
             }
@@ -505,6 +484,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
     }
 
     /// `Q = 8 G* sum_pieces integral u(x) dx` (each boundary's depth evaluated once).
+    #[inline(always)]
     fn integrate_force(&self, pair: &PairMaterial) -> Vec2 {
         let a = self.a;
         let mut x_lo = 0.0;
@@ -755,72 +735,122 @@ fn shifted_slip_work(
     w
 }
 
-/// Merges equal neighbours and drops empty pieces in place, coalesces neighbours at the slip
-/// limit whose directions differ by at most `COALESCE` microradians (see [`coalescible`];
-/// 0: none), then enforces the capacity `N`. Returns the number of pieces kept and the change
-/// of `integral |u|^2 dx` [m^3] that the enforcement caused (<= 0 means energy was lost, which
-/// the caller books as dissipation).
+/// The merge of an update's return-mapped pieces, written one part at a time into a list
+/// (`out[..n]`, inner to outer) and merged as they come: equal neighbours are joined, and
+/// neighbours at the slip limit whose directions differ by at most `COALESCE` microradians
+/// are coalesced (see [`coalescible`]; 0: none); then [`merge_capacity`] enforces the capacity
+/// `N`. `x_lo` is the outer radius of the last part, `prev_touched` whether the last kept
+/// piece changed other than by the common `du` (two untouched neighbours were already distinct
+/// after the last update and both moved by the same `du`, so only pairs with a touched piece
+/// are compared).
 ///
-/// Over the limit, two neighbours are made one: preferably two pieces both at the slip limit
-/// (`u = kappa s e1`, `kappa s e2`), which become one at the limit along their summed force
-/// (the stored energy is unchanged and `|u| <= kappa s` still holds); otherwise the narrowest
-/// pair whose least-squares merge stays within the limit (force kept, energy lost booked as
-/// dissipation), the merge's slope cut to `kappa` with the force kept where the fit's slope is
-/// over it (taken only if within the limit and not adding energy); as a last resort the inner
-/// piece whose absorption by its outer neighbour
-/// (extended inwards) adds the least energy.
-fn merge<const N: usize, const COALESCE: u32>(
-    out: &mut [Piece],
-    m: usize,
+/// Over the capacity, two neighbours are made one: preferably two pieces both at the slip
+/// limit (`u = kappa s e1`, `kappa s e2`), which become one at the limit along their summed
+/// force (the stored energy is unchanged and `|u| <= kappa s` still holds); otherwise the
+/// narrowest pair whose least-squares merge stays within the limit (force kept, energy lost
+/// booked as dissipation), the merge's slope cut to `kappa` with the force kept where the
+/// fit's slope is over it (taken only if within the limit and not adding energy); as a last
+/// resort the inner piece whose absorption by its outer neighbour (extended inwards) adds the
+/// least energy.
+struct Merge {
     a: f64,
     kappa: f64,
-    touched: u32,
-) -> (usize, f64) {
-    let chord2 = MindlinMemory::<N, COALESCE>::CHORD2;
-    let a2 = a * a;
-    let mut n = 0;
-    let mut x_lo = 0.0;
-    // Whether the last kept piece is touched: two untouched neighbours were already distinct
-    // after the last update and both moved by the same `du`, so only pairs with a touched
-    // piece are compared.
-    let mut prev_touched = false;
-    // Pieces below the first touched one (less one, its inner neighbour) are kept as they are:
-    // they are non-empty and increasing (an update's invariant, checked by `from_array`) and
-    // no two of them are compared.
-    let start = (touched.trailing_zeros() as usize).min(m).saturating_sub(1);
-    if start > 0 {
-        n = start;
-        x_lo = out[start - 1].x_hi;
-    }
-    for i in start..m {
-        let p = out[i];
-        if p.x_hi <= x_lo {
-            continue;
+    a2: f64,
+    n: usize,
+    x_lo: f64,
+    prev_touched: bool,
+}
+
+impl Merge {
+    #[inline(always)]
+    fn new(a: f64, kappa: f64, a2: f64) -> Self {
+        Self {
+            a,
+            kappa,
+            a2,
+            n: 0,
+            x_lo: 0.0,
+            prev_touched: false,
         }
-        let t = touched >> i & 1 != 0;
-        if n > 0 && (t || prev_touched) && same_form(&out[n - 1], &p, a2) {
+    }
+
+    /// The parts of the trial piece `p` (inner radius the last piece's outer one) cut at
+    /// `cut`: the stuck part `x <= cut` as it is, the slipping part onto the limit
+    /// ([`slip_to_limit`], its work added to `dissipated`); `entering`: the piece of springs
+    /// that entered in this step (changed other than by the common `du`, as every slipping
+    /// part); `(a_old, da2, g_star)` as for [`slip_to_limit`].
+    #[inline(always)]
+    fn piece<const COALESCE: u32>(
+        &mut self,
+        out: &mut [Piece],
+        p: &Piece,
+        cut: f64,
+        entering: bool,
+        (a_old, da2, g_star): (f64, f64, f64),
+        dissipated: &mut f64,
+    ) {
+        let x_lo = self.x_lo;
+        if cut > x_lo {
+            self.push::<COALESCE>(out, Piece { x_hi: cut, ..*p }, entering);
+        }
+        if cut < p.x_hi {
+            let (a, kappa) = (self.a, self.kappa);
+            let q = slip_to_limit(p, cut, kappa, a, a_old, da2, g_star, dissipated);
+            self.push::<COALESCE>(out, q, true);
+        }
+        self.x_lo = p.x_hi;
+    }
+
+    /// Appends the part `p` (`t`: touched) to `out[..n]`, joined with the last piece where
+    /// they are equal or coalescible.
+    #[inline(always)]
+    fn push<const COALESCE: u32>(&mut self, out: &mut [Piece], p: Piece, t: bool) {
+        let chord2 = MindlinMemory::<MAX_PIECES, COALESCE>::CHORD2;
+        let n = self.n;
+        if n > 0 && (t || self.prev_touched) && same_form(&out[n - 1], &p, self.a2) {
             out[n - 1].x_hi = p.x_hi;
-            prev_touched = true;
+            self.prev_touched = true;
         } else if chord2 > 0.0
             && n > 0
-            && (t || prev_touched)
-            && coalescible(&out[n - 1], &p, kappa, chord2)
+            && (t || self.prev_touched)
+            && coalescible(&out[n - 1], &p, self.kappa, chord2)
         {
             // Two neighbours at the limit in nearly the same direction: one along their summed
             // force (module docs, "Coalescing": energy and `|u| <= kappa s` kept, the force
             // changed by at most `1 - cos(theta / 2)` of theirs).
             let lo = if n >= 2 { out[n - 2].x_hi } else { 0.0 };
-            out[n - 1] = limit_union(&out[n - 1], &p, a, kappa, lo);
-            prev_touched = true;
+            out[n - 1] = limit_union(&out[n - 1], &p, self.a, self.kappa, lo);
+            self.prev_touched = true;
         } else {
-            if n != i {
-                out[n] = p;
-            }
-            n += 1;
-            prev_touched = t;
+            out[n] = p;
+            self.n = n + 1;
+            self.prev_touched = t;
         }
-        x_lo = p.x_hi;
     }
+}
+
+/// The merge's capacity rule on a merged list of `n` pieces: [`enforce_capacity`] where
+/// `n > N`; returns the number of pieces kept and the change of `integral |u|^2 dx` [m^3].
+#[inline(always)]
+fn merge_capacity<const N: usize>(out: &mut [Piece], n: usize, a: f64, kappa: f64) -> (usize, f64) {
+    if n > N {
+        enforce_capacity::<N>(out, n, a, kappa)
+    } else {
+        (n, 0.0)
+    }
+}
+
+/// The capacity rule of the merge for `n > N` pieces (see [`Merge`]): returns the number kept
+/// and the change of `integral |u|^2 dx` [m^3] it caused (<= 0 means energy was lost, which
+/// the caller books as dissipation). Out of line: most updates do not need it.
+#[inline(never)]
+fn enforce_capacity<const N: usize>(
+    out: &mut [Piece],
+    mut n: usize,
+    a: f64,
+    kappa: f64,
+) -> (usize, f64) {
+    let a2 = a * a;
     let mut d_u2 = 0.0;
     while n > N {
         // The adjacent pair of limit pieces with the closest directions, if any.

@@ -59,6 +59,7 @@ pub use damping::{MIN_RESTITUTION, damping_coefficient};
 pub use history::ContactHistory;
 pub(crate) use kernel::finite;
 pub use kernel::{PairDissipation, PairForces, pair_force, release, rotate_about, rotate_to};
+pub(crate) use tiers::kuhn_creepage;
 pub use tiers::{Cheap, CheapHistory, Exact, TangentialLaw, TangentialStep};
 
 #[cfg(test)]

@@ -106,7 +106,9 @@ impl TangentialLaw for Exact {
         true
     }
 
-    #[inline]
+    /// Always inlined (down to the Cattaneo-Mindlin update), so that a host's loop compiled
+    /// for a wider instruction set compiles the memory update for it too (the same bits).
+    #[inline(always)]
     fn step(
         h: &mut CreepState,
         c: &PairConstants,
@@ -403,7 +405,7 @@ pub(super) fn creep_per_force(
 /// `inlined_kuhn_creepage_equals_the_steady_law`), without the call and its checks on the hot
 /// path; every other case goes to the steady law.
 #[inline(always)]
-pub(super) fn kuhn_creepage(law: &SteadyLaw, q_abs: f64, mu_p: f64, g: f64, a: f64) -> f64 {
+pub(crate) fn kuhn_creepage(law: &SteadyLaw, q_abs: f64, mu_p: f64, g: f64, a: f64) -> f64 {
     let denom = g * a * a;
     if let SteadyLaw::Kuhn { c11 } = *law
         && mu_p > 0.0
