@@ -199,9 +199,9 @@
 //! `nu = 0.25, 0.3, 0.5`; `cargo run --release -p creep-reference --example steady3d_map --
 //! grade`) (2 % of `mu P` in each force and 3 % of `mu P a` in the moment at every covered
 //! case; creep-reference's test `table_meets_the_bounds_where_it_covers_the_map`). An
-//! evaluation costs the fitted law's or less: 317 instructions at a node, 399 blending two
-//! (`valgrind --tool=callgrind` on the bench's `--count` mode; the fitted law 320-328), 22.4 /
-//! 28.8 ns (the bench's `--time` mode, a loaded machine; the fitted law 31.9 ns).
+//! evaluation costs the fitted law's or less: 287 instructions at a node, 372 blending two
+//! (`valgrind --tool=callgrind` on the bench's `--count` mode; the fitted law 320-328), 21.5 /
+//! 28.3 ns (the bench's `--time` mode, a quiet machine; the fitted law 31.9 ns on a loaded one).
 //!
 //! # Cost of the fitted law
 //!

@@ -316,22 +316,26 @@ impl Lut {
         if s > 1.0 {
             (x, y, p) = to_box(x, y, p, s);
         }
-        let ix = XI_CELL[((x * (1.0 / BUCKET)) as usize).min(XI_BUCKETS)] as usize;
-        let iy = XI_CELL[((y * (1.0 / BUCKET)) as usize).min(XI_BUCKETS)] as usize;
-        let ip = PHI_CELL[(((p + PHI_MAX) * (1.0 / BUCKET)) as usize).min(PHI_BUCKETS)] as usize;
+        // (Through i64: x86-64 converts an f64 to an i64 in one instruction, to a usize in
+        // several; the values are finite and not below -1, so both truncate alike.)
+        let ix = XI_CELL[((x * (1.0 / BUCKET)) as i64 as usize).min(XI_BUCKETS)] as usize;
+        let iy = XI_CELL[((y * (1.0 / BUCKET)) as i64 as usize).min(XI_BUCKETS)] as usize;
+        let ip =
+            PHI_CELL[(((p + PHI_MAX) * (1.0 / BUCKET)) as i64 as usize).min(PHI_BUCKETS)] as usize;
         let wx = (x - LUT_XI[ix]) * XI_INV[ix];
         let wy = (y - LUT_XI[iy]) * XI_INV[iy];
         let wp = (p - LUT_PHI[ip]) * PHI_INV[ip];
         let base = ix * NPLANE + iy * NP + ip;
+        // The corners' offsets from `base` (each table's cell is one slice: one bounds check).
         let corners = [
-            base,
-            base + 1,
-            base + NP,
-            base + NP + 1,
-            base + NPLANE,
-            base + NPLANE + 1,
-            base + NPLANE + NP,
-            base + NPLANE + NP + 1,
+            0,
+            1,
+            NP,
+            NP + 1,
+            NPLANE,
+            NPLANE + 1,
+            NPLANE + NP,
+            NPLANE + NP + 1,
         ];
         let (vx, vy, vp) = (1.0 - wx, 1.0 - wy, 1.0 - wp);
         let cw = [
@@ -346,10 +350,10 @@ impl Lut {
         ];
         let mut out = [0.0f64; 3];
         for t in 0..self.n {
-            let tab = self.tables[t];
+            let cell = &self.tables[t][base..base + NPLANE + NP + 2];
             let wt = self.w[t];
             for k in 0..8 {
-                let v = tab[corners[k]];
+                let v = cell[corners[k]];
                 let w = wt * cw[k];
                 out[0] += w * f64::from(v[0]);
                 out[1] += w * f64::from(v[1]);
