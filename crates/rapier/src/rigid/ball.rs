@@ -160,23 +160,19 @@ pub(crate) fn recycled_ball_manifold(
     }
 }
 
-/// The features of a contact in its [`ContactKey`]: Rapier's feature ids, with the part of a
-/// triangle mesh or heightfield folded in (`subshapes`, the manifold's `subshape1/2`) when the
-/// pair is `on_mesh`: there each manifold is one triangle and its feature ids are the
-/// triangle's own (vertex, edge or face 0-2), so two triangles' contacts would share a key.
-/// The part goes in the id's index bits above the local index (parry's packed feature id:
-/// two header bits, 30 index bits); a mesh of more than 2^28 parts may alias.
+/// The features of a contact in its [`ContactKey`]: Rapier's feature ids, or on a triangle
+/// mesh or heightfield (`on_mesh`) the manifold's parts (`subshapes`, its `subshape1/2`: the
+/// triangle, and 0 on the ball's side). There each manifold is one triangle with one contact
+/// of the ball, and its feature ids are the triangle's own (vertex, edge or face 0-2): they
+/// would give two triangles' contacts one key, and one contact a new key each time the ball
+/// passes from a triangle's face to its edge.
 #[inline]
 pub(crate) fn contact_features(
     fids: (u32, u32),
     subshapes: (u32, u32),
     on_mesh: bool,
 ) -> (u32, u32) {
-    if !on_mesh {
-        return fids;
-    }
-    let fold = |fid: u32, part: u32| (fid & 0xC000_0003) | ((part << 2) & 0x3FFF_FFFC);
-    (fold(fids.0, subshapes.0), fold(fids.1, subshapes.1))
+    if on_mesh { subshapes } else { fids }
 }
 
 /// One contact of a ball manifold as the law reads it.
