@@ -142,7 +142,7 @@ pub use world::{CreepWorld, clone_physics};
 /// ([`CreepHooks::records`], [`CreepHooks::record`]) or Rapier's impulses directly.
 pub mod diagnostics {
     pub use crate::convert::solver_tangents;
-    pub use crate::store::{CoincidentLoad, ContactKey, ContactRecord};
+    pub use crate::store::{ContactKey, ContactRecord};
 }
 
 /// What a user of the plugin needs, in one `use creep_rapier::prelude::*;` (with

@@ -148,6 +148,15 @@ pub fn supported_shape(collider: &Collider) -> Option<SupportedShape> {
     })
 }
 
+/// Whether [`supported_shape`] makes `collider` a [`SupportedShape::Wheel`] (a cylinder),
+/// `false` without a collider: one virtual call (the shape's type), cheaper than the typed
+/// shape, for the rigid hook's exit from a manifold without contacts.
+#[inline]
+pub(crate) fn wheel_collider(collider: Option<&Collider>) -> bool {
+    collider
+        .is_some_and(|co| co.shape().shape_type() == rapier3d::parry::shape::ShapeType::Cylinder)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -200,6 +209,29 @@ mod tests {
         assert!(wheel.is_wheel() && !wheel.supports(Regime::Compliant));
         assert!(supported_shape(&ColliderBuilder::capsule_y(0.1, 0.1).build()).is_none());
         assert!(supported_shape(&ColliderBuilder::cone(0.1, 0.1).build()).is_none());
+    }
+
+    /// The hook's cheap wheel test agrees with the classification on every shape builder.
+    #[test]
+    fn wheel_collider_agrees_with_supported_shape() {
+        let colliders = [
+            ColliderBuilder::ball(0.1).build(),
+            ColliderBuilder::cuboid(1.0, 0.1, 1.0).build(),
+            ColliderBuilder::cylinder(0.02, 0.3).build(),
+            ColliderBuilder::round_cylinder(0.02, 0.3, 0.01).build(),
+            ColliderBuilder::capsule_y(0.1, 0.1).build(),
+            ColliderBuilder::cone(0.1, 0.1).build(),
+            ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y)).build(),
+        ];
+        for co in &colliders {
+            assert_eq!(
+                wheel_collider(Some(co)),
+                supported_shape(co).is_some_and(|s| s.is_wheel()),
+                "{:?}",
+                co.shape().shape_type()
+            );
+        }
+        assert!(!wheel_collider(None));
     }
 
     #[test]

@@ -51,12 +51,6 @@ pub struct ContactRecord {
     pub target: Vec3,
     /// Contact normal of the last step (the basis of its friction impulse).
     pub normal: Vec3,
-    /// The contact point of the last step \[m\] (world; kept for a ball on a triangle mesh or
-    /// heightfield only, whose contacts may coincide: [`CoincidentLoad`]).
-    pub point: Vec3,
-    /// The load of the contacts that coincided with this one in the last solve, this one
-    /// included (`None` when it had no coincident partner; [`CoincidentLoad`]).
-    pub coincident: Option<CoincidentLoad>,
     /// Step in which the record was last seen.
     pub(crate) generation: u64,
 }
@@ -67,13 +61,13 @@ pub struct ContactRecord {
 /// such a group as one contact, from the group's load: every member gets the same slip
 /// target and books its share of the group's power and moment (module `rigid::ball`).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CoincidentLoad {
+pub(crate) struct CoincidentLoad {
     /// The members' normal impulses of the last solve, summed \[N s\].
-    pub normal_impulse: f64,
+    pub(crate) normal_impulse: f64,
     /// Their friction impulses on body 1, summed \[N s\] (world).
-    pub tangent_impulse: Vec3,
+    pub(crate) tangent_impulse: Vec3,
     /// Their last slip targets, weighted by their shares of the normal impulse \[m/s\].
-    pub target: Vec3,
+    pub(crate) target: Vec3,
 }
 
 impl ContactRecord {
@@ -128,9 +122,11 @@ pub(crate) struct ContactStore {
     pub(crate) records: KeyMap<ContactRecord>,
     pub(crate) generation: u64,
     /// The ball contacts of this step whose partner is a triangle mesh or heightfield (their
-    /// contacts may coincide), in the order the hook saw them: grouped before the next step
-    /// (`CreepHooks::gather_coincident`).
-    pub(crate) on_meshes: Vec<ContactKey>,
+    /// contacts may coincide) and their points \[m\] (world), in the order the hook saw them:
+    /// grouped before the next step (`CreepHooks::gather_coincident`).
+    pub(crate) on_meshes: Vec<(ContactKey, Vec3)>,
+    /// The loads of the groups found in the last solve, by member (empty without meshes).
+    pub(crate) coincident: KeyMap<CoincidentLoad>,
 }
 
 impl ContactStore {

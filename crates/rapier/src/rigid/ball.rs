@@ -59,7 +59,7 @@ pub(crate) struct BallManifold<'a> {
     /// [`crate::CreepSettings::auto_tolerance`] for an `Auto` pair, else `None`.
     pub auto_tolerance: Option<f64>,
     /// Whether the other side is a triangle mesh or a heightfield, whose contacts with a ball
-    /// may coincide ([`crate::diagnostics::CoincidentLoad`]).
+    /// may coincide (`crate::store::CoincidentLoad`).
     pub on_mesh: bool,
 }
 
@@ -211,15 +211,22 @@ fn ball_contact(
         feature1,
         feature2,
     };
-    if m.on_mesh {
-        store.on_meshes.push(key);
-    }
+    // A contact on a mesh: listed for the next step's grouping, and its group's load from the
+    // last solve (`crate::store::CoincidentLoad`).
+    let coincident = if m.on_mesh {
+        store.on_meshes.push((key, c));
+        if store.coincident.is_empty() {
+            None
+        } else {
+            store.coincident.remove(&key)
+        }
+    } else {
+        None
+    };
     let rec = store.touch(key);
     rec.bodies = (h1, h2);
     let normal_impulse = f64::from(point.data.impulse);
     let p_force = normal_impulse / dt;
-    rec.point = c;
-    let coincident = rec.coincident.take();
     rec.p = p_force;
     let n_prev = std::mem::replace(&mut rec.normal, n);
     rec.torque = Vec3::ZERO;
@@ -263,7 +270,7 @@ fn ball_contact(
     };
     // A contact that coincided with others in the last solve (a ball on a shared edge of a
     // mesh) is solved from the group's load: the same target for every member, and this
-    // member's share of the group's moment and power (`CoincidentLoad`).
+    // member's share of the group's moment and power.
     let mut share = 1.0;
     if let Some(g) = coincident.filter(|g| g.normal_impulse > 0.0) {
         share = (normal_impulse / g.normal_impulse).clamp(0.0, 1.0);

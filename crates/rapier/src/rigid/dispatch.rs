@@ -24,7 +24,7 @@ use super::hooks::{CreepHooks, Shard, quiet_collider, shard_of};
 use super::wheel::{WheelCtx, wheel_manifold};
 use crate::convert::{body_motion, v3, vf};
 use crate::gap::rotation_gap_correction;
-use crate::shape::{FlatShape, SupportedShape};
+use crate::shape::{FlatShape, SupportedShape, wheel_collider};
 use creep_law::rigid::RigidPairCache;
 
 use crate::registry::{CreepMaterial, Fidelity, Regime, RollingResistance};
@@ -43,7 +43,7 @@ struct PairView<'a> {
     /// The bodies, looked up once per manifold.
     bodies: [Option<&'a RigidBody>; 2],
     /// Whether a side is a triangle mesh or a heightfield (its contacts with a ball may
-    /// coincide: `crate::diagnostics::CoincidentLoad`).
+    /// coincide: `crate::store::CoincidentLoad`).
     on_mesh: bool,
 }
 
@@ -73,7 +73,7 @@ impl PhysicsHooks for CreepHooks {
             return;
         }
         let (co1, co2) = (colliders.get(c1), colliders.get(c2));
-        if n_contacts == 0 && !cylinder(co1) && !cylinder(co2) {
+        if n_contacts == 0 && !wheel_collider(co1) && !wheel_collider(co2) {
             // Nothing to rewrite and no wheel to give a patch contact (module docs): the
             // checks below would change nothing for this manifold.
             return;
@@ -255,14 +255,6 @@ fn count_coulomb(
     }
 }
 
-/// Whether a collider is a cylinder, the one shape whose manifold the hook may give a contact
-/// Rapier did not (a wheel's patch contact, module `wheel`). One virtual call, cheaper than the
-/// typed shape of [`crate::shape::supported_shape`].
-#[inline]
-fn cylinder(co: Option<&Collider>) -> bool {
-    co.is_some_and(|co| co.shape().shape_type() == ShapeType::Cylinder)
-}
-
 /// Locks a shard of the hooks' state (a poisoned lock is taken as it is, as everywhere in the
 /// hooks).
 fn lock(shard: &Mutex<Shard>) -> MutexGuard<'_, Shard> {
@@ -274,9 +266,10 @@ impl CreepHooks {
     /// or report: the pair's materials (an unregistered
     /// collider's pair is counted and left to Coulomb, and reported once with
     /// [`crate::CreepSettings::warn_unregistered`]), its regime (a compliant pair is
-    /// [`Skip::Compliant`]), a pair of quiet colliders (counted, left as Rapier built it), a
-    /// manifold without solver contacts and without a wheel (nothing to rewrite), then the
-    /// shapes and the bodies.
+    /// [`Skip::Compliant`]), a pair of quiet colliders (counted, left as Rapier built it), then
+    /// the shapes and the bodies. (A manifold without solver contacts and without a wheel never
+    /// gets here: `modify_solver_contacts` leaves it at once, and Rapier calls
+    /// `modify_recycled_solver_contacts` only with solver contacts.)
     #[inline]
     fn pair_view<'a>(
         &'a self,
@@ -320,11 +313,6 @@ impl CreepHooks {
         // radius (module `crowns`).
         let shape1 = co1.and_then(crate::shape::supported_shape);
         let shape2 = co2.and_then(crate::shape::supported_shape);
-        let wheel = |s: Option<SupportedShape>| matches!(s, Some(SupportedShape::Wheel { .. }));
-        if n_contacts == 0 && !wheel(shape1) && !wheel(shape2) {
-            // Nothing to rewrite (module docs).
-            return Err(Skip::Done);
-        }
         let mesh = |s: Option<SupportedShape>| {
             matches!(
                 s,

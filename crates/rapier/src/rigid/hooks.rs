@@ -529,7 +529,7 @@ impl CreepHooks {
     }
 
     /// Groups the coincident ball contacts on triangle meshes and heightfields of the last
-    /// step (`crate::diagnostics::CoincidentLoad`), before the next: for each pair whose ball
+    /// step (`crate::store::CoincidentLoad`), before the next: for each pair whose ball
     /// contacts the hook listed (`ContactStore::on_meshes`), the contacts at one point (within
     /// `1e-6 m + 1e-6 |c|`) along one normal (within 1.4 mrad) get the group's summed normal
     /// and friction impulses of the last solve, read from the narrow phase, and its
@@ -546,34 +546,29 @@ impl CreepHooks {
         for shard in self.shards.iter_mut() {
             let shard = shard.get_mut().unwrap_or_else(|e| e.into_inner());
             let store = &mut shard.store;
-            if !grouping {
-                store.on_meshes.clear();
+            // Last step's groups were taken by their members' hook calls; a member not seen
+            // again leaves its entry here.
+            if !store.coincident.is_empty() {
+                store.coincident.clear();
             }
-            if store.on_meshes.is_empty() {
-                continue;
-            }
-            let keys = std::mem::take(&mut store.on_meshes);
-            // A pair's contacts were listed one after the other (one call per manifold, the
-            // pair's manifolds in one pass).
-            let mut start = 0;
-            while start < keys.len() {
-                let pair_of = |k: &ContactKey| (k.collider1, k.collider2);
-                let end = start
-                    + keys[start..]
-                        .iter()
-                        .take_while(|k| pair_of(k) == pair_of(&keys[start]))
-                        .count();
-                if end - start >= 2
-                    && let Some(pair) =
-                        narrow_phase.contact_pair(keys[start].collider1, keys[start].collider2)
-                {
-                    group_coincident(&keys[start..end], pair, &mut store.records);
+            let listed = std::mem::take(&mut store.on_meshes);
+            if grouping {
+                // A pair's contacts were listed one after the other (one call per manifold,
+                // the pair's manifolds in one pass).
+                for run in listed.chunk_by(|a, b| {
+                    (a.0.collider1, a.0.collider2) == (b.0.collider1, b.0.collider2)
+                }) {
+                    if run.len() >= 2
+                        && let Some(pair) =
+                            narrow_phase.contact_pair(run[0].0.collider1, run[0].0.collider2)
+                    {
+                        group_coincident(run, pair, store);
+                    }
                 }
-                start = end;
             }
-            let mut keys = keys;
-            keys.clear();
-            store.on_meshes = keys;
+            let mut listed = listed;
+            listed.clear();
+            store.on_meshes = listed;
         }
     }
 
@@ -694,61 +689,57 @@ impl CreepHooks {
     }
 }
 
-/// The coincident groups among one pair's listed contacts (`keys`, all of one collider pair;
-/// [`CreepHooks::gather_coincident`]): each member's last solved impulses from the pair's
-/// manifold points, the groups by point and normal, their loads written to the members'
-/// records.
-fn group_coincident(
-    keys: &[ContactKey],
-    pair: &ContactPair,
-    records: &mut crate::store::FastMap<ContactKey, ContactRecord>,
-) {
+/// The coincident groups among one pair's listed contacts (`run`: key and point, all of one
+/// collider pair; [`CreepHooks::gather_coincident`]): each member's last solved impulses from
+/// the pair's manifold points (in the solver's tangent basis of the member's normal), the
+/// groups by point and normal, their loads in `store.coincident` by member.
+fn group_coincident(run: &[(ContactKey, Vec3)], pair: &ContactPair, store: &mut ContactStore) {
     use crate::store::CoincidentLoad;
+    /// Members of one pair's run considered (a ball touches at most a few triangles).
     const MAX: usize = 16;
-    if pair.collider1 != keys[0].collider1 || keys.len() > MAX {
+    if pair.collider1 != run[0].0.collider1 || run.len() > MAX {
         return;
     }
-    // (normal impulse, friction impulse on body 1 in the world, point, normal, target)
-    let mut members: [(f64, Vec3, Vec3, Vec3, Vec3); MAX] = [Default::default(); MAX];
-    let mut found = [false; MAX];
+    // Per member: normal impulse, friction impulse on body 1 (world), normal, last target.
+    let mut members: [Option<(f64, Vec3, Vec3, Vec3)>; MAX] = [None; MAX];
     for m in pair.manifolds() {
         let subshapes = (m.subshape1, m.subshape2);
         for pt in &m.points {
             let features = super::ball::contact_features((pt.fid1.0, pt.fid2.0), subshapes, true);
-            let Some(i) = keys
+            let Some(i) = run
                 .iter()
-                .position(|k| (k.feature1, k.feature2) == features)
+                .position(|(k, _)| (k.feature1, k.feature2) == features)
             else {
                 continue;
             };
-            let Some(rec) = records.get(&keys[i]) else {
+            let Some(rec) = store.records.get(&run[i].0) else {
                 continue;
             };
             let (t1, t2) = crate::convert::solver_tangents(rec.normal);
             let ti = pt.data.tangent_impulse;
-            members[i] = (
+            members[i] = Some((
                 f64::from(pt.data.impulse),
                 t1 * f64::from(ti.x) + t2 * f64::from(ti.y),
-                rec.point,
                 rec.normal,
                 rec.target,
-            );
-            found[i] = true;
+            ));
         }
     }
-    let n = keys.len();
     let mut grouped = [false; MAX];
-    for i in 0..n {
-        if !found[i] || grouped[i] {
+    for i in 0..run.len() {
+        let (Some((_, _, ni, _)), false) = (members[i], grouped[i]) else {
             continue;
-        }
-        let (_, _, ci, ni, _) = members[i];
+        };
+        let ci = run[i].1;
         let tol = 1e-6 * (1.0 + ci.length());
         let mut group = [0usize; MAX];
         let mut k = 0;
-        for j in i..n {
-            let (_, _, cj, nj, _) = members[j];
-            if found[j] && !grouped[j] && (cj - ci).length() <= tol && ni.dot(nj) >= 1.0 - 1e-6 {
+        for j in i..run.len() {
+            if let Some((_, _, nj, _)) = members[j]
+                && !grouped[j]
+                && (run[j].1 - ci).length() <= tol
+                && ni.dot(nj) >= 1.0 - 1e-6
+            {
                 group[k] = j;
                 k += 1;
             }
@@ -758,20 +749,20 @@ fn group_coincident(
         }
         let mut load = CoincidentLoad::default();
         for &j in &group[..k] {
-            load.normal_impulse += members[j].0;
-            load.tangent_impulse += members[j].1;
+            let (p, q, _, _) = members[j].unwrap_or_default();
+            load.normal_impulse += p;
+            load.tangent_impulse += q;
+            grouped[j] = true;
         }
         if !(load.normal_impulse > 0.0) {
             continue;
         }
         for &j in &group[..k] {
-            load.target += members[j].4 * (members[j].0 / load.normal_impulse);
-            grouped[j] = true;
+            let (p, _, _, target) = members[j].unwrap_or_default();
+            load.target += target * (p / load.normal_impulse);
         }
         for &j in &group[..k] {
-            if let Some(rec) = records.get_mut(&keys[j]) {
-                rec.coincident = Some(load);
-            }
+            store.coincident.insert(run[j].0, load);
         }
     }
 }
