@@ -65,8 +65,8 @@ cp "$root/Cargo.lock" "$rapier/Cargo.lock"
   cd "$rapier"
   export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$root/target}
   if [ "${RAPIER_TESTS:-}" = all ]; then
-    # RAPIER_PROFILE=release: optimised (soft_bodies.rs alone runs 5.5 min so, far longer in
-    # the debug profile).
+    # RAPIER_PROFILE=release: optimised (soft_bodies.rs alone runs 1.4 min so on a quiet 2-core
+    # machine, more than half an hour in the debug profile).
     cargo test --no-fail-fast ${RAPIER_PROFILE:+--profile "$RAPIER_PROFILE"}
   else
     cargo test --lib
