@@ -169,7 +169,8 @@ impl FullSlip {
         let (wu, wv) = (fu - i as f64, fv - j as f64);
         let base = i * NV + j;
         // The cell's four entries of each row (one bounds check per row), blended in `a/b`
-        // and bilinearly in f32, the entries' own precision (a few 1e-7 of `mu P`).
+        // and bilinearly in f32, the entries' own precision (within 1e-7 of the f64 blend:
+        // test `f32_blend_is_the_f64_blend`).
         let (r0, r1) = (
             &self.rows[0][base..base + NV + 2],
             &self.rows[1][base..base + NV + 2],
@@ -245,6 +246,62 @@ mod tests {
         }
         assert!(worst[0] < 7e-3 && worst[1] < 7e-3, "{worst:?}");
         assert!(worst[2] < 1.7e-2, "{worst:?}");
+    }
+
+    /// The cell read in f32 (`loads`) against the same entries blended in f64: within 1e-6 of
+    /// `mu P` (and of `M_max`) at random axis ratios and directions, so the f32 arithmetic adds
+    /// nothing beyond the entries' own rounding.
+    #[test]
+    fn f32_blend_is_the_f64_blend() {
+        let mut st = 0x2545_f491_4f6c_dd1du64;
+        let mut worst = 0.0f64;
+        for _ in 0..2000 {
+            let ab = 10f64.powf(2.0 * rng(&mut st) - 1.0);
+            let (x, y, p) = (
+                2.0 * rng(&mut st) - 1.0,
+                2.0 * rng(&mut st) - 1.0,
+                4.0 * rng(&mut st) - 2.0,
+            );
+            let t = FullSlip::at(ab);
+            let l = t.loads(x, y, p);
+            // The f64 reference: the same cell, weights and frame.
+            let (ax, ay, pp) = (x.abs(), y.abs(), p * 1.0f64.copysign(y));
+            let tt = ax + ay;
+            let u = if tt > 0.0 { ay / tt } else { 0.0 };
+            let v = pp / (tt + pp.abs());
+            let (fu, fv) = (u * (NU - 1) as f64, (v + 1.0) * 0.5 * (NV - 1) as f64);
+            let (i, j) = ((fu as usize).min(NU - 2), (fv as usize).min(NV - 2));
+            let (wu, wv) = (fu - i as f64, fv - j as f64);
+            let base = i * NV + j;
+            let mut out = [0.0f64; 3];
+            for (r, wr) in [(t.rows[0], 1.0 - t.w), (t.rows[1], t.w)] {
+                for (k, w) in [
+                    (base, (1.0 - wu) * (1.0 - wv)),
+                    (base + 1, (1.0 - wu) * wv),
+                    (base + NV, wu * (1.0 - wv)),
+                    (base + NV + 1, wu * wv),
+                ] {
+                    for m in 0..3 {
+                        out[m] += wr * w * f64::from(r[k][m]);
+                    }
+                }
+            }
+            let h = ax.hypot(ay);
+            let (cx, cy) = if h > 0.0 {
+                (ax / h, ay / h)
+            } else {
+                (1.0, 0.0)
+            };
+            let (sx, sy) = (1.0f64.copysign(x), 1.0f64.copysign(y));
+            let e = [
+                l.fx - sx * (out[0] * cx - out[1] * cy),
+                l.fy - sy * (out[0] * cy + out[1] * cx),
+                (l.mz - sy * out[2] * t.m_max) / t.m_max,
+            ];
+            worst = e.iter().fold(worst, |w, d| w.max(d.abs()));
+        }
+        assert!(worst < 1e-6, "{worst:e}");
+        eprintln!("f32 blend against f64: worst {worst:.2e}");
     }
 
     /// The checked-in table is its generator's (`examples/full_slip_table.rs`): a few entries
