@@ -310,6 +310,21 @@ int32_t creep_lammps_store_save(const struct CreepLammpsStore *store,
                                 char *err,
                                 size_t err_len);
 
+// Reorders the store after a neighbour-list build: new slot `k` (`k < n`) takes the history
+// of old slot `from[k]`, copied as it is ([`crate::HistoryStore::remap`]: the same result as
+// [`creep_lammps_store_save`] then [`creep_lammps_store_load`], without the flat form).
+// Returns 0, or 1 with the reason in `err` (an old slot outside the store: the store is then
+// unchanged).
+//
+// # Safety
+// `store` is a live store; `from` points to `n` values (may be null when `n == 0`); `err` is
+// null or valid for writes of `err_len` bytes.
+int32_t creep_lammps_store_remap(struct CreepLammpsStore *store,
+                                 size_t n,
+                                 const int32_t *from,
+                                 char *err,
+                                 size_t err_len);
+
 // Steps the `n` touching pairs of one step by `dt` (s) with their histories in `store`
 // (which first grows to `nslots` slots, the new ones virgin), and adds each contact's force
 // and torques into the owned atoms' `f` and `torque` in the order of `pairs`. The model of

@@ -71,9 +71,16 @@ void FixCreepHistory::setup_pre_exchange()
   sync_from_pair();
 }
 
+void FixCreepHistory::save_from_pair_before_exchange()
+{
+  if (!pair_store) return;
+  if (auto *owner = dynamic_cast<CreepHistoryOwner *>(force->pair_match("granular/creep", 1)))
+    owner->save_before_exchange();
+}
+
 void FixCreepHistory::pre_exchange()
 {
-  sync_from_pair();
+  save_from_pair_before_exchange();
 }
 
 void FixCreepHistory::min_pre_exchange()

@@ -25,6 +25,10 @@ class CreepHistoryOwner {
  public:
   virtual ~CreepHistoryOwner() noexcept(false) = default;    // as LAMMPS' Pointers
   virtual void sync_history_rows() = 0;
+  // Before atoms migrate (pre_exchange of a run): the rows must let the pair find every
+  // history again after the next neighbour-list build (sync_history_rows, or a lighter form
+  // when the histories stay in this process).
+  virtual void save_before_exchange() = 0;
 };
 
 class FixCreepHistory : public Fix {
@@ -58,6 +62,7 @@ class FixCreepHistory : public Fix {
   // Asks the pair style (if it is a CreepHistoryOwner) to bring the rows up to date; only for
   // the pair's own fix (not for fix wall/creep, which keeps its rows current itself).
   void sync_from_pair();
+  void save_from_pair_before_exchange();
   bool pair_store;
 
   // Entries per atom and doubles per contact history.

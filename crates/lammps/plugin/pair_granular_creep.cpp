@@ -18,6 +18,9 @@
 // list itself); fix creep/history's per-atom rows are written
 // from the pool only before exchange / at run end / for restarts (sync_history_rows) and read
 // back after each neighbour-list build (rebuild_slots), as LAMMPS' fix neigh/history does.
+// On one rank no atom leaves the process: before an exchange during a run the rows get each
+// history's slot in the pool instead of the history (save_before_exchange), LAMMPS carries
+// them through the exchange and the atom sort, and the rebuild reorders the pool by them.
 #include "pair_granular_creep.h"
 
 #include "atom.h"
@@ -45,6 +48,7 @@ PairGranularCreep::PairGranularCreep(LAMMPS *lmp) :
     Pair(lmp), maxpartners(24), tier(CREEP_LAMMPS_TIER_EXACT), creep(1), rolling(CREEP_LAMMPS_ROLLING_NONE),
     rolling_friction(0.0), rolling_damping(0.0),
     models(nullptr), maxrad(0.0), fix_history(nullptr), built_nlocal(0), store(nullptr), nslots(0), rows_stale(false),
+    rows_hold_refs(false),
     rebuilt_at(-1), maxrad_user(0.0), saved_contacts(0.0), restored_contacts(0.0), counting(false),
     dropped_total(0.0)
 {
@@ -243,7 +247,7 @@ double PairGranularCreep::init_one(int i, int j)
 // neighbour list's order (so the store is also compacted: contacts that opened since the last
 // build are gone), and hands them to the law's store in one call. Runs after each
 // neighbour-list build, when the rows are current.
-void PairGranularCreep::rebuild_slots()
+void PairGranularCreep::rebuild_slots(bool refs)
 {
   const int hlen = fix_history->hlen;
   double **rows = fix_history->rows;
@@ -266,6 +270,7 @@ void PairGranularCreep::rebuild_slots()
   built_nlocal = nlocal;
   nslots = 0;
   stage.clear();
+  from.clear();
   double restored = 0.0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -285,7 +290,8 @@ void PairGranularCreep::rebuild_slots()
       for (int e = 0; e < ni; e++)
         if (tagsi[e] == partner) {
           const double *h = fix_history->hist_of(rowi, e);
-          stage.insert(stage.end(), h, h + hlen);
+          if (refs) from.push_back(static_cast<int>(h[0]));
+          else stage.insert(stage.end(), h, h + hlen);
           slot[slot_first[ii] + jj] = nslots++;
           if ((tag[i] < tag[j] ? i : j) < nlocal) restored += 1.0;
           break;
@@ -293,9 +299,13 @@ void PairGranularCreep::rebuild_slots()
     }
   }
   char msg[512] = {0};
-  if (creep_lammps_store_load(store, static_cast<size_t>(nslots), stage.data(), static_cast<size_t>(hlen), msg,
-                              sizeof(msg)) != 0)
+  if (refs) {
+    if (creep_lammps_store_remap(store, static_cast<size_t>(nslots), from.data(), msg, sizeof(msg)) != 0)
+      error->one(FLERR, "pair granular/creep: reordering the contact histories: {}", msg);
+  } else if (creep_lammps_store_load(store, static_cast<size_t>(nslots), stage.data(), static_cast<size_t>(hlen), msg,
+                                     sizeof(msg)) != 0) {
     error->one(FLERR, "pair granular/creep: reading the contact histories back: {}", msg);
+  }
   if (counting) dropped_total += saved_contacts - restored;
   counting = false;
 }
@@ -310,6 +320,31 @@ void PairGranularCreep::rebuild_slots()
 void PairGranularCreep::sync_history_rows()
 {
   if (!rows_stale || !fix_history || !list || !store) return;
+  // Between a one-rank exchange and the rebuild that follows it the list no longer matches
+  // the atoms; nothing asks for the rows then.
+  if (rows_hold_refs)
+    error->one(FLERR, "pair granular/creep: contact histories requested between an exchange and the rebuild");
+  write_rows(false);
+}
+
+// Before an exchange during a run: on one rank the rows get the store's slots (the
+// histories stay in the store; rebuild_slots(true) reorders it), otherwise the histories.
+void PairGranularCreep::save_before_exchange()
+{
+  if (!rows_stale || !fix_history || !list || !store) return;
+  if (comm->nprocs == 1 && !update->setupflag) {
+    write_rows(true);
+    rows_stale = true;    // the rows hold no histories
+    rows_hold_refs = true;
+  } else {
+    sync_history_rows();
+  }
+}
+
+// The rows from the store: each live contact's history (refs false) or its slot in the store
+// as one double (refs true), under both owned atoms, keyed by the partner's tag.
+void PairGranularCreep::write_rows(bool refs)
+{
   const int hlen = fix_history->hlen;
   double **rows = fix_history->rows;
   const tagint *tag = atom->tag;
@@ -317,10 +352,12 @@ void PairGranularCreep::sync_history_rows()
   const int inum = list->inum;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  stage.resize(static_cast<size_t>(nslots) * hlen);
-  char msg[512] = {0};
-  if (creep_lammps_store_save(store, stage.data(), stage.size(), static_cast<size_t>(hlen), msg, sizeof(msg)) != 0)
-    error->one(FLERR, "pair granular/creep: saving the contact histories: {}", msg);
+  if (!refs) {
+    stage.resize(static_cast<size_t>(nslots) * hlen);
+    char msg[512] = {0};
+    if (creep_lammps_store_save(store, stage.data(), stage.size(), static_cast<size_t>(hlen), msg, sizeof(msg)) != 0)
+      error->one(FLERR, "pair granular/creep: saving the contact histories: {}", msg);
+  }
   double saved = 0.0;
   for (int i = 0; i < atom->nlocal; i++) rows[i][0] = 0.0;
   for (int ii = 0; ii < inum; ii++) {
@@ -332,7 +369,7 @@ void PairGranularCreep::sync_history_rows()
       if (s < 0) continue;
       const int j = jlist[jj] & NEIGHMASK;
       const tagint tag_j = partner_tag[e];
-      const double *h = &stage[static_cast<size_t>(s) * hlen];
+      const double *h = refs ? nullptr : &stage[static_cast<size_t>(s) * hlen];
       if ((tag[i] < tag_j ? i : j) < nlocal) saved += 1.0;
       for (int side = 0; side < 2; side++) {
         const int a = side == 0 ? i : j;
@@ -344,7 +381,8 @@ void PairGranularCreep::sync_history_rows()
           error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
                      tag_a, maxpartners);
         *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
-        std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
+        if (refs) *fix_history->hist_of(row, cnt) = static_cast<double>(s);
+        else std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
         row[0] = cnt + 1;
       }
     }
@@ -376,10 +414,12 @@ void PairGranularCreep::compute(int eflag, int vflag)
   // always rebuilds, harmless when the list did not change: the rows were synced at the end
   // of the previous run.)
   if (neighbor->ago == 0 && (update->setupflag || update->ntimestep != rebuilt_at)) {
-    if (rows_stale)
+    const bool refs = rows_hold_refs && !update->setupflag;
+    if (rows_stale && !refs)
       error->one(FLERR, "pair granular/creep: neighbour lists were rebuilt without the contact histories "
                         "being saved first (a rebuild outside the pre-exchange path?)");
-    rebuild_slots();
+    rebuild_slots(refs);
+    rows_hold_refs = false;
     if (!update->setupflag) rebuilt_at = update->ntimestep;
   }
   // A sphere larger than the cut-off was made for (created or grown during the run by a fix

@@ -27,6 +27,7 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   void init_style() override;
   double init_one(int, int) override;
   void sync_history_rows() override;
+  void save_before_exchange() override;
 
  private:
   void allocate();
@@ -40,7 +41,8 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   double maxrad;                        // largest radius of any atom [m]
   class FixCreepHistory *fix_history;   // per-atom history storage
 
-  void rebuild_slots();
+  void rebuild_slots(bool refs);
+  void write_rows(bool refs);
 
   // Contact histories, each stored once, in place between neighbour-list builds (as LAMMPS'
   // fix neigh/history does): neighbour entry e (entry jj of list atom ii is
@@ -57,6 +59,12 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   std::vector<double> stage;
   int nslots;
   bool rows_stale;            // the store holds newer histories than the rows
+  // One rank: before an exchange the rows get each history's slot in the store instead of
+  // the history (no atom leaves the process, so the histories stay in the store), and the
+  // rebuild that follows reorders the store by them (creep_lammps_store_remap). `from`: the
+  // old slot of each new one.
+  bool rows_hold_refs;
+  std::vector<int> from;
   bigint rebuilt_at;          // timestep of the last rebuild_slots() outside set-up
   double maxrad_user;         // pair_style ... maxradius R [m] (0: none)
   std::vector<const CreepLammpsModel *> model_table;    // [ti * (ntypes + 1) + tj]

@@ -492,6 +492,43 @@ pub unsafe extern "C" fn creep_lammps_store_save(
     unsafe { status(result, err, err_len) }
 }
 
+/// Reorders the store after a neighbour-list build: new slot `k` (`k < n`) takes the history
+/// of old slot `from[k]`, copied as it is ([`crate::HistoryStore::remap`]: the same result as
+/// [`creep_lammps_store_save`] then [`creep_lammps_store_load`], without the flat form).
+/// Returns 0, or 1 with the reason in `err` (an old slot outside the store: the store is then
+/// unchanged).
+///
+/// # Safety
+/// `store` is a live store; `from` points to `n` values (may be null when `n == 0`); `err` is
+/// null or valid for writes of `err_len` bytes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn creep_lammps_store_remap(
+    store: *mut CreepLammpsStore,
+    n: usize,
+    from: *const i32,
+    err: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    // SAFETY: live or null, by the contract.
+    let Some(store) = (unsafe { store.as_mut() }) else {
+        // SAFETY: `err` as the contract says.
+        unsafe { write_error(err, err_len, "null store") };
+        return 1;
+    };
+    let result = if n == 0 {
+        store.0.remap(&[])
+    } else if from.is_null() {
+        Err(ModelError::NullArray)
+    } else {
+        // SAFETY: `from` holds n values, by the contract.
+        store
+            .0
+            .remap(unsafe { std::slice::from_raw_parts(from, n) })
+    };
+    // SAFETY: `err` as the contract says.
+    unsafe { status(result, err, err_len) }
+}
+
 /// One rank's per-atom arrays, as LAMMPS keeps them: `x`, `v`, `omega`, `f`, `torque` are
 /// `3 * n` contiguous doubles (LAMMPS' `x[0]`, ...), `radius`, `rmass`, `type` one value per
 /// atom. Atoms `0..nall` are read; forces and torques are added to the owned atoms `0..nlocal`

@@ -25,7 +25,13 @@ use crate::model::{Model, ModelError, Tier};
 
 /// Contact histories of one tier, one per slot, in creep-law's own form.
 #[derive(Debug, Clone, PartialEq)]
-pub struct HistoryStore(Slots);
+pub struct HistoryStore {
+    slots: Slots,
+    /// The buffer [`HistoryStore::remap`] gathers into (then swapped with `slots`), kept
+    /// empty between calls so that its capacity is reused: no allocation at a rebuild once
+    /// the store has reached its size.
+    spare: Slots,
+}
 
 #[derive(Debug, Clone, PartialEq)]
 enum Slots {
@@ -36,15 +42,19 @@ enum Slots {
 impl HistoryStore {
     /// An empty store for `tier`.
     pub fn new(tier: Tier) -> Self {
-        Self(match tier {
+        let empty = || match tier {
             Tier::Exact => Slots::Exact(Vec::new()),
             Tier::Spring => Slots::Spring(Vec::new()),
-        })
+        };
+        Self {
+            slots: empty(),
+            spare: empty(),
+        }
     }
 
     /// The tier of the histories.
     pub fn tier(&self) -> Tier {
-        match self.0 {
+        match self.slots {
             Slots::Exact(_) => Tier::Exact,
             Slots::Spring(_) => Tier::Spring,
         }
@@ -52,7 +62,7 @@ impl HistoryStore {
 
     /// Number of slots.
     pub fn len(&self) -> usize {
-        match &self.0 {
+        match &self.slots {
             Slots::Exact(v) => v.len(),
             Slots::Spring(v) => v.len(),
         }
@@ -92,7 +102,7 @@ impl HistoryStore {
             }
             Ok(())
         }
-        match &mut self.0 {
+        match &mut self.slots {
             Slots::Exact(v) => load_tier(v, flat),
             Slots::Spring(v) => load_tier(v, flat),
         }
@@ -119,9 +129,50 @@ impl HistoryStore {
             }
             Ok(())
         }
-        match &self.0 {
+        match &self.slots {
             Slots::Exact(v) => save_tier(v, out),
             Slots::Spring(v) => save_tier(v, out),
+        }
+    }
+
+    /// Reorders the store after a neighbour-list build without the flat form: new slot `k`
+    /// holds the history that was in slot `from[k]` (a slot may be taken more than once or
+    /// not at all; the histories are copied as they are, bit for bit). An index outside the
+    /// store is an error naming the first such `k`, and leaves the store unchanged.
+    ///
+    /// The host's alternative to [`HistoryStore::save`] then [`HistoryStore::load`] when the
+    /// histories need not leave the process between two builds (one rank: no atom migrates),
+    /// with the same result: [`ContactHistory::read`] of [`ContactHistory::write`] is the
+    /// identity (test `remap_is_save_then_load`).
+    pub fn remap(&mut self, from: &[i32]) -> Result<(), ModelError> {
+        fn remap_tier<T: TangentialLaw>(
+            v: &mut Vec<ContactHistory<T>>,
+            spare: &mut Vec<ContactHistory<T>>,
+            from: &[i32],
+        ) -> Result<(), ModelError> {
+            spare.clear();
+            spare.reserve(from.len());
+            let len = v.len();
+            for (index, &s) in from.iter().enumerate() {
+                let Some(h) = usize::try_from(s).ok().and_then(|s| v.get(s)) else {
+                    spare.clear();
+                    return Err(ModelError::Slot {
+                        index,
+                        slot: s,
+                        len,
+                    });
+                };
+                spare.push(*h);
+            }
+            std::mem::swap(v, spare);
+            spare.clear();
+            Ok(())
+        }
+        match (&mut self.slots, &mut self.spare) {
+            (Slots::Exact(v), Slots::Exact(spare)) => remap_tier(v, spare, from),
+            (Slots::Spring(v), Slots::Spring(spare)) => remap_tier(v, spare, from),
+            // `new` makes both of one tier and nothing changes a tier afterwards.
+            _ => Err(ModelError::MixedTiers),
         }
     }
 }
@@ -232,7 +283,7 @@ where
         }
     }
     let tier = store.tier();
-    match &mut store.0 {
+    match &mut store.slots {
         Slots::Exact(v) => {
             v.resize(nslots, ContactHistory::default());
             step_pairs(table, tier, v, atoms, acc, pairs, dt, outputs)
@@ -452,7 +503,7 @@ where
         });
     }
     let tier = store.tier();
-    match &mut store.0 {
+    match &mut store.slots {
         Slots::Exact(v) => list_pairs(
             table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
         ),
