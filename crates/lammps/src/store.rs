@@ -504,53 +504,76 @@ where
     }
     let tier = store.tier();
     match &mut store.slots {
-        Slots::Exact(v) => list_pairs(
+        Slots::Exact(v) => list_pairs_dispatch(
             table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
         ),
-        Slots::Spring(v) => {
-            #[cfg(target_arch = "x86_64")]
-            if wide_available()? {
-                /// [`list_pairs`] compiled with AVX2 and FMA enabled (the loop, the kernels and
-                /// the block of four contacts inline into it): four `f64` per vector
-                /// instruction, the same bits (Rust never contracts into fused multiply-adds;
-                /// IEEE 754 operations round lane by lane).
-                #[target_feature(enable = "avx2,fma")]
-                #[allow(clippy::too_many_arguments)]
-                fn wide<'a, F, L: HalfList>(
-                    table: &ModelTable<F>,
-                    tier: Tier,
-                    hist: &mut Vec<ContactHistory<Cheap>>,
-                    atoms: &Atoms<'_>,
-                    acc: &mut Accumulators<'_>,
-                    list: &L,
-                    neighmask: i32,
-                    entries: ListEntries<'_>,
-                    dt: f64,
-                    forces: Option<&mut [PairForce]>,
-                ) -> Result<ListCounts, ModelError>
-                where
-                    F: Fn(usize) -> Option<&'a Model>,
-                {
-                    list_pairs(
-                        table, tier, hist, atoms, acc, list, neighmask, entries, dt, forces,
-                    )
-                }
-                // SAFETY: `wide_available` found AVX2 and FMA on this CPU.
-                #[allow(unsafe_code)]
-                return unsafe {
-                    wide(
-                        table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
-                    )
-                };
-            }
-            list_pairs(
-                table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
-            )
-        }
+        Slots::Spring(v) => list_pairs_dispatch(
+            table, tier, v, atoms, acc, list, neighmask, entries, dt, forces,
+        ),
     }
 }
 
-/// Whether the spring tier's loop runs its AVX2 copy: the CPU has AVX2 and FMA, and the
+/// [`list_pairs`] in its AVX2 copy where [`wide_available`] says so, else as compiled for the
+/// target's baseline.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn list_pairs_dispatch<'a, T: TangentialLaw, F, L: HalfList>(
+    table: &ModelTable<F>,
+    tier: Tier,
+    hist: &mut Vec<ContactHistory<T>>,
+    atoms: &Atoms<'_>,
+    acc: &mut Accumulators<'_>,
+    list: &L,
+    neighmask: i32,
+    entries: ListEntries<'_>,
+    dt: f64,
+    forces: Option<&mut [PairForce]>,
+) -> Result<ListCounts, ModelError>
+where
+    F: Fn(usize) -> Option<&'a Model>,
+{
+    #[cfg(target_arch = "x86_64")]
+    if wide_available()? {
+        /// [`list_pairs`] compiled with AVX2 and FMA enabled (the loop, the kernels down to the
+        /// exact tier's Mindlin memory update, and the spring tier's block of four contacts
+        /// inline into it): four `f64` per vector instruction and three-operand forms, the
+        /// same bits (Rust never contracts into fused multiply-adds; IEEE 754 operations round
+        /// lane by lane).
+        #[target_feature(enable = "avx2,fma")]
+        #[allow(clippy::too_many_arguments)]
+        fn wide<'a, T: TangentialLaw, F, L: HalfList>(
+            table: &ModelTable<F>,
+            tier: Tier,
+            hist: &mut Vec<ContactHistory<T>>,
+            atoms: &Atoms<'_>,
+            acc: &mut Accumulators<'_>,
+            list: &L,
+            neighmask: i32,
+            entries: ListEntries<'_>,
+            dt: f64,
+            forces: Option<&mut [PairForce]>,
+        ) -> Result<ListCounts, ModelError>
+        where
+            F: Fn(usize) -> Option<&'a Model>,
+        {
+            list_pairs(
+                table, tier, hist, atoms, acc, list, neighmask, entries, dt, forces,
+            )
+        }
+        // SAFETY: `wide_available` found AVX2 and FMA on this CPU.
+        #[allow(unsafe_code)]
+        return unsafe {
+            wide(
+                table, tier, hist, atoms, acc, list, neighmask, entries, dt, forces,
+            )
+        };
+    }
+    list_pairs(
+        table, tier, hist, atoms, acc, list, neighmask, entries, dt, forces,
+    )
+}
+
+/// Whether the list loop runs its AVX2 copy: the CPU has AVX2 and FMA, and the
 /// environment does not ask for the portable kernels (creep-dem's
 /// [`creep_dem::KERNELS_ENV`], read once per process; a value other than `portable`, `auto`
 /// or empty is an error).
