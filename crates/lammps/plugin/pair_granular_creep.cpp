@@ -283,15 +283,21 @@ void PairGranularCreep::rebuild_slots(bool refs)
       swap[slot_first[ii] + jj] = tag[i] > tj ? 1 : 0;    // body p is the lower tag
     }
     if (ni == 0) continue;
-    const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
+    // Entry e's partner tag: the rows' layout (tags, then histories), or the references'
+    // (tag, slot pairs; write_rows).
+    const double *tagsi = refs ? rowi + 1 : FixCreepHistory::tag_of(rowi, 0);
+    const int tstride = refs ? 2 : 1;
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double partner = static_cast<double>(tag[j]);
       for (int e = 0; e < ni; e++)
-        if (tagsi[e] == partner) {
-          const double *h = fix_history->hist_of(rowi, e);
-          if (refs) from.push_back(static_cast<int>(h[0]));
-          else stage.insert(stage.end(), h, h + hlen);
+        if (tagsi[e * tstride] == partner) {
+          if (refs) {
+            from.push_back(static_cast<int>(tagsi[e * tstride + 1]));
+          } else {
+            const double *h = fix_history->hist_of(rowi, e);
+            stage.insert(stage.end(), h, h + hlen);
+          }
           slot[slot_first[ii] + jj] = nslots++;
           if ((tag[i] < tag[j] ? i : j) < nlocal) restored += 1.0;
           break;
@@ -341,8 +347,10 @@ void PairGranularCreep::save_before_exchange()
   }
 }
 
-// The rows from the store: each live contact's history (refs false) or its slot in the store
-// as one double (refs true), under both owned atoms, keyed by the partner's tag.
+// The rows from the store: each live contact's history (refs false), or its slot in the store
+// (refs true: the row is then count, (tag, slot) pairs, within the prefix that LAMMPS carries
+// through exchanges and sorts since 2 count <= maxpartners + count hlen), under both owned
+// atoms, keyed by the partner's tag.
 void PairGranularCreep::write_rows(bool refs)
 {
   const int hlen = fix_history->hlen;
@@ -380,9 +388,13 @@ void PairGranularCreep::write_rows(bool refs)
         if (cnt >= maxpartners)
           error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
                      tag_a, maxpartners);
-        *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
-        if (refs) *fix_history->hist_of(row, cnt) = static_cast<double>(s);
-        else std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
+        if (refs) {    // (tag, slot) pairs side by side: one or two cache lines per row
+          row[1 + 2 * cnt] = static_cast<double>(tag_b);
+          row[2 + 2 * cnt] = static_cast<double>(s);
+        } else {
+          *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
+          std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
+        }
         row[0] = cnt + 1;
       }
     }
