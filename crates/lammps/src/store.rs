@@ -622,6 +622,8 @@ where
     let single = (table.ntypes == 1 && atoms.kind.iter().fold(true, |ok, &t| ok & (t == 1)))
         .then(|| (table.model_of)(stride + 1))
         .flatten();
+    // Whether that one model's constants take the block kernel, also once.
+    let single_block = single.map(|m| block_supports(m.constants()));
     let mut counts = ListCounts::default();
     let use_block = T::HAS_BLOCK && atoms_ok;
     let mut pend = Pending::default();
@@ -708,7 +710,11 @@ where
             } else {
                 [ia, jraw & neighmask]
             };
-            if use_block && !hist[si].is_virgin() && block_supports(m.constants()) {
+            let supports = match single_block {
+                Some(b) => b,
+                None => block_supports(m.constants()),
+            };
+            if use_block && supports && !hist[si].is_virgin() {
                 if pend.len > 0 && pend.model.is_some_and(|pm| !std::ptr::eq(pm, m)) {
                     pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
                 }
@@ -839,27 +845,50 @@ impl<'m> Pending<'m> {
         for l in n..LANES {
             self.pairs.copy_lane(0, l);
         }
-        // Filled in place (`array::from_fn` built the array aside and copied it: a call of
-        // `memcpy` per block, 3 % of the plugin's run).
+        // The block's histories: where the lanes' slots follow each other (the common case:
+        // slots are given in list order at each build), the store's own run of them, stepped
+        // in place; otherwise copies, written back lane by lane below. The block writes a
+        // history only for a lane it does, so a lane it leaves reaches the one-contact kernel
+        // unchanged either way; the lanes' slots are distinct.
+        let s0 = self.lanes[0].slot;
+        let in_place =
+            (1..n).all(|l| self.lanes[l].slot == s0 + l) && s0.checked_add(n) <= Some(hist.len());
         let mut local = [ContactHistory::<T>::default(); LANES];
-        for (l, h) in local.iter_mut().enumerate() {
-            *h = hist[self.lanes[if l < n { l } else { 0 }].slot];
-        }
         let mut out = [SphereForces::default(); LANES];
-        let mask = T::sphere_block(
-            m.constants(),
-            &self.pairs,
-            &mut local,
-            &mut out,
-            std::array::from_fn(|l| l),
-            n,
-            dt,
-        );
+        let idx = std::array::from_fn(|l| if l < n { l } else { 0 });
+        let mask = if in_place {
+            T::sphere_block(
+                m.constants(),
+                &self.pairs,
+                &mut hist[s0..s0 + n],
+                &mut out,
+                idx,
+                n,
+                dt,
+            )
+        } else {
+            // Filled in place (`array::from_fn` built the array aside and copied it: a call
+            // of `memcpy` per block, 3 % of the plugin's run).
+            for (l, h) in local.iter_mut().enumerate() {
+                *h = hist[self.lanes[idx[l]].slot];
+            }
+            T::sphere_block(
+                m.constants(),
+                &self.pairs,
+                &mut local,
+                &mut out,
+                std::array::from_fn(|l| l),
+                n,
+                dt,
+            )
+        };
         for l in 0..n {
             let lane = self.lanes[l];
             let (p, q) = self.atoms[l];
             let f = if mask >> l & 1 == 1 {
-                hist[lane.slot] = local[l];
+                if !in_place {
+                    hist[lane.slot] = local[l];
+                }
                 let o = &out[l];
                 add_forces(lane.k, acc, p, q, o.force_p, o.torque_p, o.torque_q)?;
                 PairForces {
