@@ -18,9 +18,9 @@
 // list itself); fix creep/history's per-atom rows are written
 // from the pool only before exchange / at run end / for restarts (sync_history_rows) and read
 // back after each neighbour-list build (rebuild_slots), as LAMMPS' fix neigh/history does.
-// On one rank no atom leaves the process: before an exchange during a run the rows get each
-// history's slot in the pool instead of the history (save_before_exchange), LAMMPS carries
-// them through the exchange and the atom sort, and the rebuild reorders the pool by them.
+// On one rank no atom leaves the process: before an exchange during a run only each
+// history's slot in the pool is noted, by the tags of its atoms (save_before_exchange; the
+// rows are not written), and the rebuild reorders the pool by them.
 #include "pair_granular_creep.h"
 
 #include "atom.h"
@@ -48,7 +48,7 @@ PairGranularCreep::PairGranularCreep(LAMMPS *lmp) :
     Pair(lmp), maxpartners(24), tier(CREEP_LAMMPS_TIER_EXACT), creep(1), rolling(CREEP_LAMMPS_ROLLING_NONE),
     rolling_friction(0.0), rolling_damping(0.0),
     models(nullptr), maxrad(0.0), fix_history(nullptr), built_nlocal(0), store(nullptr), nslots(0), rows_stale(false),
-    rows_hold_refs(false),
+    rows_hold_refs(false), ref_maxtag(0),
     rebuilt_at(-1), maxrad_user(0.0), saved_contacts(0.0), restored_contacts(0.0), counting(false),
     dropped_total(0.0)
 {
@@ -274,30 +274,40 @@ void PairGranularCreep::rebuild_slots(bool refs)
   double restored = 0.0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    double *rowi = rows[i];
-    const int ni = static_cast<int>(rowi[0]);
     const int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const tagint tj = tag[jlist[jj] & NEIGHMASK];
       partner_tag[slot_first[ii] + jj] = tj;
       swap[slot_first[ii] + jj] = tag[i] > tj ? 1 : 0;    // body p is the lower tag
     }
+    if (refs) {    // atom i's references: ref_tag/ref_slot[ref_first[tag] .. ref_first[tag + 1])
+      const tagint ti = tag[i];
+      if (ti < 1 || ti > ref_maxtag) continue;
+      const int r0 = ref_first[ti], r1 = ref_first[ti + 1];
+      for (int jj = 0; jj < numneigh[i]; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const tagint partner = tag[j];
+        for (int r = r0; r < r1; r++)
+          if (ref_tag[r] == partner) {
+            from.push_back(ref_slot[r]);
+            slot[slot_first[ii] + jj] = nslots++;
+            if ((tag[i] < tag[j] ? i : j) < nlocal) restored += 1.0;
+            break;
+          }
+      }
+      continue;
+    }
+    double *rowi = rows[i];
+    const int ni = static_cast<int>(rowi[0]);
     if (ni == 0) continue;
-    // Entry e's partner tag: the rows' layout (tags, then histories), or the references'
-    // (tag, slot pairs; write_rows).
-    const double *tagsi = refs ? rowi + 1 : FixCreepHistory::tag_of(rowi, 0);
-    const int tstride = refs ? 2 : 1;
+    const double *tagsi = FixCreepHistory::tag_of(rowi, 0);
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double partner = static_cast<double>(tag[j]);
       for (int e = 0; e < ni; e++)
-        if (tagsi[e * tstride] == partner) {
-          if (refs) {
-            from.push_back(static_cast<int>(tagsi[e * tstride + 1]));
-          } else {
-            const double *h = fix_history->hist_of(rowi, e);
-            stage.insert(stage.end(), h, h + hlen);
-          }
+        if (tagsi[e] == partner) {
+          const double *h = fix_history->hist_of(rowi, e);
+          stage.insert(stage.end(), h, h + hlen);
           slot[slot_first[ii] + jj] = nslots++;
           if ((tag[i] < tag[j] ? i : j) < nlocal) restored += 1.0;
           break;
@@ -330,28 +340,86 @@ void PairGranularCreep::sync_history_rows()
   // the atoms; nothing asks for the rows then.
   if (rows_hold_refs)
     error->one(FLERR, "pair granular/creep: contact histories requested between an exchange and the rebuild");
-  write_rows(false);
+  write_rows();
 }
 
-// Before an exchange during a run: on one rank the rows get the store's slots (the
-// histories stay in the store; rebuild_slots(true) reorders it), otherwise the histories.
+// Before an exchange during a run: on one rank each history's slot in the store, by the
+// tags of its atoms (write_refs; the histories stay in the store and rebuild_slots(true)
+// reorders it), otherwise the histories into the rows.
 void PairGranularCreep::save_before_exchange()
 {
   if (!rows_stale || !fix_history || !list || !store) return;
   if (comm->nprocs == 1 && !update->setupflag) {
-    write_rows(true);
-    rows_stale = true;    // the rows hold no histories
-    rows_hold_refs = true;
+    write_refs();
+    rows_hold_refs = true;    // rows_stale stays: the rows are not written
   } else {
     sync_history_rows();
   }
 }
 
-// The rows from the store: each live contact's history (refs false), or its slot in the store
-// (refs true: the row is then count, (tag, slot) pairs, within the prefix that LAMMPS carries
-// through exchanges and sorts since 2 count <= maxpartners + count hlen), under both owned
-// atoms, keyed by the partner's tag.
-void PairGranularCreep::write_rows(bool refs)
+// One rank, before an exchange: every live contact's slot under the tag of each of its atoms
+// owned at the build, with the partner's tag, in the order write_rows would put them into
+// the rows (so that rebuild_slots finds the same first match); bucketed by tag (a counting
+// sort over ref_first, tags 1 .. ref_maxtag) instead of the per-atom rows, which are
+// scattered over memory and which LAMMPS would then carry through the exchange and sort.
+void PairGranularCreep::write_refs()
+{
+  const tagint *tag = atom->tag;
+  const int nlocal = built_nlocal;
+  const int inum = list->inum;
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  tagint maxtag = 0;
+  for (int ii = 0; ii < inum; ii++) maxtag = std::max(maxtag, tag[ilist[ii]]);
+  for (const tagint t : partner_tag) maxtag = std::max(maxtag, t);
+  ref_maxtag = maxtag;
+  ref_first.assign(static_cast<size_t>(maxtag) + 2, 0);
+  // Each stored reference (tag_a, tag_b, slot s) of entry e, as write_rows stores histories.
+  auto each = [&](auto &&visit) {
+    for (int ii = 0; ii < inum; ii++) {
+      const int i = ilist[ii];
+      const int *jlist = firstneigh[i];
+      for (int jj = 0; jj < numneigh[i]; jj++) {
+        const int e = slot_first[ii] + jj;
+        const int s = slot[e];
+        if (s < 0) continue;
+        const int j = jlist[jj] & NEIGHMASK;
+        const tagint tag_j = partner_tag[e];
+        if (i < nlocal) visit(tag[i], tag_j, s);
+        if (j < nlocal) visit(tag_j, tag[i], s);
+      }
+    }
+  };
+  double saved = 0.0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int e = slot_first[ii] + jj;
+      if (slot[e] >= 0 && (tag[i] < partner_tag[e] ? i : jlist[jj] & NEIGHMASK) < nlocal) saved += 1.0;
+    }
+  }
+  each([&](tagint tag_a, tagint, int) {
+    if (++ref_first[tag_a + 1] > maxpartners)
+      error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
+                 tag_a, maxpartners);
+  });
+  for (size_t t = 1; t < ref_first.size(); t++) ref_first[t] += ref_first[t - 1];
+  ref_tag.resize(ref_first.back());
+  ref_slot.resize(ref_first.back());
+  ref_next.assign(ref_first.begin(), ref_first.end() - 1);
+  each([&](tagint tag_a, tagint tag_b, int s) {
+    const int r = ref_next[tag_a]++;
+    ref_tag[r] = tag_b;
+    ref_slot[r] = s;
+  });
+  saved_contacts = saved;
+  counting = true;
+}
+
+// The rows from the store: each live contact's history under both owned atoms, keyed by the
+// partner's tag.
+void PairGranularCreep::write_rows()
 {
   const int hlen = fix_history->hlen;
   double **rows = fix_history->rows;
@@ -360,12 +428,10 @@ void PairGranularCreep::write_rows(bool refs)
   const int inum = list->inum;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  if (!refs) {
-    stage.resize(static_cast<size_t>(nslots) * hlen);
-    char msg[512] = {0};
-    if (creep_lammps_store_save(store, stage.data(), stage.size(), static_cast<size_t>(hlen), msg, sizeof(msg)) != 0)
-      error->one(FLERR, "pair granular/creep: saving the contact histories: {}", msg);
-  }
+  stage.resize(static_cast<size_t>(nslots) * hlen);
+  char msg[512] = {0};
+  if (creep_lammps_store_save(store, stage.data(), stage.size(), static_cast<size_t>(hlen), msg, sizeof(msg)) != 0)
+    error->one(FLERR, "pair granular/creep: saving the contact histories: {}", msg);
   double saved = 0.0;
   for (int i = 0; i < atom->nlocal; i++) rows[i][0] = 0.0;
   for (int ii = 0; ii < inum; ii++) {
@@ -377,7 +443,7 @@ void PairGranularCreep::write_rows(bool refs)
       if (s < 0) continue;
       const int j = jlist[jj] & NEIGHMASK;
       const tagint tag_j = partner_tag[e];
-      const double *h = refs ? nullptr : &stage[static_cast<size_t>(s) * hlen];
+      const double *h = &stage[static_cast<size_t>(s) * hlen];
       if ((tag[i] < tag_j ? i : j) < nlocal) saved += 1.0;
       for (int side = 0; side < 2; side++) {
         const int a = side == 0 ? i : j;
@@ -388,13 +454,8 @@ void PairGranularCreep::write_rows(bool refs)
         if (cnt >= maxpartners)
           error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
                      tag_a, maxpartners);
-        if (refs) {    // (tag, slot) pairs side by side: one or two cache lines per row
-          row[1 + 2 * cnt] = static_cast<double>(tag_b);
-          row[2 + 2 * cnt] = static_cast<double>(s);
-        } else {
-          *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
-          std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
-        }
+        *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
+        std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
         row[0] = cnt + 1;
       }
     }

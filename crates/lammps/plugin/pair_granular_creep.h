@@ -42,7 +42,8 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   class FixCreepHistory *fix_history;   // per-atom history storage
 
   void rebuild_slots(bool refs);
-  void write_rows(bool refs);
+  void write_rows();
+  void write_refs();
 
   // Contact histories, each stored once, in place between neighbour-list builds (as LAMMPS'
   // fix neigh/history does): neighbour entry e (entry jj of list atom ii is
@@ -59,12 +60,17 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   std::vector<double> stage;
   int nslots;
   bool rows_stale;            // the store holds newer histories than the rows
-  // One rank: before an exchange the rows get each history's slot in the store instead of
-  // the history (no atom leaves the process, so the histories stay in the store), and the
-  // rebuild that follows reorders the store by them (creep_lammps_store_remap). `from`: the
-  // old slot of each new one.
+  // One rank: before an exchange each live history's slot in the store is noted under the
+  // tags of its owned atoms (no atom leaves the process, so the histories stay in the store;
+  // write_refs), and the rebuild that follows reorders the store by them
+  // (creep_lammps_store_remap). Tag t's references (partner tag, slot) are
+  // ref_tag/ref_slot[ref_first[t] .. ref_first[t + 1]), t in 1 .. ref_maxtag; `from`: the old
+  // slot of each new one.
   bool rows_hold_refs;
   std::vector<int> from;
+  std::vector<int> ref_first, ref_next, ref_slot;
+  std::vector<tagint> ref_tag;
+  tagint ref_maxtag;
   bigint rebuilt_at;          // timestep of the last rebuild_slots() outside set-up
   double maxrad_user;         // pair_style ... maxradius R [m] (0: none)
   std::vector<const CreepLammpsModel *> model_table;    // [ti * (ntypes + 1) + tj]
