@@ -84,7 +84,7 @@ pub fn ball_creep(
     let creepage = |q: f64| law.creepage_for_force(q, mu_t, pair.g, a);
     let slope0 = law.creepage_for_force(1.0, f64::INFINITY, pair.g, a);
     let t = translate(
-        &frame, q_star_t, q_s, k, consts.r, mu_t, roll, slope0, &creepage,
+        &frame, q_star_t, q_s, k, consts.r, mu_t, roll, slope0, creepage,
     );
     // Kalker's twisting moment on p about n.
     let mz = if phi_n != 0.0 || t.cy != 0.0 {

@@ -45,28 +45,76 @@ impl RollFrame {
 /// `r = C11/C22` (in `(0, 1]` for `nu >= 0`) and the capacity `q_max` \[N\] (beyond it the
 /// contact slides at `q_max`).
 pub fn solve_translation(
-    (x_star, y_star): (f64, f64),
+    q_star: (f64, f64),
     k: f64,
     r: f64,
     q_max: f64,
     slope0: f64,
     creepage: &dyn Fn(f64) -> f64,
 ) -> (f64, f64, f64) {
+    let s = solve_translation_with_creepage(q_star, k, r, q_max, slope0, creepage);
+    (s.q, s.ux, s.uy)
+}
+
+/// The answer of [`solve_translation_with_creepage`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct TranslationSolve {
+    /// The force's magnitude \[N\].
+    pub q: f64,
+    /// Its unit direction in the frame.
+    pub ux: f64,
+    pub uy: f64,
+    /// `creepage(q)` when the solve evaluated it at `q` (`None`: not evaluated there).
+    pub creepage: Option<f64>,
+}
+
+/// [`solve_translation`] with the creepage law's value at the answer, when the solve
+/// evaluated it there (its last evaluation is at the root it returns), so that the caller
+/// need not evaluate the law again; generic in the law, so that it inlines into the
+/// solve's loop. The same operations as [`solve_translation`], so the same bits.
+#[inline]
+pub(crate) fn solve_translation_with_creepage(
+    (x_star, y_star): (f64, f64),
+    k: f64,
+    r: f64,
+    q_max: f64,
+    slope0: f64,
+    creepage: impl Fn(f64) -> f64,
+) -> TranslationSolve {
     let q_star = x_star.hypot(y_star);
     if !(q_star > 0.0) {
-        return (0.0, 1.0, 0.0);
+        return TranslationSolve {
+            q: 0.0,
+            ux: 1.0,
+            uy: 0.0,
+            creepage: None,
+        };
     }
     let hi0 = q_star.min(q_max);
     if !(k > 0.0) || !(hi0 > 0.0) {
-        return (hi0.max(0.0), x_star / q_star, y_star / q_star);
+        return TranslationSolve {
+            q: hi0.max(0.0),
+            ux: x_star / q_star,
+            uy: y_star / q_star,
+            creepage: None,
+        };
     }
+    // The last evaluation of `dir`: `(q, creepage(q) or NaN at q = 0, ux, uy)`. The answer
+    // is the point evaluated last (the root, or `hi0` when the force saturates), so its
+    // direction and creepage are read here rather than evaluated again.
+    let last = std::cell::Cell::new((f64::NAN, f64::NAN, 0.0, 0.0));
     // F(q)/q, continuous at 0 with the law's slope.
-    let ratio = |q: f64| {
-        if q > 0.0 { creepage(q) / q } else { slope0 }
-    };
     let dir = |q: f64| {
-        let f = k * ratio(q);
-        (x_star / (1.0 + f), y_star / (1.0 + r * f))
+        let (ratio, fq) = if q > 0.0 {
+            let fq = creepage(q);
+            (fq / q, fq)
+        } else {
+            (slope0, f64::NAN)
+        };
+        let f = k * ratio;
+        let d = (x_star / (1.0 + f), y_star / (1.0 + r * f));
+        last.set((q, fq, d.0, d.1));
+        d
     };
     let h = |q: f64| {
         let (ux, uy) = dir(q);
@@ -86,12 +134,29 @@ pub fn solve_translation(
         })
         .root_or_midpoint()
     };
-    let (ux, uy) = dir(q);
+    let (q_last, f_last, ux_last, uy_last) = last.get();
+    let ((ux, uy), fq) = if q_last.to_bits() == q.to_bits() {
+        ((ux_last, uy_last), f_last)
+    } else {
+        let d = dir(q);
+        (d, last.get().1)
+    };
+    let creepage = (q > 0.0).then_some(fq);
     let norm = ux.hypot(uy);
     if norm > 0.0 {
-        (q, ux / norm, uy / norm)
+        TranslationSolve {
+            q,
+            ux: ux / norm,
+            uy: uy / norm,
+            creepage,
+        }
     } else {
-        (q, x_star / q_star, y_star / q_star)
+        TranslationSolve {
+            q,
+            ux: x_star / q_star,
+            uy: y_star / q_star,
+            creepage,
+        }
     }
 }
 
