@@ -113,6 +113,7 @@ pub mod wheel;
 
 pub use ball::ball_creep;
 pub use consts::{PAIR_CACHE_LEN, RigidPair, RigidPairCache};
+pub(crate) use frame::ForceCreepage;
 pub use frame::{
     COMBINED_ITERATIONS, COMBINED_TOLERANCE, CombinedSolve, LawCache, RollFrame, solve_combined,
     solve_translation,

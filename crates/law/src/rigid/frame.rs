@@ -2,7 +2,9 @@
 //! (the equations are in the parent module's docs, "The implicit solve"), and the cache of
 //! the 3-D laws of elliptic contacts by shape.
 
+use crate::kalker;
 use crate::root::illinois;
+use crate::steady_law::SteadyLaw;
 use crate::steady3d::{Loads, Steady3d};
 use crate::vector::Vec3;
 
@@ -156,6 +158,66 @@ pub(crate) fn solve_translation_with_creepage(
             ux: x_star / q_star,
             uy: y_star / q_star,
             creepage,
+        }
+    }
+}
+
+/// The steady creepage of a force along the rolling direction at one contact:
+/// [`SteadyLaw::creepage_for_force`] at fixed `mu P`, `G` and `a`, with what does not depend
+/// on the force computed once (the implicit solve evaluates the law a dozen times per
+/// contact). For Kalker's closed form (Kalker 2000, `F_ss(s) = 3 mu P/(G a^2 C11)
+/// (1 - (1 - s)^(1/3))`, `s = |Q|/(mu P)`) the same operations on the same values as
+/// [`SteadyLaw::creepage_for_force`], so the same bits; any other case is that function.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ForceCreepage {
+    law: SteadyLaw,
+    mu_p: f64,
+    g: f64,
+    a: f64,
+    /// `(3 mu P, G a^2 C11)` for Kalker's closed form with a finite positive `G a^2` and
+    /// `mu P` (`None`: every other case).
+    kalker: Option<(f64, f64)>,
+}
+
+impl ForceCreepage {
+    /// The law `law` at capacity `mu_p` \[N\], combined shear modulus `g` \[Pa\] and contact
+    /// radius `a` \[m\].
+    #[inline]
+    pub(crate) fn new(law: SteadyLaw, mu_p: f64, g: f64, a: f64) -> Self {
+        let denom = g * a * a;
+        let kalker = match law {
+            SteadyLaw::Kuhn { c11 }
+                if denom > 0.0 && denom.is_finite() && mu_p > 0.0 && mu_p.is_finite() =>
+            {
+                Some((3.0 * mu_p, denom * c11))
+            }
+            _ => None,
+        };
+        Self {
+            law,
+            mu_p,
+            g,
+            a,
+            kalker,
+        }
+    }
+
+    /// The creepage \[-\] of a force of magnitude `q_abs` \[N\].
+    #[inline(always)]
+    pub(crate) fn at(&self, q_abs: f64) -> f64 {
+        match self.kalker {
+            Some((three_mu_p, denom_c11)) => {
+                let q = if q_abs.is_nan() {
+                    0.0
+                } else {
+                    q_abs.clamp(0.0, self.mu_p)
+                };
+                let c = kalker::cbrt(1.0 - q / self.mu_p);
+                three_mu_p * (1.0 - c) / denom_c11
+            }
+            None => self
+                .law
+                .creepage_for_force(q_abs, self.mu_p, self.g, self.a),
         }
     }
 }
@@ -338,6 +400,37 @@ mod tests {
         // The lateral direction creeps less per force (r < 1): the force turns towards y.
         let (_, ux, uy) = solve_translation((0.3, 0.3), k, r, 1.0, 1.0, &kalker);
         assert!(uy > ux, "{ux} {uy}");
+    }
+
+    #[test]
+    fn force_creepage_is_the_laws_bit_for_bit() {
+        use crate::steady_law::CreepModel;
+        for model in CreepModel::ALL {
+            let law = SteadyLaw::new(model, 0.28);
+            for (mu_p, g, a) in [
+                (120.0, 8.1e10, 2.3e-4),
+                (3.5e-3, 4.0e5, 1e-3),
+                (0.0, 8.1e10, 2.3e-4),
+                (f64::INFINITY, 8.1e10, 2.3e-4),
+                (f64::NAN, 8.1e10, 2.3e-4),
+                (10.0, 0.0, 1e-3),
+                (10.0, 8.1e10, 0.0),
+                (10.0, f64::INFINITY, 1e-3),
+            ] {
+                let f = ForceCreepage::new(law, mu_p, g, a);
+                let scale = if mu_p.is_finite() { mu_p } else { 50.0 };
+                for i in -2..=42 {
+                    let q = scale * f64::from(i) / 40.0;
+                    for q in [q, -q, f64::NAN, f64::INFINITY, 1e-300] {
+                        let (got, want) = (f.at(q), law.creepage_for_force(q, mu_p, g, a));
+                        assert!(
+                            got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                            "{model:?} {mu_p} {g} {a} {q}: {got} {want}"
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]
