@@ -113,6 +113,7 @@ pub mod wheel;
 
 pub use ball::ball_creep;
 pub use consts::{PAIR_CACHE_LEN, RigidPair, RigidPairCache};
+pub(crate) use frame::ForceCreepage;
 pub use frame::{
     COMBINED_ITERATIONS, COMBINED_TOLERANCE, CombinedSolve, LawCache, RollFrame, solve_combined,
     solve_translation,
@@ -289,16 +290,25 @@ fn translate(
     mu_t: f64,
     roll: f64,
     slope0: f64,
-    creepage: &dyn Fn(f64) -> f64,
+    creepage: impl Fn(f64) -> f64,
 ) -> Translation {
-    let (q_t, ux, uy) = solve_translation(frame.split(q_star_t), k, r, mu_t, slope0, creepage);
+    let s = frame::solve_translation_with_creepage(
+        frame.split(q_star_t),
+        k,
+        r,
+        mu_t,
+        slope0,
+        &creepage,
+    );
+    let (q_t, ux, uy) = (s.q, s.ux, s.uy);
     let dq = 1e-6 * mu_t;
     let gain = if dq > 0.0 {
         k * (creepage((q_t + dq).min(mu_t)) - creepage((q_t - dq).max(0.0))) / (2.0 * dq)
     } else {
         0.0
     };
-    let f = creepage(q_t);
+    // The law at the answer, as the solve evaluated it there (the same bits).
+    let f = s.creepage.unwrap_or_else(|| creepage(q_t));
     let (cx, cy) = (f * ux, f * r * uy);
     let force = frame.join(q_t * ux, q_t * uy) + q_s;
     let target = frame.join(cx, cy) * roll;

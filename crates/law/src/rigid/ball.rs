@@ -2,8 +2,8 @@
 //! along the rolling direction, Kalker's `C22` across it and spin creep (parent module docs).
 
 use super::{
-    CoulombReason, RigidContact, RigidCreep, RigidPair, RollFrame, creeping, force_estimate,
-    solver_noise_force, spin_above_noise, translate,
+    CoulombReason, ForceCreepage, RigidContact, RigidCreep, RigidPair, RollFrame, creeping,
+    force_estimate, solver_noise_force, spin_above_noise, translate,
 };
 use crate::kinematics::contact_rates;
 use crate::material::PairMaterial;
@@ -81,10 +81,11 @@ pub fn ball_creep(
     // The capacity left to the translation, and its law.
     let mu_t = (mu_p - spin.fy.abs() * mu_p).max(0.0);
     let law = consts.law;
-    let creepage = |q: f64| law.creepage_for_force(q, mu_t, pair.g, a);
+    let law_t = ForceCreepage::new(law, mu_t, pair.g, a);
+    let creepage = |q: f64| law_t.at(q);
     let slope0 = law.creepage_for_force(1.0, f64::INFINITY, pair.g, a);
     let t = translate(
-        &frame, q_star_t, q_s, k, consts.r, mu_t, roll, slope0, &creepage,
+        &frame, q_star_t, q_s, k, consts.r, mu_t, roll, slope0, creepage,
     );
     // Kalker's twisting moment on p about n.
     let mz = if phi_n != 0.0 || t.cy != 0.0 {

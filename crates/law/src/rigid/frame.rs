@@ -2,7 +2,9 @@
 //! (the equations are in the parent module's docs, "The implicit solve"), and the cache of
 //! the 3-D laws of elliptic contacts by shape.
 
+use crate::kalker;
 use crate::root::illinois;
+use crate::steady_law::SteadyLaw;
 use crate::steady3d::{Loads, Steady3d};
 use crate::vector::Vec3;
 
@@ -45,28 +47,76 @@ impl RollFrame {
 /// `r = C11/C22` (in `(0, 1]` for `nu >= 0`) and the capacity `q_max` \[N\] (beyond it the
 /// contact slides at `q_max`).
 pub fn solve_translation(
-    (x_star, y_star): (f64, f64),
+    q_star: (f64, f64),
     k: f64,
     r: f64,
     q_max: f64,
     slope0: f64,
     creepage: &dyn Fn(f64) -> f64,
 ) -> (f64, f64, f64) {
+    let s = solve_translation_with_creepage(q_star, k, r, q_max, slope0, creepage);
+    (s.q, s.ux, s.uy)
+}
+
+/// The answer of [`solve_translation_with_creepage`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct TranslationSolve {
+    /// The force's magnitude \[N\].
+    pub q: f64,
+    /// Its unit direction in the frame.
+    pub ux: f64,
+    pub uy: f64,
+    /// `creepage(q)` when the solve evaluated it at `q` (`None`: not evaluated there).
+    pub creepage: Option<f64>,
+}
+
+/// [`solve_translation`] with the creepage law's value at the answer, when the solve
+/// evaluated it there (its last evaluation is at the root it returns), so that the caller
+/// need not evaluate the law again; generic in the law, so that it inlines into the
+/// solve's loop. The same operations as [`solve_translation`], so the same bits.
+#[inline]
+pub(crate) fn solve_translation_with_creepage(
+    (x_star, y_star): (f64, f64),
+    k: f64,
+    r: f64,
+    q_max: f64,
+    slope0: f64,
+    creepage: impl Fn(f64) -> f64,
+) -> TranslationSolve {
     let q_star = x_star.hypot(y_star);
     if !(q_star > 0.0) {
-        return (0.0, 1.0, 0.0);
+        return TranslationSolve {
+            q: 0.0,
+            ux: 1.0,
+            uy: 0.0,
+            creepage: None,
+        };
     }
     let hi0 = q_star.min(q_max);
     if !(k > 0.0) || !(hi0 > 0.0) {
-        return (hi0.max(0.0), x_star / q_star, y_star / q_star);
+        return TranslationSolve {
+            q: hi0.max(0.0),
+            ux: x_star / q_star,
+            uy: y_star / q_star,
+            creepage: None,
+        };
     }
+    // The last evaluation of `dir`: `(q, creepage(q) or NaN at q = 0, ux, uy)`. The answer
+    // is the point evaluated last (the root, or `hi0` when the force saturates), so its
+    // direction and creepage are read here rather than evaluated again.
+    let last = std::cell::Cell::new((f64::NAN, f64::NAN, 0.0, 0.0));
     // F(q)/q, continuous at 0 with the law's slope.
-    let ratio = |q: f64| {
-        if q > 0.0 { creepage(q) / q } else { slope0 }
-    };
     let dir = |q: f64| {
-        let f = k * ratio(q);
-        (x_star / (1.0 + f), y_star / (1.0 + r * f))
+        let (ratio, fq) = if q > 0.0 {
+            let fq = creepage(q);
+            (fq / q, fq)
+        } else {
+            (slope0, f64::NAN)
+        };
+        let f = k * ratio;
+        let d = (x_star / (1.0 + f), y_star / (1.0 + r * f));
+        last.set((q, fq, d.0, d.1));
+        d
     };
     let h = |q: f64| {
         let (ux, uy) = dir(q);
@@ -86,12 +136,89 @@ pub fn solve_translation(
         })
         .root_or_midpoint()
     };
-    let (ux, uy) = dir(q);
+    let (q_last, f_last, ux_last, uy_last) = last.get();
+    let ((ux, uy), fq) = if q_last.to_bits() == q.to_bits() {
+        ((ux_last, uy_last), f_last)
+    } else {
+        let d = dir(q);
+        (d, last.get().1)
+    };
+    let creepage = (q > 0.0).then_some(fq);
     let norm = ux.hypot(uy);
     if norm > 0.0 {
-        (q, ux / norm, uy / norm)
+        TranslationSolve {
+            q,
+            ux: ux / norm,
+            uy: uy / norm,
+            creepage,
+        }
     } else {
-        (q, x_star / q_star, y_star / q_star)
+        TranslationSolve {
+            q,
+            ux: x_star / q_star,
+            uy: y_star / q_star,
+            creepage,
+        }
+    }
+}
+
+/// The steady creepage of a force along the rolling direction at one contact:
+/// [`SteadyLaw::creepage_for_force`] at fixed `mu P`, `G` and `a`, with what does not depend
+/// on the force computed once (the implicit solve evaluates the law a dozen times per
+/// contact). For Kalker's closed form (Kalker 2000, `F_ss(s) = 3 mu P/(G a^2 C11)
+/// (1 - (1 - s)^(1/3))`, `s = |Q|/(mu P)`) the same operations on the same values as
+/// [`SteadyLaw::creepage_for_force`], so the same bits; any other case is that function.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ForceCreepage {
+    law: SteadyLaw,
+    mu_p: f64,
+    g: f64,
+    a: f64,
+    /// `(3 mu P, G a^2 C11)` for Kalker's closed form with a finite positive `G a^2` and
+    /// `mu P` (`None`: every other case).
+    kalker: Option<(f64, f64)>,
+}
+
+impl ForceCreepage {
+    /// The law `law` at capacity `mu_p` \[N\], combined shear modulus `g` \[Pa\] and contact
+    /// radius `a` \[m\].
+    #[inline]
+    pub(crate) fn new(law: SteadyLaw, mu_p: f64, g: f64, a: f64) -> Self {
+        let denom = g * a * a;
+        let kalker = match law {
+            SteadyLaw::Kuhn { c11 }
+                if denom > 0.0 && denom.is_finite() && mu_p > 0.0 && mu_p.is_finite() =>
+            {
+                Some((3.0 * mu_p, denom * c11))
+            }
+            _ => None,
+        };
+        Self {
+            law,
+            mu_p,
+            g,
+            a,
+            kalker,
+        }
+    }
+
+    /// The creepage \[-\] of a force of magnitude `q_abs` \[N\].
+    #[inline(always)]
+    pub(crate) fn at(&self, q_abs: f64) -> f64 {
+        match self.kalker {
+            Some((three_mu_p, denom_c11)) => {
+                let q = if q_abs.is_nan() {
+                    0.0
+                } else {
+                    q_abs.clamp(0.0, self.mu_p)
+                };
+                let c = kalker::cbrt(1.0 - q / self.mu_p);
+                three_mu_p * (1.0 - c) / denom_c11
+            }
+            None => self
+                .law
+                .creepage_for_force(q_abs, self.mu_p, self.g, self.a),
+        }
     }
 }
 
@@ -273,6 +400,37 @@ mod tests {
         // The lateral direction creeps less per force (r < 1): the force turns towards y.
         let (_, ux, uy) = solve_translation((0.3, 0.3), k, r, 1.0, 1.0, &kalker);
         assert!(uy > ux, "{ux} {uy}");
+    }
+
+    #[test]
+    fn force_creepage_is_the_laws_bit_for_bit() {
+        use crate::steady_law::CreepModel;
+        for model in CreepModel::ALL {
+            let law = SteadyLaw::new(model, 0.28);
+            for (mu_p, g, a) in [
+                (120.0, 8.1e10, 2.3e-4),
+                (3.5e-3, 4.0e5, 1e-3),
+                (0.0, 8.1e10, 2.3e-4),
+                (f64::INFINITY, 8.1e10, 2.3e-4),
+                (f64::NAN, 8.1e10, 2.3e-4),
+                (10.0, 0.0, 1e-3),
+                (10.0, 8.1e10, 0.0),
+                (10.0, f64::INFINITY, 1e-3),
+            ] {
+                let f = ForceCreepage::new(law, mu_p, g, a);
+                let scale = if mu_p.is_finite() { mu_p } else { 50.0 };
+                for i in -2..=42 {
+                    let q = scale * f64::from(i) / 40.0;
+                    for q in [q, -q, f64::NAN, f64::INFINITY, 1e-300] {
+                        let (got, want) = (f.at(q), law.creepage_for_force(q, mu_p, g, a));
+                        assert!(
+                            got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                            "{model:?} {mu_p} {g} {a} {q}: {got} {want}"
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -210,7 +210,7 @@ pub fn wheel_creep(
         mu_t,
         roll,
         slope0,
-        &creepage,
+        creepage,
     );
     let Some((law3, c2)) = law3 else {
         return creeping(&t, n, 0.0, w_twist);
