@@ -148,9 +148,13 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// coverage: `Steady3d::loads` interpolates it; "before" there is the fitted law).
 const CASES: [(&str, f64, f64); 8] = [
     ("a/b 0.5, nu 0.25 (a node)", 0.5, 0.25),
-    ("a/b 0.5, nu 0.125 (table, nu extrapolated)", 0.5, 0.125),
-    ("a/b 0.35, nu 0.125 (between rows)", 0.35, 0.125),
-    ("a/b 3, nu 0.375 (between rows)", 3.0, 0.375),
+    ("a/b 0.5, nu 0.125 (table, two nodes)", 0.5, 0.125),
+    (
+        "a/b 0.35, nu 0.125 (the fitted law, between rows)",
+        0.35,
+        0.125,
+    ),
+    ("a/b 3, nu 0.375 (table, two nodes)", 3.0, 0.375),
     (
         "a/b 1.4, nu 0.125 (table, between a/b, nu extrapolated)",
         1.4,

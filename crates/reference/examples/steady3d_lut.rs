@@ -7,6 +7,9 @@
 //!   `crates/reference/data/steady3d_lut/ab{AB}_nu{NU}.csv` one `(xi_n, eta_n)` line of spins at
 //!   a time; a rerun resumes after the last complete line.
 //! * `emit`: writes `crates/law/src/steady3d/lut_data.rs` from every complete CSV in that folder.
+//! * `check AB NU`: grades one CSV on the error map before it is emitted.
+//! * `blends`: grades other blends of two computed axis ratios than the law's (linear in
+//!   `ln(a/b)`) on the map's cases between them (docs/CREEP3D.md, "The table").
 //!
 //! `cargo run --release -p creep-reference --example steady3d_lut -- solve 1 0.3`
 //! `cargo run --release -p creep-reference --example steady3d_lut -- emit`
@@ -36,6 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             solve(ab, nu, grid)
         }
         Some("emit") => emit(),
+        Some("blends") => blends(),
         Some("check") if args.len() >= 3 => check(args[1].parse()?, args[2].parse()?),
         Some("validate") if args.len() >= 3 => validate(&args[1..]),
         Some("point") if args.len() >= 6 => {
@@ -45,7 +49,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .collect::<Result<_, _>>()?;
             point(v[0], v[1], [v[2], v[3], v[4]])
         }
-        _ => Err("usage: steady3d_lut solve AB NU [GRID] | emit".into()),
+        _ => Err(
+            "usage: steady3d_lut solve AB NU [GRID] | emit | check AB NU | blends | validate ... | point ..."
+                .into(),
+        ),
     }
 }
 
@@ -431,5 +438,122 @@ fn emit() -> Result<(), Box<dyn std::error::Error>> {
     let target = "crates/law/src/steady3d/lut_data.rs";
     std::fs::write(target, out)?;
     eprintln!("wrote {target}: {} nodes", nodes.len());
+    Ok(())
+}
+
+/// How [`blends`] reads the rows around a contact's `a/b`.
+#[derive(Debug, Clone, Copy)]
+enum Blend {
+    /// The law's: linear in `ln(a/b)` between the two rows, each read at the contact's creepages.
+    Linear,
+    /// Each row read at creepages scaled by Kalker's `C11, C22, C23` at the contact's `a/b` over
+    /// the row's (exact linear slopes), the scale faded out as `1/(1 + (m/m0)^2)` with `m =
+    /// sqrt(xi^2 + eta^2 + phi^2/4)` (`m0 = 0`: not faded).
+    Kalker(f64),
+    /// The spin alone scaled by `C23` (faded as above).
+    SpinC23(f64),
+    /// The spin scaled by `sqrt((a/b)/(a/b)_row)`: the pole of the rigid slip `-eta/phi` at the
+    /// same fraction of `a` in both rows.
+    SpinPole,
+    /// Quadratic Lagrange in `ln(a/b)` over three rows.
+    Quadratic,
+}
+
+/// Worst errors (per cent of `mu P`, `mu P`, `mu P a`) of several blends between computed axis
+/// ratios on the map's cases there and the off-grid validation points.
+fn blends() -> Result<(), Box<dyn std::error::Error>> {
+    use creep_law::kalker3d::coefficients;
+    let mut points: Vec<MapPoint> = map_table()?.iter().flat_map(expand).collect();
+    points.extend(creep_reference::steady3d_map::validation_table()?);
+    // (a/b, nu, the two rows, the third row of the quadratic).
+    let cases: [(f64, f64, [f64; 2], f64); 5] = [
+        (0.7, 0.0, [0.5, 1.0], 2.0),
+        (0.7, 0.5, [0.5, 1.0], 2.0),
+        (1.4, 0.5, [1.0, 2.0], 0.5),
+        (3.0, 0.5, [2.0, 5.0], 1.0),
+        (0.85, 0.4, [0.5, 1.0], 2.0),
+    ];
+    let blends = [
+        Blend::Linear,
+        Blend::Kalker(0.0),
+        Blend::Kalker(0.3),
+        Blend::SpinC23(0.3),
+        Blend::SpinPole,
+        Blend::Quadratic,
+    ];
+    for blend in blends {
+        println!("{blend:?}");
+        for &(ab, nu, rows, third) in &cases {
+            let row_weights: Vec<(f64, f64)> = match blend {
+                Blend::Quadratic => {
+                    let r = [rows[0], rows[1], third];
+                    if r.iter().any(|&x| Lut::at(x, nu).is_none()) {
+                        println!("  a/b {ab} nu {nu}: rows {r:?} not all computed");
+                        continue;
+                    }
+                    let l: Vec<f64> = r.iter().map(|x| x.ln()).collect();
+                    (0..3)
+                        .map(|i| {
+                            let w = (0..3)
+                                .filter(|&j| j != i)
+                                .map(|j| (ab.ln() - l[j]) / (l[i] - l[j]))
+                                .product();
+                            (r[i], w)
+                        })
+                        .collect()
+                }
+                _ => {
+                    let w = (ab.ln() - rows[0].ln()) / (rows[1].ln() - rows[0].ln());
+                    vec![(rows[0], 1.0 - w), (rows[1], w)]
+                }
+            };
+            let Some(luts) = row_weights
+                .iter()
+                .map(|&(r, w)| Lut::at(r, nu).map(|l| (r, w, l)))
+                .collect::<Option<Vec<_>>>()
+            else {
+                println!("  a/b {ab} nu {nu}: a row is not computed");
+                continue;
+            };
+            let at = coefficients(ab, nu)?;
+            let mut worst = [0.0f64; 3];
+            for p in points.iter().filter(|p| p.ab == ab && p.nu == nu) {
+                let c = p.creepage;
+                let m = (c[0] * c[0] + c[1] * c[1] + 0.25 * c[2] * c[2]).sqrt();
+                let fade = |m0: f64| {
+                    if m0 > 0.0 {
+                        1.0 / (1.0 + (m / m0).powi(2))
+                    } else {
+                        1.0
+                    }
+                };
+                let mut l = [0.0; 3];
+                for &(r, w, ref lut) in &luts {
+                    let k = coefficients(r, nu)?;
+                    let s = match blend {
+                        Blend::Linear | Blend::Quadratic => [1.0; 3],
+                        Blend::Kalker(m0) => [at.c11 / k.c11, at.c22 / k.c22, at.c23 / k.c23]
+                            .map(|v| 1.0 + (v - 1.0) * fade(m0)),
+                        Blend::SpinC23(m0) => [1.0, 1.0, 1.0 + (at.c23 / k.c23 - 1.0) * fade(m0)],
+                        Blend::SpinPole => [1.0, 1.0, (ab / r).sqrt()],
+                    };
+                    let v = lut.loads_checked(c[0] * s[0], c[1] * s[1], c[2] * s[2]);
+                    l[0] += w * v.fx;
+                    l[1] += w * v.fy;
+                    l[2] += w * v.mz;
+                }
+                worst[0] = worst[0].max((l[0] - p.load[0]).abs());
+                worst[1] = worst[1].max((l[1] - p.load[1]).abs());
+                // Over mu P a: Mz/(mu P c) sqrt(b/a).
+                worst[2] = worst[2].max((l[2] - p.load[2]).abs() / ab.sqrt());
+            }
+            println!(
+                "  a/b {ab} nu {nu}: Fx {:.2} %, Fy {:.2} %, Mz {:.2} % of mu P a",
+                100.0 * worst[0],
+                100.0 * worst[1],
+                100.0 * worst[2]
+            );
+        }
+    }
     Ok(())
 }

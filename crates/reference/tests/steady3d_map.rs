@@ -7,8 +7,8 @@
 use creep_reference::bem::{EllipticContact, EllipticSteadySolver, SolverOptions};
 use creep_reference::steady3d_map::{
     FIT_RATIOS, MAP_PHI, MAP_POISSON, MAP_RATIOS, MAP_XI, Set, VALIDATION_CASES, VALIDATION_POINTS,
-    expand, full_slip_loads, grade_steady3d, grade_steady3d_as_is, map_table, validation_creepages,
-    validation_table, worst,
+    coverage_bounds, expand, full_slip_loads, grade_steady3d, grade_steady3d_as_is, map_table,
+    validation_creepages, validation_table, worst,
 };
 
 #[test]
@@ -164,29 +164,17 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
 }
 
 /// Where creep-law's boundary-element table covers a map case (`Steady3d::tabulated`), the law
-/// meets the target at every signed point of it: within 2 % of `mu P` in each force and 3 % of
-/// `mu P a` in the moment (`a` the semi-axis along the rolling direction). The table's grid of
-/// creepages is not the map's (module `creep_law::steady3d::lut`: only `xi_n, eta_n = 0, 2`
-/// and `phi_n = 0, +-4` are common), so the map grades its interpolation; the cases at a `nu`
-/// between the table's nodes (e.g. `nu = 0.3` where only `0.25` and `0.5` are computed) grade
-/// its interpolation in `nu` too. The same on the off-grid validation table where it covers.
-/// Between two computed `a/b` (`Coverage::BetweenRatios`, linear in `ln(a/b)`) the stated
-/// bounds are 4.5 % of `mu P` and 4 % of `mu P a` (measured Fx 2.61 %, Fy 2.54 %, Mz 3.71 %
-/// at `a/b = 0.7` between `0.5` and `1`; Fy 4.08 % at `a/b = 1.4`, `nu = 0.5`, between `1` and
-/// `2`; 3.28 %, 2.29 %, 3.35 % on the off-grid case `a/b = 0.85`, `nu = 0.4`). A `nu` outside
-/// the computed ones (`Coverage::ExtrapolatedNu`, the nearest computed `nu` with the creepages
-/// scaled by Kalker's coefficients): 9 % of `mu P` and 9 % of `mu P a` (measured Fx 6.80 % at
-/// `a/b = 1.4`, `nu = 0`; Fy 8.79 % and Mz 4.88 % at `a/b = 2`, `nu = 0`; 4.47 %, 4.61 %,
-/// 4.02 % on the off-grid case `a/b = 1.2`, `nu = 0.3`).
+/// meets the bounds of its source (`steady3d_map::coverage_bounds`) at every signed point of
+/// it: within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment (`a` the semi-axis
+/// along the rolling direction) at a computed node. The table's grid of creepages is not the
+/// map's (module `creep_law::steady3d::lut`: only `xi_n, eta_n = 0, 2` and `phi_n = 0, +-4` are
+/// common), so the map grades its interpolation; the cases at a `nu` between the table's nodes
+/// (e.g. `nu = 0.3` where only `0.25` and `0.5` are computed) grade its interpolation in `nu`
+/// too. The same on the off-grid validation table where it covers.
 #[test]
 fn table_meets_the_bounds_where_it_covers_the_map() {
     use creep_law::steady3d::{Coverage, Steady3d};
-    let bounds = |ab: f64, nu: f64| match Steady3d::new(ab, nu).unwrap().coverage() {
-        Coverage::Table => Some([0.02, 0.03]),
-        Coverage::BetweenRatios => Some([0.045, 0.04]),
-        Coverage::ExtrapolatedNu => Some([0.09, 0.09]),
-        Coverage::Fitted => None,
-    };
+    let bounds = |ab: f64, nu: f64| coverage_bounds(Steady3d::new(ab, nu).unwrap().coverage());
     let map = grade_steady3d(&map_table().unwrap()).unwrap();
     let (mut covered, mut between) = (0, 0);
     for &ab in &MAP_RATIOS {
@@ -195,7 +183,8 @@ fn table_meets_the_bounds_where_it_covers_the_map() {
                 continue;
             };
             covered += 1;
-            between += usize::from(f == 0.045);
+            between +=
+                usize::from(Steady3d::new(ab, nu).unwrap().coverage() == Coverage::BetweenRatios);
             let w = worst(map.iter().filter(|e| e.point.ab == ab && e.point.nu == nu));
             assert!(
                 w[0] <= f && w[1] <= f && w[3] <= m,

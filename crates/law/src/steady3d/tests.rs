@@ -831,7 +831,10 @@ fn table_reproduces_its_nodes_and_blends_in_nu() {
             }
         }
     }
-    // Between two nodes of a row: the loads are linear in nu.
+    // Between two nodes of a row: linear in nu, each node read at the spin scaled by Kalker's
+    // C23 at the contact's nu over the node's, faded by (1 - s)/(1 + |t|^2) with t Kalker's
+    // linear force and s the creepage over the box (so at small creepage the spin's lateral
+    // force has the contact's slope, and the loads join those beyond the box).
     for a in lut::nodes() {
         let Some(b) = lut::nodes()
             .iter()
@@ -847,12 +850,20 @@ fn table_reproduces_its_nodes_and_blends_in_nu() {
             Steady3d::new(a.ab, nu).unwrap(),
         );
         assert!(lm.tabulated());
+        let k = |nu: f64| crate::kalker3d::coefficients(a.ab, nu).unwrap();
+        let (t, ka, kb) = (k(nu), k(a.nu), k(b.nu));
         for c in [[0.3, -0.5, 0.7], [-1.1, 0.05, -2.0], [0.01, 0.002, 0.3]] {
-            let (p, q, m) = (
-                la.loads(c[0], c[1], c[2]),
-                lb.loads(c[0], c[1], c[2]),
-                lm.loads(c[0], c[1], c[2]),
-            );
+            let (tx, ty) = (t.c11 * c[0], t.c22 * c[1] + t.c23 * c[2]);
+            let s = (c[0].abs().max(c[1].abs()) / 2.0).max(c[2].abs() / 4.0);
+            let fade = (1.0 - s) / (1.0 + tx * tx + ty * ty);
+            let at = |law: &Steady3d, r: &crate::kalker3d::KalkerCoefficients| {
+                law.loads(c[0], c[1], c[2] * (1.0 + (t.c23 / r.c23 - 1.0) * fade))
+            };
+            let (p, q, m) = (at(&la, &ka), at(&lb, &kb), lm.loads(c[0], c[1], c[2]));
+            // (The factor is exercised: the third creepage is within the linear range.)
+            if c[0] == 0.01 {
+                assert!(fade > 0.2 && (ka.c23 - t.c23).abs() > 1e-3 * t.c23);
+            }
             assert!((m.fx - (0.3 * p.fx + 0.7 * q.fx)).abs() < 1e-12);
             assert!((m.fy - (0.3 * p.fy + 0.7 * q.fy)).abs() < 1e-12);
             assert!((m.mz - (0.3 * p.mz + 0.7 * q.mz)).abs() < 1e-12);
@@ -986,7 +997,7 @@ fn table_extrapolated_in_nu_keeps_kalkers_slopes() {
     }
     assert!(checked > 0, "no computed a/b lacks nu = 0");
     assert_eq!(
-        Steady3d::new(3.0, 0.3).unwrap().coverage(),
+        Steady3d::new(7.0, 0.3).unwrap().coverage(),
         Coverage::Fitted
     );
     assert_eq!(
@@ -1000,7 +1011,12 @@ fn table_extrapolated_in_nu_keeps_kalkers_slopes() {
 /// `0.5 %`; the boundary elements' coefficients are within about 1 % of Kalker's table
 /// (`C23` within 3 %, Kalker's own table being coarsest there), `C33` (which converges slowest
 /// in the grid) within 1.5 % on grid 32 and 3 % on grid 24 (measured at `a/b = 0.5`, `nu =
-/// 0.5`: 2.161 against Kalker's 2.22; the grid-32 extrapolation gives 2.253).
+/// 0.5`: 2.161 against Kalker's 2.22; the grid-32 extrapolation gives 2.253). On grid 20 (the
+/// nodes with `a/b >= 3` or `<= 1/3`, where 32 across the shorter axis costs too much) `C23`
+/// and `C33` within 5 %: at `a/b = 5`, `nu = 0.5` the twisting moment of lateral creepage gives
+/// `C23` 7.56 (grids 10, 20 and extrapolated: 7.54, 7.55, 7.56), 4.2 % below Kalker's 7.89,
+/// while the spin's lateral force, equal to it by reciprocity in the exact theory, gives 7.84
+/// (7.61, 7.72, 7.84); `C33` 0.352 against 0.341 (3.2 %).
 #[test]
 fn table_is_kalkers_linear_theory_at_small_creepage() {
     for n in lut::nodes() {
@@ -1024,8 +1040,10 @@ fn table_is_kalkers_linear_theory_at_small_creepage() {
             n.nu,
             l.fy / e
         );
+        // (Grid 20: see above.)
+        let tol23 = if n.grid >= 24 { 0.03 } else { 0.05 };
         assert!(
-            rel(-l.mz / e, c.c23) < 0.03,
+            rel(-l.mz / e, c.c23) < tol23,
             "{} {}: C23 {}",
             n.ab,
             n.nu,
@@ -1033,13 +1051,17 @@ fn table_is_kalkers_linear_theory_at_small_creepage() {
         );
         let l = law.loads(0.0, 0.0, e);
         assert!(
-            rel(l.fy / e, c.c23) < 0.03,
+            rel(l.fy / e, c.c23) < tol23,
             "{} {}: C23 {}",
             n.ab,
             n.nu,
             l.fy / e
         );
-        let tol33 = if n.grid >= 32 { 0.015 } else { 0.03 };
+        let tol33 = match n.grid {
+            32.. => 0.015,
+            24.. => 0.03,
+            _ => 0.05,
+        };
         assert!(
             rel(l.mz / e, c.c33) < tol33,
             "{} {}: C33 {}",
