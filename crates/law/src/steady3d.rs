@@ -26,12 +26,9 @@
 //! `Mz`. Within the grid the loads are trilinear in `(xi_n, eta_n, phi_n)` (a convex combination
 //! of the eight corners: `|F| <= mu P` holds since it holds at every node, where the
 //! extrapolation's excess is scaled onto it); beyond it see "Beyond the box". Between two
-//! computed `nu` of one `a/b` the two tables' loads are blended linearly in `nu`, each table
-//! read at the spin scaled by Kalker's `C23` ([`kalker3d`]) at the contact's `nu` over the
-//! table's, the factor faded to 1 by `1/(1 + |t|^2)` as Kalker's linear force `t = (C11 xi_n,
-//! C22 eta_n + C23 phi_n)` (over `mu P`) grows and by `1 - s` towards the box's edge: at small
-//! creepage the spin's lateral force has the contact's slope (at `a/b = 3`, between `nu = 0` and
-//! `0.5`, it is 2.95 % of `mu P` off without the factor and 1.88 % with it); between
+//! computed `nu` of one `a/b` the two tables' loads are blended linearly in `nu` (one cell for
+//! both: the blend keeps the tables' reciprocity, the same `C23` coupling the spin's lateral
+//! force and the lateral creepage's moment, so the linear operator stays dissipative); between
 //! two computed `a/b` whose rows both cover
 //! `nu`, the two rows' loads are blended linearly in `ln(a/b)` ([`Coverage::BetweenRatios`],
 //! looser bounds); a `nu` outside the computed ones is extrapolated ("Beyond the computed nu").

@@ -166,7 +166,7 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
 /// Where creep-law's boundary-element table covers a map case (`Steady3d::tabulated`), the law
 /// meets the bounds of its source (`steady3d_map::coverage_bounds`) at every signed point of
 /// it: within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment (`a` the semi-axis
-/// along the rolling direction) at a computed node. The table's grid of creepages is not the
+/// along the rolling direction) at a computed node with `a/b <= 2` (2.5 % in the forces above). The table's grid of creepages is not the
 /// map's (module `creep_law::steady3d::lut`: only `xi_n, eta_n = 0, 2` and `phi_n = 0, +-4` are
 /// common), so the map grades its interpolation; the cases at a `nu` between the table's nodes
 /// (e.g. `nu = 0.3` where only `0.25` and `0.5` are computed) grade its interpolation in `nu`
@@ -174,7 +174,7 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
 #[test]
 fn table_meets_the_bounds_where_it_covers_the_map() {
     use creep_law::steady3d::{Coverage, Steady3d};
-    let bounds = |ab: f64, nu: f64| coverage_bounds(Steady3d::new(ab, nu).unwrap().coverage());
+    let bounds = |ab: f64, nu: f64| coverage_bounds(Steady3d::new(ab, nu).unwrap().coverage(), ab);
     let map = grade_steady3d(&map_table().unwrap()).unwrap();
     let (mut covered, mut between) = (0, 0);
     for &ab in &MAP_RATIOS {

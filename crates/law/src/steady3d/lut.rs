@@ -98,29 +98,17 @@ pub const SNAP: f64 = 1e-3;
 
 /// The tables at `(a/b, nu)` with their weights: one at a computed node (within [`SNAP`]), two
 /// between two computed `nu` of one computed `a/b` (linear in `nu`), up to four between two
-/// computed `a/b` (linear in `ln(a/b)` between the two rows, each at `nu`). A table computed at
-/// another `nu` than the contact's is read at creepages scaled by Kalker's coefficients
-/// ([`Lut::at_with`]).
+/// computed `a/b` (linear in `ln(a/b)` between the two rows, each at `nu`).
 #[derive(Clone, Copy)]
 pub struct Lut {
     tables: [&'static Table; 4],
     w: [f64; 4],
     n: usize,
     between_ratios: bool,
-    /// Beyond the computed `nu` (every table at one `nu_r`): Kalker's `C11, C22, C23` at the
-    /// contact's `(a/b, nu)` over those at `nu_r`, the factors on `(|xi_n|, |eta_n|, phi_n)`.
-    extrapolation: [f64; 3],
-    /// Between two computed `nu` of one `a/b` (one group of tables per `nu`, adjacent): `C23`
-    /// at the contact's `nu` over that at the group's, less 1 (the spin's factor, faded), and
-    /// the end of the group's tables.
-    spin_factor: [f64; 4],
-    group_end: [u8; 4],
-    n_groups: u8,
-    /// Kalker's `C11, C22, C23` at the contact's `(a/b, nu)`: the linear force, whose size fades
-    /// the spin's factors.
-    lin: [f64; 3],
-    /// Whether the spin's factors apply (between two computed `nu` of one `a/b`).
-    blend_scaled: bool,
+    /// Factors on `(|xi_n|, |eta_n|, phi_n)` before the lookup: 1 within the computed `nu`;
+    /// extrapolated in `nu`, Kalker's `C11, C22, C23` at the contact's `nu` over the tables'
+    /// ([`Lut::at`]).
+    scale: [f64; 3],
     extrapolated: bool,
 }
 
@@ -130,11 +118,7 @@ impl std::fmt::Debug for Lut {
             .field("tables", &self.n)
             .field("between_ratios", &self.between_ratios)
             .field("w", &&self.w[..self.n])
-            .field("extrapolation", &self.extrapolation)
-            .field(
-                "spin_factor",
-                &&self.spin_factor[..usize::from(self.n_groups)],
-            )
+            .field("scale", &self.scale)
             .finish()
     }
 }
@@ -144,27 +128,21 @@ impl PartialEq for Lut {
         self.n == o.n
             && self.between_ratios == o.between_ratios
             && self.w == o.w
-            && self.extrapolation == o.extrapolation
-            && self.spin_factor == o.spin_factor
-            && self.group_end == o.group_end
-            && self.lin == o.lin
+            && self.scale == o.scale
             && (0..self.n).all(|i| std::ptr::eq(self.tables[i], o.tables[i]))
     }
 }
 
-/// One table of a blend: the table, its weight and the `nu` it was computed at.
-type Part = (&'static Table, f64, f64);
-
 /// The tables of one computed `a/b` around `nu`, with weights: the node at `nu`, or linear
 /// between the two computed `nu` around it.
-fn row_at(ab: f64, nu: f64) -> Option<Vec<Part>> {
+fn row_at(ab: f64, nu: f64) -> Option<Vec<(&'static Table, f64)>> {
     let mut col: Vec<&LutNode> = nodes()
         .iter()
         .filter(|n| (n.ab.ln() - ab.ln()).abs() < SNAP)
         .collect();
     col.sort_by(|a, b| a.nu.total_cmp(&b.nu));
     if let Some(n) = col.iter().find(|n| (n.nu - nu).abs() < SNAP) {
-        return Some(vec![(n.loads, 1.0, nu)]);
+        return Some(vec![(n.loads, 1.0)]);
     }
     let hi = col.iter().position(|n| n.nu > nu)?;
     if hi == 0 {
@@ -172,13 +150,13 @@ fn row_at(ab: f64, nu: f64) -> Option<Vec<Part>> {
     }
     let (a, b) = (col[hi - 1], col[hi]);
     let w = (nu - a.nu) / (b.nu - a.nu);
-    Some(vec![(a.loads, 1.0 - w, a.nu), (b.loads, w, b.nu)])
+    Some(vec![(a.loads, 1.0 - w), (b.loads, w)])
 }
 
 /// The tables at `(a/b, nu)` with weights, and whether they are blended between two computed
 /// `a/b`: one computed `a/b`'s row, or linear in `ln(a/b)` between the rows of the two computed
 /// `a/b` around it.
-type Parts = (Vec<Part>, bool);
+type Parts = (Vec<(&'static Table, f64)>, bool);
 fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
     if nodes().iter().any(|n| (n.ab.ln() - ab.ln()).abs() < SNAP) {
         return row_at(ab, nu).map(|row| (row, false));
@@ -197,11 +175,7 @@ fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
     let w = (l - lo) / (hi - lo);
     let mut out = row_at(lo.exp(), nu)?;
     out.iter_mut().for_each(|p| p.1 *= 1.0 - w);
-    out.extend(
-        row_at(hi.exp(), nu)?
-            .into_iter()
-            .map(|(t, v, n)| (t, v * w, n)),
-    );
+    out.extend(row_at(hi.exp(), nu)?.into_iter().map(|(t, v)| (t, v * w)));
     Some((out, true))
 }
 
@@ -252,74 +226,37 @@ impl Lut {
     }
 
     /// [`Lut::at`]; with `extrapolate`, a `nu` outside the range the rows compute takes the
-    /// nearest computed `nu` (module documentation of [`super`], "Beyond the computed nu").
-    ///
-    /// A table computed at `nu_r` other than the contact's `nu`:
-    /// * beyond the computed `nu`, is read at the creepages scaled by Kalker's `C11, C22, C23` at
-    ///   the contact's `(a/b, nu)` over those at `(a/b, nu_r)` (Kalker's simplified theory makes
-    ///   a pure creepage's curve a function of `C x`);
-    /// * between two computed `nu` of a computed `a/b`, at the spin scaled by `C23(nu)/C23(nu_r)`,
-    ///   the factor faded to 1 by `1/(1 + |t|^2)` as Kalker's linear force `t = (C11 xi_n, C22
-    ///   eta_n + C23 phi_n)` grows and by `1 - s` towards the box's edge (`s` the largest of
-    ///   `|xi_n|/2, |eta_n|/2, |phi_n|/4`): at small creepage the spin's lateral force has the
-    ///   contact's slope, and the blend of the two tables carries the rest of the change with
-    ///   `nu` (between two computed `a/b` the rows are read at the contact's creepages).
+    /// nearest computed `nu` with the creepages scaled by Kalker's coefficients (module
+    /// documentation of [`super`], "Beyond the computed nu").
     pub fn at_with(ab: f64, nu: f64, extrapolate: bool) -> Option<Lut> {
         if !(ab.is_finite() && ab > 0.0 && nu.is_finite()) {
             return None;
         }
-        let ((mut parts, between_ratios), extrapolated) = match tables_at(ab, nu) {
-            Some(p) => (p, false),
-            // Beyond the computed nu: the nearest computed nu of the rows.
+        let (parts, between_ratios, scale) = match tables_at(ab, nu) {
+            Some((p, b)) => (p, b, [1.0; 3]),
+            // Beyond the computed nu: the nearest computed nu of the rows, scaled.
             None if extrapolate => {
                 let (lo, hi) = shared_nu(ab)?;
-                (tables_at(ab, nu.clamp(lo, hi))?, true)
+                let nu_r = nu.clamp(lo, hi);
+                let (p, b) = tables_at(ab, nu_r)?;
+                let t = crate::kalker3d::coefficients(ab, nu).ok()?;
+                let r = crate::kalker3d::coefficients(ab, nu_r).ok()?;
+                (p, b, [t.c11 / r.c11, t.c22 / r.c22, t.c23 / r.c23])
             }
             None => return None,
         };
-        // Tables of one nu adjacent (they share the factors, so one cell).
-        parts.sort_by(|a, b| a.2.total_cmp(&b.2));
-        let kalker = |nu: f64| {
-            crate::kalker3d::coefficients(ab, nu)
-                .ok()
-                .map(|c| [c.c11, c.c22, c.c23])
-        };
-        let lin = kalker(nu)?;
         let first = parts[0].0;
         let mut lut = Lut {
             tables: [first; 4],
             w: [0.0; 4],
             n: parts.len(),
             between_ratios,
-            extrapolation: [1.0; 3],
-            spin_factor: [0.0; 4],
-            group_end: [0; 4],
-            n_groups: 0,
-            lin,
-            blend_scaled: false,
-            extrapolated,
+            scale,
+            extrapolated: scale != [1.0; 3],
         };
-        let mut last_nu = f64::NAN;
-        for (i, (t, w, nu_r)) in parts.into_iter().enumerate() {
+        for (i, (t, w)) in parts.into_iter().enumerate() {
             lut.tables[i] = t;
             lut.w[i] = w;
-            if nu_r != last_nu {
-                last_nu = nu_r;
-                lut.n_groups += 1;
-                if (nu_r - nu).abs() >= SNAP {
-                    let r = kalker(nu_r)?;
-                    if extrapolated {
-                        lut.extrapolation = [lin[0] / r[0], lin[1] / r[1], lin[2] / r[2]];
-                    } else if !between_ratios {
-                        // (Between two computed a/b the rows are read at the contact's
-                        // creepages: the factors changed nothing measurable there, and cost a
-                        // cell per row.)
-                        lut.spin_factor[usize::from(lut.n_groups) - 1] = lin[2] / r[2] - 1.0;
-                        lut.blend_scaled = true;
-                    }
-                }
-            }
-            lut.group_end[usize::from(lut.n_groups) - 1] = (i + 1) as u8;
         }
         Some(lut)
     }
@@ -332,12 +269,7 @@ impl Lut {
             w: [1.0, 0.0, 0.0, 0.0],
             n: 1,
             between_ratios: false,
-            extrapolation: [1.0; 3],
-            spin_factor: [0.0; 4],
-            group_end: [1, 0, 0, 0],
-            n_groups: 1,
-            lin: [0.0; 3],
-            blend_scaled: false,
+            scale: [1.0; 3],
             extrapolated: false,
         }
     }
@@ -378,20 +310,54 @@ impl Lut {
     pub(crate) fn loads(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         let sx = 1.0f64.copysign(xi_n);
         let sy = 1.0f64.copysign(eta_n);
-        let [kx, ky, kp] = self.extrapolation;
-        let (x, y, p) = (xi_n.abs() * kx, eta_n.abs() * ky, phi_n * sy * kp);
+        let [kx, ky, kp] = self.scale;
+        let (mut x, mut y, mut p) = (xi_n.abs() * kx, eta_n.abs() * ky, phi_n * sy * kp);
+        let s = (x.max(y) * (1.0 / XI_MAX)).max(p.abs() * (1.0 / PHI_MAX));
+        if s > 1.0 {
+            (x, y, p) = to_box(x, y, p, s);
+        }
+        // (Through i64: x86-64 converts an f64 to an i64 in one instruction, to a usize in
+        // several; the values are finite and not below -1, so both truncate alike.)
+        let ix = XI_CELL[((x * (1.0 / BUCKET)) as i64 as usize).min(XI_BUCKETS)] as usize;
+        let iy = XI_CELL[((y * (1.0 / BUCKET)) as i64 as usize).min(XI_BUCKETS)] as usize;
+        let ip =
+            PHI_CELL[(((p + PHI_MAX) * (1.0 / BUCKET)) as i64 as usize).min(PHI_BUCKETS)] as usize;
+        let wx = (x - LUT_XI[ix]) * XI_INV[ix];
+        let wy = (y - LUT_XI[iy]) * XI_INV[iy];
+        let wp = (p - LUT_PHI[ip]) * PHI_INV[ip];
+        let base = ix * NPLANE + iy * NP + ip;
+        // The corners' offsets from `base` (each table's cell is one slice: one bounds check).
+        let corners = [
+            0,
+            1,
+            NP,
+            NP + 1,
+            NPLANE,
+            NPLANE + 1,
+            NPLANE + NP,
+            NPLANE + NP + 1,
+        ];
+        let (vx, vy, vp) = (1.0 - wx, 1.0 - wy, 1.0 - wp);
+        let cw = [
+            vx * vy * vp,
+            vx * vy * wp,
+            vx * wy * vp,
+            vx * wy * wp,
+            wx * vy * vp,
+            wx * vy * wp,
+            wx * wy * vp,
+            wx * wy * wp,
+        ];
         let mut out = [0.0f64; 3];
-        let fade = if self.blend_scaled {
-            self.fade(x, y, p)
-        } else {
-            0.0
-        };
-        if fade > FADE_MIN {
-            self.add_spin_scaled(x, y, p, fade, &mut out);
-        } else {
-            let cell = Cell::at(x, y, p);
-            for t in 0..self.n {
-                cell.add(self.tables[t], self.w[t], &mut out);
+        for t in 0..self.n {
+            let cell = &self.tables[t][base..base + NPLANE + NP + 2];
+            let wt = self.w[t];
+            for k in 0..8 {
+                let v = cell[corners[k]];
+                let w = wt * cw[k];
+                out[0] += w * f64::from(v[0]);
+                out[1] += w * f64::from(v[1]);
+                out[2] += w * f64::from(v[2]);
             }
         }
         Loads {
@@ -399,141 +365,6 @@ impl Lut {
             fy: sy * out[1],
             mz: sy * out[2],
         }
-    }
-
-    /// The weight of the spin's factors between two computed `nu`: `(1 - s)/(1 + |t|^2)`, `t`
-    /// Kalker's linear force over `mu P` and `s` the largest of `x/XI_MAX, y/XI_MAX,
-    /// |p|/PHI_MAX` (0 at the box's edge, so that the loads beyond it, read at the creepages
-    /// themselves, join continuously; `1/(1 + |t|^2)` is below 1/17 there).
-    #[inline]
-    fn fade(&self, x: f64, y: f64, p: f64) -> f64 {
-        let [c11, c22, c23] = self.lin;
-        let (tx, ty) = (c11 * x, c22 * y + c23 * p);
-        let s = (x.max(y) * (1.0 / XI_MAX)).max(p.abs() * (1.0 / PHI_MAX));
-        (1.0 - s).max(0.0) / (1.0 + tx * tx + ty * ty)
-    }
-
-    /// The tables of each computed `nu` read at the spin scaled by its factor (within the box:
-    /// one `(xi, eta)` cell for all, one spin cell per `nu`).
-    fn add_spin_scaled(&self, x: f64, y: f64, p: f64, fade: f64, out: &mut [f64; 3]) {
-        let xy = XyCell::at(x, y);
-        let mut first = 0;
-        for g in 0..usize::from(self.n_groups) {
-            let q = (p + p * self.spin_factor[g] * fade).clamp(-PHI_MAX, PHI_MAX);
-            let cell = xy.with_spin(q);
-            let end = usize::from(self.group_end[g]);
-            for t in first..end {
-                cell.add(self.tables[t], self.w[t], out);
-            }
-            first = end;
-        }
-    }
-}
-
-/// Below this weight the factors are not applied (one cell for every table): their effect on
-/// the creepages is below `1e-12` of them.
-const FADE_MIN: f64 = 1e-12;
-
-/// A creepage's cell of the table's grid: the first corner's index and the eight corners'
-/// trilinear weights.
-struct Cell {
-    base: usize,
-    cw: [f64; 8],
-}
-
-/// The corners' offsets from a cell's first (each table's cell is one slice: one bounds check).
-const CORNERS: [usize; 8] = [
-    0,
-    1,
-    NP,
-    NP + 1,
-    NPLANE,
-    NPLANE + 1,
-    NPLANE + NP,
-    NPLANE + NP + 1,
-];
-
-/// The `(xi, eta)` part of a cell within the box: the indices and weights along both axes.
-struct XyCell {
-    ix: usize,
-    iy: usize,
-    wx: f64,
-    wy: f64,
-}
-
-impl XyCell {
-    /// `x, y` in `[0, XI_MAX]`.
-    #[inline(always)]
-    fn at(x: f64, y: f64) -> XyCell {
-        // (Through i64: x86-64 converts an f64 to an i64 in one instruction, to a usize in
-        // several; the values are finite and not below -1, so both truncate alike.)
-        let ix = XI_CELL[((x * (1.0 / BUCKET)) as i64 as usize).min(XI_BUCKETS)] as usize;
-        let iy = XI_CELL[((y * (1.0 / BUCKET)) as i64 as usize).min(XI_BUCKETS)] as usize;
-        XyCell {
-            ix,
-            iy,
-            wx: (x - LUT_XI[ix]) * XI_INV[ix],
-            wy: (y - LUT_XI[iy]) * XI_INV[iy],
-        }
-    }
-
-    /// The whole cell with the spin `p` in `[-PHI_MAX, PHI_MAX]`.
-    #[inline(always)]
-    fn with_spin(&self, p: f64) -> Cell {
-        let ip =
-            PHI_CELL[(((p + PHI_MAX) * (1.0 / BUCKET)) as i64 as usize).min(PHI_BUCKETS)] as usize;
-        let wp = (p - LUT_PHI[ip]) * PHI_INV[ip];
-        let (wx, wy) = (self.wx, self.wy);
-        let (vx, vy, vp) = (1.0 - wx, 1.0 - wy, 1.0 - wp);
-        Cell {
-            base: self.ix * NPLANE + self.iy * NP + ip,
-            cw: [
-                vx * vy * vp,
-                vx * vy * wp,
-                vx * wy * vp,
-                vx * wy * wp,
-                wx * vy * vp,
-                wx * vy * wp,
-                wx * wy * vp,
-                wx * wy * wp,
-            ],
-        }
-    }
-}
-
-impl Cell {
-    /// The cell of `(x, y, p)` (`x, y >= 0`), beyond the box scaled onto it along its ray.
-    #[inline(always)]
-    fn at(mut x: f64, mut y: f64, mut p: f64) -> Cell {
-        let s = (x.max(y) * (1.0 / XI_MAX)).max(p.abs() * (1.0 / PHI_MAX));
-        if s > 1.0 {
-            (x, y, p) = to_box(x, y, p, s);
-        }
-        XyCell::at(x, y).with_spin(p)
-    }
-
-    /// Adds `wt` times one table's interpolated loads to `out`.
-    #[inline(always)]
-    fn add(&self, table: &Table, wt: f64, out: &mut [f64; 3]) {
-        let cell = &table[self.base..self.base + NPLANE + NP + 2];
-        // (Unrolled by hand: a loop over the eight corners stays a loop.)
-        macro_rules! corner {
-            ($k:expr) => {
-                let v = cell[CORNERS[$k]];
-                let w = wt * self.cw[$k];
-                out[0] += w * f64::from(v[0]);
-                out[1] += w * f64::from(v[1]);
-                out[2] += w * f64::from(v[2]);
-            };
-        }
-        corner!(0);
-        corner!(1);
-        corner!(2);
-        corner!(3);
-        corner!(4);
-        corner!(5);
-        corner!(6);
-        corner!(7);
     }
 }
 
