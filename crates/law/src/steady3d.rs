@@ -27,8 +27,7 @@
 //! of the eight corners: `|F| <= mu P` holds since it holds at every node, where the
 //! extrapolation's excess is scaled onto it); beyond it see "Beyond the box". Between two
 //! computed `nu` of one `a/b` the two tables' loads are blended linearly in `nu` (one cell for
-//! both: the blend keeps the tables' reciprocity, the same `C23` coupling the spin's lateral
-//! force and the lateral creepage's moment, so the linear operator stays dissipative); between
+//! both, the tables read at the contact's creepages); between
 //! two computed `a/b` whose rows both cover
 //! `nu`, the two rows' loads are blended linearly in `ln(a/b)` ([`Coverage::BetweenRatios`],
 //! looser bounds); a `nu` outside the computed ones is extrapolated ("Beyond the computed nu").
