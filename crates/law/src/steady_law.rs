@@ -297,19 +297,32 @@ impl SteadyLaw {
             return 0.0;
         }
         if let SteadyLaw::Kuhn { c11 } = self {
-            // Kalker's closed form with fewer divisions: `mu P/(G a^2) 3/C11 (1 - c)` with
-            // `c = (1 - s)^(1/3)`, `s = |Q|/(mu P)` clamped to [0, 1] (kalker::creepage_n's
-            // form) as `3 mu P (1 - c) / (G a^2 C11)`: two divisions, not four.
-            let q = if q_abs.is_nan() {
-                0.0
-            } else {
-                q_abs.clamp(0.0, mu_p)
-            };
-            let c = kalker::cbrt(1.0 - q / mu_p);
-            return 3.0 * mu_p * (1.0 - c) / (denom * *c11);
+            return kuhn_creepage_for_force(q_abs, mu_p, 3.0 * mu_p, denom * *c11);
         }
         mu_p / denom * self.creepage_n(q_abs / mu_p)
     }
+}
+
+/// [`SteadyLaw::creepage_for_force`] of [`SteadyLaw::Kuhn`] for a finite `mu_p > 0` \[N\], with
+/// `three_mu_p = 3 mu P` and `denom_c11 = G a^2 C11` (finite, > 0) given, so that a caller
+/// evaluating one contact's law many times (the rigid kernel's implicit solve) computes them
+/// once: Kalker's closed form (Kalker 2000) `mu P/(G a^2) 3/C11 (1 - c)`, `c = (1 - s)^(1/3)`,
+/// `s = |Q|/(mu P)` clamped to `[0, 1]` (`kalker::creepage_n`'s form) as `3 mu P (1 - c)/(G
+/// a^2 C11)`: two divisions, not four.
+#[inline(always)]
+pub(crate) fn kuhn_creepage_for_force(
+    q_abs: f64,
+    mu_p: f64,
+    three_mu_p: f64,
+    denom_c11: f64,
+) -> f64 {
+    let q = if q_abs.is_nan() {
+        0.0
+    } else {
+        q_abs.clamp(0.0, mu_p)
+    };
+    let c = kalker::cbrt(1.0 - q / mu_p);
+    three_mu_p * (1.0 - c) / denom_c11
 }
 
 #[cfg(test)]

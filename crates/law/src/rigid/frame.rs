@@ -2,9 +2,8 @@
 //! (the equations are in the parent module's docs, "The implicit solve"), and the cache of
 //! the 3-D laws of elliptic contacts by shape.
 
-use crate::kalker;
 use crate::root::illinois;
-use crate::steady_law::SteadyLaw;
+use crate::steady_law::{SteadyLaw, kuhn_creepage_for_force};
 use crate::steady3d::{Loads, Steady3d};
 use crate::vector::Vec3;
 
@@ -166,8 +165,9 @@ pub(crate) fn solve_translation_with_creepage(
 /// [`SteadyLaw::creepage_for_force`] at fixed `mu P`, `G` and `a`, with what does not depend
 /// on the force computed once (the implicit solve evaluates the law a dozen times per
 /// contact). For Kalker's closed form (Kalker 2000, `F_ss(s) = 3 mu P/(G a^2 C11)
-/// (1 - (1 - s)^(1/3))`, `s = |Q|/(mu P)`) the same operations on the same values as
-/// [`SteadyLaw::creepage_for_force`], so the same bits; any other case is that function.
+/// (1 - (1 - s)^(1/3))`, `s = |Q|/(mu P)`) the function [`SteadyLaw::creepage_for_force`]
+/// calls (`kuhn_creepage_for_force`) with `3 mu P` and `G a^2 C11` kept, so the same bits; any
+/// other case is that function.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ForceCreepage {
     law: SteadyLaw,
@@ -207,13 +207,7 @@ impl ForceCreepage {
     pub(crate) fn at(&self, q_abs: f64) -> f64 {
         match self.kalker {
             Some((three_mu_p, denom_c11)) => {
-                let q = if q_abs.is_nan() {
-                    0.0
-                } else {
-                    q_abs.clamp(0.0, self.mu_p)
-                };
-                let c = kalker::cbrt(1.0 - q / self.mu_p);
-                three_mu_p * (1.0 - c) / denom_c11
+                kuhn_creepage_for_force(q_abs, self.mu_p, three_mu_p, denom_c11)
             }
             None => self
                 .law
