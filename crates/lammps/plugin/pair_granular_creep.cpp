@@ -357,6 +357,24 @@ void PairGranularCreep::save_before_exchange()
   }
 }
 
+// The neighbour list's live contacts (the header's declaration says what visit gets).
+template <class Visit> void PairGranularCreep::each_live_contact(Visit &&visit) const
+{
+  const int inum = list->inum;
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int e = slot_first[ii] + jj;
+      const int s = slot[e];
+      if (s < 0) continue;
+      visit(i, jlist[jj] & NEIGHMASK, partner_tag[e], s);
+    }
+  }
+}
+
 // One rank, before an exchange: every live contact's slot under the tag of each of its atoms
 // owned at the build, with the partner's tag, in the order write_rows would put them into
 // the rows (so that rebuild_slots finds the same first match); bucketed by tag (a counting
@@ -366,39 +384,23 @@ void PairGranularCreep::write_refs()
 {
   const tagint *tag = atom->tag;
   const int nlocal = built_nlocal;
-  const int inum = list->inum;
-  const int *ilist = list->ilist, *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
   tagint maxtag = 0;
-  for (int ii = 0; ii < inum; ii++) maxtag = std::max(maxtag, tag[ilist[ii]]);
+  for (int ii = 0; ii < list->inum; ii++) maxtag = std::max(maxtag, tag[list->ilist[ii]]);
   for (const tagint t : partner_tag) maxtag = std::max(maxtag, t);
   ref_maxtag = maxtag;
   ref_first.assign(static_cast<size_t>(maxtag) + 2, 0);
-  // Each stored reference (tag_a, tag_b, slot s) of entry e, as write_rows stores histories.
+  // Each stored reference (tag_a, tag_b, slot s), as write_rows stores histories: under each
+  // owned atom of the contact, atom i's first.
   auto each = [&](auto &&visit) {
-    for (int ii = 0; ii < inum; ii++) {
-      const int i = ilist[ii];
-      const int *jlist = firstneigh[i];
-      for (int jj = 0; jj < numneigh[i]; jj++) {
-        const int e = slot_first[ii] + jj;
-        const int s = slot[e];
-        if (s < 0) continue;
-        const int j = jlist[jj] & NEIGHMASK;
-        const tagint tag_j = partner_tag[e];
-        if (i < nlocal) visit(tag[i], tag_j, s);
-        if (j < nlocal) visit(tag_j, tag[i], s);
-      }
-    }
+    each_live_contact([&](int i, int j, tagint tag_j, int s) {
+      if (i < nlocal) visit(tag[i], tag_j, s);
+      if (j < nlocal) visit(tag_j, tag[i], s);
+    });
   };
   double saved = 0.0;
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const int *jlist = firstneigh[i];
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int e = slot_first[ii] + jj;
-      if (slot[e] >= 0 && (tag[i] < partner_tag[e] ? i : jlist[jj] & NEIGHMASK) < nlocal) saved += 1.0;
-    }
-  }
+  each_live_contact([&](int i, int j, tagint tag_j, int) {
+    if ((tag[i] < tag_j ? i : j) < nlocal) saved += 1.0;
+  });
   each([&](tagint tag_a, tagint, int) {
     if (++ref_first[tag_a + 1] > maxpartners)
       error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
@@ -425,41 +427,29 @@ void PairGranularCreep::write_rows()
   double **rows = fix_history->rows;
   const tagint *tag = atom->tag;
   const int nlocal = built_nlocal;
-  const int inum = list->inum;
-  const int *ilist = list->ilist, *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
   stage.resize(static_cast<size_t>(nslots) * hlen);
   char msg[512] = {0};
   if (creep_lammps_store_save(store, stage.data(), stage.size(), static_cast<size_t>(hlen), msg, sizeof(msg)) != 0)
     error->one(FLERR, "pair granular/creep: saving the contact histories: {}", msg);
   double saved = 0.0;
   for (int i = 0; i < atom->nlocal; i++) rows[i][0] = 0.0;
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const int *jlist = firstneigh[i];
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int e = slot_first[ii] + jj;
-      const int s = slot[e];
-      if (s < 0) continue;
-      const int j = jlist[jj] & NEIGHMASK;
-      const tagint tag_j = partner_tag[e];
-      const double *h = &stage[static_cast<size_t>(s) * hlen];
-      if ((tag[i] < tag_j ? i : j) < nlocal) saved += 1.0;
-      for (int side = 0; side < 2; side++) {
-        const int a = side == 0 ? i : j;
-        const tagint tag_a = side == 0 ? tag[i] : tag_j, tag_b = side == 0 ? tag_j : tag[i];
-        if (a >= nlocal) continue;
-        double *row = rows[a];
-        const int cnt = static_cast<int>(row[0]);
-        if (cnt >= maxpartners)
-          error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
-                     tag_a, maxpartners);
-        *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
-        std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
-        row[0] = cnt + 1;
-      }
+  each_live_contact([&](int i, int j, tagint tag_j, int s) {
+    const double *h = &stage[static_cast<size_t>(s) * hlen];
+    if ((tag[i] < tag_j ? i : j) < nlocal) saved += 1.0;
+    for (int side = 0; side < 2; side++) {
+      const int a = side == 0 ? i : j;
+      const tagint tag_a = side == 0 ? tag[i] : tag_j, tag_b = side == 0 ? tag_j : tag[i];
+      if (a >= nlocal) continue;
+      double *row = rows[a];
+      const int cnt = static_cast<int>(row[0]);
+      if (cnt >= maxpartners)
+        error->one(FLERR, "pair granular/creep: atom {} has more than {} contacts (pair_style maxpartners N)",
+                   tag_a, maxpartners);
+      *FixCreepHistory::tag_of(row, cnt) = static_cast<double>(tag_b);
+      std::memcpy(fix_history->hist_of(row, cnt), h, sizeof(double) * hlen);
+      row[0] = cnt + 1;
     }
-  }
+  });
   saved_contacts = saved;
   counting = true;
   rows_stale = false;

@@ -44,6 +44,9 @@ class PairGranularCreep : public Pair, public CreepHistoryOwner {
   void rebuild_slots(bool refs);
   void write_rows();
   void write_refs();
+  // Each contact of the list built last whose history is live, in list order:
+  // visit(i, j, tag_j, s), atoms i and j, j's tag at the build, s its slot in the store.
+  template <class Visit> void each_live_contact(Visit &&visit) const;
 
   // Contact histories, each stored once, in place between neighbour-list builds (as LAMMPS'
   // fix neigh/history does): neighbour entry e (entry jj of list atom ii is
