@@ -16,8 +16,8 @@ use creep_lammps::ffi::{
     creep_lammps_store_len, creep_lammps_store_new, creep_lammps_store_save,
 };
 use creep_lammps::{
-    Accumulators, Atoms, HistoryStore, ListCounts, ListEntries, Model, ModelTable, PairForce,
-    PairIndex, Settings, Tier, VecList, compute_list,
+    Accumulators, HistoryStore, ListCounts, ListEntries, Model, ModelTable, PairForce, PairIndex,
+    Settings, Tier, VecList, compute_list,
 };
 use std::ffi::{CStr, c_char};
 
@@ -412,14 +412,7 @@ fn safe_list_api_checks_its_buffers() {
         ntypes: 2,
         model_of: |_| Some(&model),
     };
-    let atoms = Atoms {
-        x: &c.x,
-        v: &c.v,
-        omega: &c.w,
-        radius: &c.r,
-        mass: &c.m,
-        kind: &c.kind,
-    };
+    let atoms = c.atoms();
     let (mut f, mut t) = (vec![[0.0; 3]; nlocal], vec![[0.0; 3]; nlocal]);
     let mut store = HistoryStore::new(Tier::Spring);
     let mut slot = vec![-1; swap.len()];

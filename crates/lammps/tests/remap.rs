@@ -2,31 +2,17 @@
 //! `save` then `load` (the flat form, the path of every rank count): the same histories bit for
 //! bit, so the same forces afterwards; and its refusal of a slot outside the store.
 
+mod common;
+use common::Cluster;
 use creep_lammps::{
-    Accumulators, Atoms, HistoryStore, Model, ModelError, ModelTable, PairIndex, PairOutputs,
-    Settings, Tier, compute_pairs,
+    Accumulators, HistoryStore, Model, ModelError, ModelTable, PairIndex, PairOutputs, Settings,
+    Tier, compute_pairs,
 };
 use creep_law::rolling_torque::RollingModel;
 
 /// A chain of `n` spheres along x, each overlapping the next by ~1e-3 of the diameter.
-struct Chain {
-    x: Vec<[f64; 3]>,
-    v: Vec<[f64; 3]>,
-    w: Vec<[f64; 3]>,
-    r: Vec<f64>,
-    m: Vec<f64>,
-    kind: Vec<i32>,
-}
-
-fn chain(n: usize) -> Chain {
-    let mut c = Chain {
-        x: Vec::new(),
-        v: Vec::new(),
-        w: Vec::new(),
-        r: Vec::new(),
-        m: Vec::new(),
-        kind: Vec::new(),
-    };
+fn chain(n: usize) -> Cluster {
+    let mut c = Cluster::default();
     for i in 0..n {
         let s = (i as f64 * 0.7).sin();
         c.x.push([i as f64 * 1.998e-3, 1e-5 * s, -1e-5 * s]);
@@ -58,7 +44,7 @@ fn model(tier: Tier) -> Model {
 fn step(
     m: &Model,
     store: &mut HistoryStore,
-    c: &Chain,
+    c: &Cluster,
     slot_of: &[usize],
     dt: f64,
 ) -> Vec<[f64; 3]> {
@@ -75,14 +61,7 @@ fn step(
         ntypes: 1,
         model_of: |k: usize| (k == 3).then_some(m),
     };
-    let atoms = Atoms {
-        x: &c.x,
-        v: &c.v,
-        omega: &c.w,
-        radius: &c.r,
-        mass: &c.m,
-        kind: &c.kind,
-    };
+    let atoms = c.atoms();
     let mut acc = Accumulators {
         force: &mut f,
         torque: &mut t,

@@ -1,4 +1,4 @@
-//! Fixtures shared by the C ABI's integration tests (`list.rs`, `store.rs`): a model made
+//! Fixtures shared by the integration tests (`list.rs`, `store.rs`, `remap.rs`): a model made
 //! through the C ABI, a store handle that frees itself, the per-atom arrays of a test
 //! cluster and its pseudo-random numbers.
 #![allow(unsafe_code)] // calls the C ABI as C++ would
@@ -50,6 +50,20 @@ pub struct Cluster {
     pub r: Vec<f64>,
     pub m: Vec<f64>,
     pub kind: Vec<i32>,
+}
+
+impl Cluster {
+    /// The arrays as the safe API's [`creep_lammps::Atoms`].
+    pub fn atoms(&self) -> creep_lammps::Atoms<'_> {
+        creep_lammps::Atoms {
+            x: &self.x,
+            v: &self.v,
+            omega: &self.w,
+            radius: &self.r,
+            mass: &self.m,
+            kind: &self.kind,
+        }
+    }
 }
 
 /// Marsaglia's (2003) xorshift64 from `seed`, as uniform numbers in `[-0.5, 0.5)`.
