@@ -156,7 +156,7 @@ const CASES: [(&str, f64, f64); 8] = [
     ),
     ("a/b 3, nu 0.375 (table, two nodes)", 3.0, 0.375),
     (
-        "a/b 1.4, nu 0.125 (table, between a/b, nu extrapolated)",
+        "a/b 1.4, nu 0.125 (table, between a/b, two nodes in each row)",
         1.4,
         0.125,
     ),

@@ -23,9 +23,14 @@
 //! the onset of full slip, and a lateral creepage against the spin), `f32`. The other signs by
 //! the exact symmetries of the theory (quasi-identical bodies, a contact symmetric about the
 //! rolling direction): `xi -> -xi` negates `Fx`; `(eta, phi) -> -(eta, phi)` negates `Fy` and
-//! `Mz`. Within the grid the loads are trilinear in `(xi_n, eta_n, phi_n)` (a convex combination
-//! of the eight corners: `|F| <= mu P` holds since it holds at every node, where the
-//! extrapolation's excess is scaled onto it); beyond it see "Beyond the box". Between two
+//! `Mz`. Along the spin each table is refined once, at its first use, onto a read grid with the
+//! midpoint of each cell added ([`lut::FINE_PHI`]; the cubic through the cell's two computed
+//! spins and one on each side, [`lut::refine`]), which follows the loads where they bend faster
+//! than the computed spins resolve (the pure spin's lateral force of `a > b` peaks between
+//! `phi_n = 0.2` and `0.26`). Within the grid the loads are trilinear in `(xi_n, eta_n, phi_n)`
+//! on the read grid (a convex combination of the eight corners: `|F| <= mu P` holds since it
+//! holds at every point of the read grid, where the extrapolation's and the cubic's excess is
+//! scaled onto it); beyond it see "Beyond the box". Between two
 //! computed `nu` of one `a/b` the two tables' loads are blended linearly in `nu` (one cell for
 //! both, the tables read at the contact's creepages); between
 //! two computed `a/b` whose rows both cover
@@ -44,7 +49,8 @@
 //! small creepage are the contact's own, and the onsets of full slip move with them (Kalker's
 //! simplified theory makes a pure creepage's curve a function of `C x`; Kalker 1990, sec.
 //! 1.5). [`Coverage::ExtrapolatedNu`]; looser bounds (docs/CREEP3D.md, "Beyond the computed
-//! nu").
+//! nu"). Every computed `a/b` from `0.5` to `5` has `nu = 0` and `0.5`, so a contact there is
+//! never extrapolated; a node added without them would be.
 //!
 //! # Beyond the box
 //!

@@ -13,7 +13,7 @@
 //!
 //! `cargo run --release -p creep-reference --example steady3d_lut -- solve 1 0.3`
 //! `cargo run --release -p creep-reference --example steady3d_lut -- emit`
-use creep_law::steady3d::lut::{LUT_PHI, LUT_XI, Lut, Table};
+use creep_law::steady3d::lut::{self, LUT_PHI, LUT_XI, Lut, Table};
 use creep_reference::bem::{EllipticContact, EllipticSteadySolver, SolverOptions};
 use creep_reference::steady3d::{default_grid, extrapolate};
 use creep_reference::steady3d_map::{
@@ -239,8 +239,8 @@ fn load_table(text: &str) -> Option<Vec<[f32; 3]>> {
 fn check(ab: f64, nu: f64) -> Result<(), Box<dyn std::error::Error>> {
     let text = std::fs::read_to_string(file_of(ab, nu))?;
     let t = load_table(&text).ok_or("incomplete table")?;
-    let table: &'static Table = Box::leak(t.into_boxed_slice().try_into().map_err(|_| "size")?);
-    let lut = Lut::of_table(table);
+    let table: Box<Table> = t.into_boxed_slice().try_into().map_err(|_| "size")?;
+    let lut = Lut::of_table(Box::leak(lut::refine(&table)));
     let pts: Vec<_> = map_table()?
         .into_iter()
         .filter(|p| p.ab == ab && p.nu == nu)

@@ -407,9 +407,9 @@ pub fn grade_steady3d_as_is(points: &[MapPoint]) -> Result<Vec<MapError>, RefErr
 /// `None` for the fitted law (no bound: docs/CREEP3D.md lists its errors).
 ///
 /// * At a computed node and between two computed `nu` of one `a/b`: the 2 % and 3 % for
-///   `a/b <= 2`; 2.5 % and 3 % above, where the spin's lateral force of the elongated contact
-///   curves faster at small spin than the table's grid of spins resolves (measured 2.38 % of `mu
-///   P` at `(0, 0, 0.25)`, `a/b = 3`, `nu = 0.25`, a node; the target is not met there).
+///   `a/b <= 3`; 2.5 % and 3 % above, where the spin's lateral force of the elongated contact
+///   bends faster at small spin than the table's read grid of spins follows (measured 2.42 % of
+///   `mu P` at `(0, -0.15, 0.25)`, `a/b = 5`, `nu = 0.25`; the target is not met there).
 /// * Between two computed `a/b` (linear in `ln(a/b)`), 4.5 % and 4 %: measured on the map, Fx
 ///   2.61 %, Fy 2.54 %, Mz 3.71 % at `a/b = 0.7` between `0.5` and `1`; Fy 4.08 % at `a/b = 1.4`,
 ///   `nu = 0.5`, between `1` and `2`; 3.28 %, 2.29 %, 3.35 % on the off-grid case `a/b = 0.85`,
@@ -420,7 +420,7 @@ pub fn grade_steady3d_as_is(points: &[MapPoint]) -> Result<Vec<MapError>, RefErr
 pub fn coverage_bounds(coverage: creep_law::steady3d::Coverage, ab: f64) -> Option<[f64; 2]> {
     use creep_law::steady3d::Coverage;
     match coverage {
-        Coverage::Table if ab <= 2.0 + 1e-9 => Some([0.02, 0.03]),
+        Coverage::Table if ab <= 3.0 + 1e-9 => Some([0.02, 0.03]),
         Coverage::Table => Some([0.025, 0.03]),
         Coverage::BetweenRatios => Some([0.045, 0.04]),
         Coverage::ExtrapolatedNu => Some([0.09, 0.09]),

@@ -166,7 +166,8 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
 /// Where creep-law's boundary-element table covers a map case (`Steady3d::tabulated`), the law
 /// meets the bounds of its source (`steady3d_map::coverage_bounds`) at every signed point of
 /// it: within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment (`a` the semi-axis
-/// along the rolling direction) at a computed node with `a/b <= 2` (2.5 % in the forces above). The table's grid of creepages is not the
+/// along the rolling direction) at a computed node with `a/b <= 3` (2.5 % in the forces above).
+/// The table's grid of creepages is not the
 /// map's (module `creep_law::steady3d::lut`: only `xi_n, eta_n = 0, 2` and `phi_n = 0, +-4` are
 /// common), so the map grades its interpolation; the cases at a `nu` between the table's nodes
 /// (e.g. `nu = 0.3` where only `0.25` and `0.5` are computed) grade its interpolation in `nu`

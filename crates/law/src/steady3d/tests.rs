@@ -801,6 +801,88 @@ fn the_one_translations_pure_spin_force_stays_below_mu_p() {
     assert!(worst < 0.9, "{worst}");
 }
 
+/// The read grid's spins between the computed ones are the cubic through the cell's two
+/// computed spins and one on each side (exact for a cubic in `phi_n`), linear in the end cells,
+/// the computed ones kept bit for bit, and every force within `mu P`.
+#[test]
+fn refine_is_the_cubic_between_the_computed_spins() {
+    let (nx, np) = (lut::LUT_XI.len(), lut::LUT_PHI.len());
+    let poly = |p: f64, line: usize| {
+        // Within mu P everywhere (|p| <= 4), so that no value is scaled onto it.
+        let c = 0.01 * (1 + line % 7) as f64;
+        [
+            c * p * p * p / 80.0 - 0.01 * p,
+            0.002 * p * p + c,
+            -0.03 * p * p * p + p,
+        ]
+    };
+    let mut t: Box<lut::Table> = vec![[0.0f32; 3]; lut::LUT_LEN]
+        .into_boxed_slice()
+        .try_into()
+        .unwrap();
+    for line in 0..nx * nx {
+        for (k, &p) in lut::LUT_PHI.iter().enumerate() {
+            t[line * np + k] = poly(p, line).map(|v| v as f32);
+        }
+    }
+    // One line near full slip, where the cubic overshoots |F| = mu P.
+    for (k, &p) in lut::LUT_PHI.iter().enumerate() {
+        t[np + k] = [
+            (1.0 - 2.0 * ((p - 0.23).abs() - 0.03)).clamp(0.0, 1.0) as f32,
+            0.0,
+            0.0,
+        ];
+    }
+    let f = lut::refine(&t);
+    let nf = lut::FINE_NP;
+    // (Lines at eta_n = 0 are symmetrised under phi -> -phi: the synthetic data is not.)
+    for line in (2..nx * nx).filter(|l| l % nx != 0) {
+        for (i, &p) in lut::FINE_PHI.iter().enumerate() {
+            let (k, r) = (i / lut::REFINE, i % lut::REFINE);
+            let got = f[line * nf + i].map(f64::from);
+            if r == 0 {
+                assert_eq!(f[line * nf + i], t[line * np + k], "line {line} spin {p}");
+                continue;
+            }
+            let want = if k == 0 || k + 2 == np {
+                let (a, b) = (lut::LUT_PHI[k], lut::LUT_PHI[k + 1]);
+                let w = (p - a) / (b - a);
+                let (va, vb) = (t[line * np + k], t[line * np + k + 1]);
+                [0, 1, 2].map(|c| (1.0 - w) * f64::from(va[c]) + w * f64::from(vb[c]))
+            } else {
+                poly(p, line)
+            };
+            for c in 0..3 {
+                // f32 storage: the inputs' rounding, weighted by the cubic's weights.
+                let tol = 2e-6 * (1.0 + want[c].abs()) * 4.0f64.powi(3);
+                assert!(
+                    (got[c] - want[c]).abs() < tol,
+                    "line {line} spin {p} component {c}: {} vs {}",
+                    got[c],
+                    want[c]
+                );
+            }
+        }
+    }
+    for v in &f[nf..2 * nf] {
+        assert!(
+            f64::from(v[0]).hypot(f64::from(v[1])) <= 1.0 + 1e-6,
+            "{v:?}"
+        );
+    }
+    // The cubic through 0.8, 1, 1, 0.92 at spins 0.1, 0.2, 0.26, 0.3 exceeds 1 between 0.2
+    // and 0.26.
+    let mid = lut::FINE_PHI
+        .iter()
+        .position(|&p| p > 0.2 && p < 0.26)
+        .unwrap();
+    assert_eq!(
+        f[nf + mid],
+        [1.0, 0.0, 0.0],
+        "the overshoot scaled onto mu P"
+    );
+}
+
 /// A node's table value at grid indices `(i, j, k)` of `(LUT_XI, LUT_XI, LUT_PHI)`.
 fn table_value(n: &lut::LutNode, i: usize, j: usize, k: usize) -> [f64; 3] {
     let v = n.loads[(i * lut::LUT_XI.len() + j) * lut::LUT_PHI.len() + k];
@@ -950,7 +1032,8 @@ fn table_blends_between_computed_axis_ratios() {
 /// Kalker's coefficients: at small creepage it is Kalker's linear theory at the contact's own
 /// `nu` (`C11`, `C22`, and `C23` of the spin's lateral force; the table's tolerances), not the
 /// computed `nu`'s (`C11` 17 % apart between `nu = 0` and `0.25` on a circle); outside the
-/// computed `a/b` the fitted law.
+/// computed `a/b` the fitted law. Where every computed `a/b` has `nu = 0` and `0.5`, no contact
+/// between them is extrapolated.
 #[test]
 fn table_extrapolated_in_nu_keeps_kalkers_slopes() {
     // The lowest computed nu of each computed a/b, where it is above 0.
@@ -984,13 +1067,21 @@ fn table_extrapolated_in_nu_keeps_kalkers_slopes() {
             }
         }
     }
-    assert!(checked > 0, "no computed a/b lacks nu = 0");
+    if checked == 0 {
+        // Every computed a/b has nu = 0 (and 0.5): no contact between them is extrapolated.
+        for ab in [0.5, 0.7, 1.0, 1.4, 2.0, 2.5, 3.0, 4.0, 5.0] {
+            for nu in [0.0, 0.1, 0.25, 0.4, 0.5] {
+                let c = Steady3d::new(ab, nu).unwrap().coverage();
+                assert!(c != Coverage::ExtrapolatedNu, "{ab} {nu}: {c:?}");
+            }
+        }
+    }
     assert_eq!(
         Steady3d::new(7.0, 0.3).unwrap().coverage(),
         Coverage::Fitted
     );
     assert_eq!(
-        Steady3d::new(0.3, 0.0).unwrap().coverage(),
+        Steady3d::new(0.1, 0.0).unwrap().coverage(),
         Coverage::Fitted
     );
 }
