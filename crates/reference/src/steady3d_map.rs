@@ -408,8 +408,8 @@ pub fn grade_steady3d_as_is(points: &[MapPoint]) -> Result<Vec<MapError>, RefErr
 ///
 /// * At a computed node and between two computed `nu` of one `a/b`: the 2 % and 3 % for
 ///   `a/b <= 3`; 2.5 % and 3 % above, where the spin's lateral force of the elongated contact
-///   bends faster at small spin than the table's read grid of spins follows (measured 2.42 % of
-///   `mu P` at `(0, -0.15, 0.25)`, `a/b = 5`, `nu = 0.25`; the target is not met there).
+///   bends faster at small spin than the table's read grid of spins follows (measured 2.26 % of
+///   `mu P` at `(0, -0.15, 0.25)`, `a/b = 5`, `nu = 0`; the target is not met there).
 /// * Between two computed `a/b` (linear in `ln(a/b)`), 4.5 % and 4 %: measured on the map, Fx
 ///   2.61 %, Fy 2.54 %, Mz 3.71 % at `a/b = 0.7` between `0.5` and `1`; Fy 4.08 % at `a/b = 1.4`,
 ///   `nu = 0.5`, between `1` and `2`; 3.28 %, 2.29 %, 3.35 % on the off-grid case `a/b = 0.85`,
