@@ -160,6 +160,22 @@ fn bits(x: f64) -> u64 {
     x.to_bits()
 }
 
+/// `f64::MAX` in every lane, passed through [`std::hint::black_box`] once per block, so that
+/// the compiler cannot see the value: it would fold the tests of one lane's value (`x > 0`
+/// with `x` finite, `x < inf`) into one floating-point class test, which it evaluates lane by
+/// lane in integer registers (about 40 instructions per contact), where with an opaque bound
+/// each test stays one vector compare. `x <= f64::MAX` for `|x|` is the same test as
+/// [`f64::is_finite`], and for `x > 0` as `x < inf`.
+#[derive(Clone, Copy)]
+struct Big(F);
+
+impl Big {
+    #[inline(always)]
+    fn new() -> Big {
+        Big(F::splat(std::hint::black_box(f64::MAX)))
+    }
+}
+
 #[derive(Clone, Copy)]
 struct V {
     x: F,
@@ -236,8 +252,14 @@ impl F {
         M(std::array::from_fn(|l| mask(self.0[l] >= o.0[l])))
     }
     #[inline(always)]
-    fn finite(self) -> M {
-        M(std::array::from_fn(|l| mask(finite(self.0[l]))))
+    fn le(self, o: F) -> M {
+        M(std::array::from_fn(|l| mask(self.0[l] <= o.0[l])))
+    }
+    /// Whether each lane is finite, as [`f64::is_finite`]: `|x| <= big` with `big` the largest
+    /// finite `f64` ([`Big`]).
+    #[inline(always)]
+    fn finite(self, big: Big) -> M {
+        M(std::array::from_fn(|l| mask(self.0[l].abs() <= big.0.0[l])))
     }
 }
 
@@ -317,6 +339,8 @@ impl V {
 struct Front {
     /// The lanes the block can take so far.
     ok: M,
+    /// The opaque `f64::MAX` of the block's finiteness tests.
+    big: Big,
     n: V,
     t1: V,
     t2: V,
@@ -345,6 +369,7 @@ fn sphere_front<T: TangentialLaw>(
 ) -> Front {
     let pm = &c.material;
     let creep_on = c.creep.is_some();
+    let big = Big::new();
     let xp = V::load(&pairs.xp);
     let xq = V::load(&pairs.xq);
     let (rp, rq, mp, mq) = (F(pairs.rp), F(pairs.rq), F(pairs.mp), F(pairs.mq));
@@ -352,7 +377,7 @@ fn sphere_front<T: TangentialLaw>(
     // Geometry (`ContactGeometry::sphere_sphere`).
     let d = xq - xp;
     let dist = d.dot(d).sqrt();
-    let mut ok = dist.gt(F::splat(f64::MIN_POSITIVE)).and(dist.finite());
+    let mut ok = dist.gt(F::splat(f64::MIN_POSITIVE)).and(dist.finite(big));
     let n = d * (F::splat(1.0) / dist);
     let delta = rp + rq - dist;
 
@@ -363,14 +388,14 @@ fn sphere_front<T: TangentialLaw>(
         .and(mp.gt(F::splat(0.0)))
         .and(mq.gt(F::splat(0.0)))
         .and(inv.gt(F::splat(0.0)))
-        .and(inv.finite())
-        .and(sm.finite());
+        .and(inv.finite(big))
+        .and(sm.finite(big));
     let r_star = rp * rq * sm * inv;
     let m_star = mp * mq * sr * inv;
     ok = ok
         .and(delta.gt(F::splat(0.0)))
         .and(m_star.gt(F::splat(0.0)))
-        .and(r_star.finite());
+        .and(r_star.finite(big));
 
     // Kuhn & Bagi's rates for two spheres (`sphere_rates_and_approach`).
     let rho_p = rp - delta * 0.5;
@@ -383,7 +408,7 @@ fn sphere_front<T: TangentialLaw>(
     let dvn = dv.dot(n);
     let dv_t = dv - n * dvn;
     let dd = rho_p + rho_q;
-    ok = ok.and(dd.gt(F::splat(0.0))).and(dd.finite());
+    ok = ok.and(dd.gt(F::splat(0.0))).and(dd.finite(big));
     let v_roll =
         dv_t * ((rho_q - rho_p) / (dd * 2.0)) + (a_w * rho_p - b_w * rho_q) * F::splat(0.5);
     let v_disp = dv_t - a_w * rho_p - b_w * rho_q;
@@ -441,7 +466,7 @@ fn sphere_front<T: TangentialLaw>(
     // Tangential displacements in the basis.
     let ud = v_disp * F::splat(dt);
     let (dux, duy) = (ud.dot(t1), ud.dot(t2));
-    ok = ok.and(dux.finite()).and(duy.finite());
+    ok = ok.and(dux.finite(big)).and(duy.finite(big));
     let (drx, dry) = if creep_on {
         let ur = v_roll * F::splat(dt);
         (ur.dot(t1), ur.dot(t2))
@@ -451,6 +476,7 @@ fn sphere_front<T: TangentialLaw>(
 
     Front {
         ok,
+        big,
         n,
         t1,
         t2,
@@ -499,6 +525,7 @@ pub fn cheap_sphere_block(
     }
     let Front {
         mut ok,
+        big,
         n,
         t1,
         t2,
@@ -520,11 +547,11 @@ pub fn cheap_sphere_block(
     ok = ok
         .and(p_el.gt(F::splat(0.0)))
         .and(a.gt(F::splat(0.0)))
-        .and(p_el.finite())
-        .and(a.finite());
+        .and(p_el.finite(big))
+        .and(a.finite(big));
     let k = F::splat(8.0 * pm.g_star) * a;
     let mu_p = F::splat(pm.mu) * p_el;
-    ok = ok.and(mu_p.finite());
+    ok = ok.and(mu_p.finite(big));
     let qx = lanes!(l => h[l].tangential.q.x);
     let qy = lanes!(l => h[l].tangential.q.y);
     let hk = lanes!(l => h[l].tangential.k);
@@ -533,14 +560,14 @@ pub fn cheap_sphere_block(
     let trunc_on = q2.gt(zero).and(hk.gt(zero));
     let truncation = trunc_on.sel(q2 * 0.5 * ((hk - k) / (k * hk)), zero);
     let roll2 = drx * drx + dry * dry;
-    let creep_in = roll2.gt(zero).and(q2.gt(zero)).and(roll2.finite());
+    let creep_in = roll2.gt(zero).and(q2.gt(zero)).and(roll2.finite(big));
     // `creep_per_force`, Kuhn's branch; a creeping lane outside it goes to the kernel.
     let ga2 = F::splat(pm.g) * a * a;
     let kuhn = mu_p
         .gt(zero)
-        .and(mu_p.lt(F::splat(f64::INFINITY)))
+        .and(mu_p.le(big.0))
         .and(ga2.gt(zero))
-        .and(ga2.lt(F::splat(f64::INFINITY)));
+        .and(ga2.le(big.0));
     ok = M(std::array::from_fn(|l| {
         f64::from_bits(bits(ok.0[l]) & (!bits(creep_in.0[l]) | bits(kuhn.0[l])))
     }));
@@ -577,7 +604,7 @@ pub fn cheap_sphere_block(
     } else {
         num / den
     };
-    let creep_use = creep_in.and(f.gt(zero)).and(f.finite());
+    let creep_use = creep_in.and(f.gt(zero)).and(f.finite(big));
     let fc = creep_use.sel(f, zero);
     let (cx, cy) = (creep_use.sel(qx * fc, zero), creep_use.sel(qy * fc, zero));
     let creep_e = creep_use.sel(q2 * fc, zero);
@@ -680,8 +707,8 @@ pub fn exact_sphere_block(
     let ok =
         f.ok.and(f.p_el.gt(zero))
             .and(f.a.gt(zero))
-            .and(f.p_el.finite())
-            .and(f.a.finite())
+            .and(f.p_el.finite(f.big))
+            .and(f.a.finite(f.big))
             .0;
     let (mut q_x, mut q_y) = (zero, zero);
     let (mut cx, mut cy) = (zero, zero);
