@@ -1,8 +1,8 @@
 //! One velocity-Verlet step and the force loops (serial; the parallel one is in `par`).
 
 use creep_law::pair::{
-    ContactGeometry, ContactHistory, LANES, PairBody, SphereForces, SphereLanes, SpherePair,
-    TangentialLaw, block_supports, pair_force, release,
+    ContactGeometry, ContactHistory, LANES, PairBody, SphereForceLanes, SphereForces,
+    SphereLanes, SpherePair, TangentialLaw, block_supports, pair_force, release,
 };
 use creep_law::{Surface, Vec3};
 
@@ -174,34 +174,13 @@ impl<T: TangentialLaw> Dem<T> {
     ) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
-        let mut outs = WindowOut::default();
         let mut i0 = 0;
         while i0 < n {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
             if Self::use_block(wide) {
-                let mut w0 = i0;
-                while w0 < i1 {
-                    let w1 = self.window_end(w0, i1);
-                    let base = self.nl_start[w0] as usize;
-                    let end = self.nl_start[w1] as usize;
-                    self.pair_outputs(w0, w1, &mut hist[base..end], dt, &mut outs);
-                    for (&[p, q], out) in outs.pq.iter().zip(&outs.f) {
-                        if p == APART {
-                            e.slip += out.dissipation.slip;
-                            continue;
-                        }
-                        let (p, q) = (p as usize, q as usize);
-                        self.f[p] += out.force_p;
-                        self.f[q] -= out.force_p;
-                        self.t[p] += out.torque_p;
-                        self.t[q] += out.torque_q;
-                        tally_block(&mut c, &mut e, out);
-                        c.contacts += 1;
-                    }
-                    w0 = w1;
-                }
+                self.pair_chunk_block(i0, i1, &mut hist, dt, &mut c, &mut e);
             } else {
                 let arrays = arrays!(self);
                 for i in i0..i1 {
@@ -229,6 +208,99 @@ impl<T: TangentialLaw> Dem<T> {
             i0 = i1;
         }
         self.nl_h = hist;
+    }
+
+    /// The pair forces of the list entries of particles `i0..i1` (histories `hist`, the whole
+    /// list's) with the block kernel, added to the particles' forces and torques and to the
+    /// counts `c` and energies `e` in list order, as [`Dem::pair_outputs`] followed by a walk
+    /// over its outputs: touching sphere pairs with constants the block kernel takes and a
+    /// history that is not virgin wait, [`LANES`] at a time, for
+    /// [`TangentialLaw::sphere_block_lanes`], whose lanes are added as they come; an entry
+    /// the block does not take first runs the waiting lanes (so that the sums keep the list's
+    /// order), then the one-contact kernel ([`Arrays::pair`]), unless it is a virgin entry
+    /// apart (which adds nothing). The lanes the block leaves go to the one-contact kernel in
+    /// their place. The same bits as the one-contact loop.
+    #[inline(always)]
+    fn pair_chunk_block(
+        &mut self,
+        i0: usize,
+        i1: usize,
+        hist: &mut [ContactHistory<T>],
+        dt: f64,
+        c: &mut DemCounts,
+        e: &mut DemEnergy,
+    ) {
+        let arr = arrays!(self);
+        let n = arr.x.len();
+        let mut acc = Acc {
+            f: &mut self.f[..n],
+            t: &mut self.t[..n],
+            c,
+            e,
+        };
+        let (nl_start, nl_j) = (&self.nl_start[..], &self.nl_j[..]);
+        let mut pend = Pending::default();
+        let mut lanes = SphereForceLanes::default();
+        for i in i0..i1 {
+            let (a, b) = (nl_start[i] as usize, nl_start[i + 1] as usize);
+            let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
+            for (k, &j) in (a..b).zip(&nl_j[a..b]) {
+                let j = j as usize;
+                let d = arr.grid.min_image(arr.x[j] - xi);
+                let rs = ri + arr.r[j];
+                let touching = d.dot(d) < rs * rs;
+                let h = &mut hist[k];
+                if touching && !h.is_virgin() {
+                    let (p, q, dpq) = if id_i < arr.id[j] {
+                        (i, j, d)
+                    } else {
+                        (j, i, -d)
+                    };
+                    let ci = arr
+                        .table
+                        .pair_index(arr.mat[p] as usize, arr.mat[q] as usize);
+                    if block_supports(&arr.table.pairs[ci]) {
+                        if pend.len > 0 && pend.constants != ci {
+                            flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+                        }
+                        let xp = arr.x[p];
+                        let l = pend.len;
+                        pend.constants = ci;
+                        pend.entry[l] = (k as u32, i as u32, j as u32, p as u32, q as u32);
+                        pend.pairs.set(
+                            l,
+                            &SpherePair {
+                                xp,
+                                xq: xp + dpq,
+                                rp: arr.r[p],
+                                rq: arr.r[q],
+                                vp: arr.v[p],
+                                vq: arr.v[q],
+                                wp: arr.w[p],
+                                wq: arr.w[q],
+                                mp: arr.mass[p],
+                                mq: arr.mass[q],
+                            },
+                        );
+                        pend.len += 1;
+                        if pend.len == LANES {
+                            flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+                        }
+                        continue;
+                    }
+                } else if !touching && h.is_virgin() {
+                    // The one-contact kernel would give `Err(0.0)`: nothing to add.
+                    continue;
+                }
+                if pend.len > 0 {
+                    flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+                }
+                acc.add_one(arr.pair(i, j, &mut hist[k], dt));
+            }
+        }
+        if pend.len > 0 {
+            flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+        }
     }
 
     /// Whether the force loop runs the tier's block kernel: where it has one
@@ -706,6 +778,98 @@ impl Arrays<'_> {
             mass: self.mass[i],
         }
     }
+}
+
+/// Where [`Dem::pair_chunk_block`] adds the contacts' outputs: the particles' forces and
+/// torques, the counts and the energies.
+struct Acc<'a> {
+    f: &'a mut [Vec3],
+    t: &'a mut [Vec3],
+    c: &'a mut DemCounts,
+    e: &'a mut DemEnergy,
+}
+
+impl Acc<'_> {
+    /// Adds a touching pair's outputs (p, q and what the kernel gave), as the one-contact
+    /// loop adds them.
+    #[inline(always)]
+    fn add(&mut self, p: usize, q: usize, out: &SphereForces) {
+        self.f[p] += out.force_p;
+        self.f[q] -= out.force_p;
+        self.t[p] += out.torque_p;
+        self.t[q] += out.torque_q;
+        tally_block(self.c, self.e, out);
+        self.c.contacts += 1;
+    }
+
+    /// Adds the one-contact kernel's result for an entry ([`Arrays::pair`]).
+    #[inline(always)]
+    fn add_one(&mut self, r: Result<(usize, usize, creep_law::pair::PairForces), f64>) {
+        match r {
+            Ok((p, q, out)) => {
+                self.f[p] += out.force_p;
+                self.f[q] -= out.force_p;
+                self.t[p] += out.torque_p;
+                self.t[q] += out.torque_q;
+                tally(self.c, self.e, &out);
+                self.c.contacts += 1;
+            }
+            Err(released) => self.e.slip += released,
+        }
+    }
+}
+
+/// Runs the pending lanes through the block kernel (the unused lanes repeat the first, their
+/// results dropped) and adds each lane's outputs in order; a lane the block leaves goes
+/// through the one-contact kernel in its place.
+#[inline(always)]
+fn flush_lanes<T: TangentialLaw>(
+    arr: &Arrays<'_>,
+    pend: &mut Pending,
+    hist: &mut [ContactHistory<T>],
+    dt: f64,
+    lanes: &mut SphereForceLanes,
+    acc: &mut Acc<'_>,
+) {
+    let n = pend.len;
+    for l in n..LANES {
+        pend.pairs.copy_lane(0, l);
+    }
+    let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }].0 as usize);
+    let mask = T::sphere_block_lanes(
+        &arr.table.pairs[pend.constants],
+        &pend.pairs,
+        hist,
+        idx,
+        n,
+        dt,
+        lanes,
+    );
+    for l in 0..n {
+        let (k, i, j, p, q) = pend.entry[l];
+        if mask >> l & 1 == 1 {
+            acc.add(p as usize, q as usize, &lanes.lane(l));
+        } else {
+            pair_one_rare(arr, i as usize, j as usize, &mut hist[k as usize], dt, acc);
+        }
+    }
+    pend.len = 0;
+}
+
+/// [`Acc::add_one`] of [`Arrays::pair`] for a lane the block kernel leaves (rare: a contact
+/// that opens, or whose normal turned far): out of line, so that it does not crowd the loop
+/// (the baseline copy only).
+#[inline(never)]
+#[cold]
+fn pair_one_rare<T: TangentialLaw>(
+    arr: &Arrays<'_>,
+    i: usize,
+    j: usize,
+    h: &mut ContactHistory<T>,
+    dt: f64,
+    acc: &mut Acc<'_>,
+) {
+    acc.add_one(arr.pair(i, j, h, dt));
 }
 
 /// The `p` of an entry whose pair is apart.

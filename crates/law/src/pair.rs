@@ -51,8 +51,8 @@ mod kernel;
 mod tiers;
 
 pub use block::{
-    LANES, SphereForces, SphereLanes, SpherePair, block_supports, cheap_sphere_block,
-    exact_sphere_block,
+    LANES, SphereForceLanes, SphereForces, SphereLanes, SpherePair, block_supports,
+    cheap_sphere_block, cheap_sphere_block_lanes, exact_sphere_block,
 };
 pub use constants::{ContactGeometry, PairBody, PairConstants};
 pub use damping::{MIN_RESTITUTION, damping_coefficient};

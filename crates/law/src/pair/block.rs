@@ -135,6 +135,56 @@ pub struct SphereForces {
     pub dissipation: PairDissipation,
 }
 
+/// The outputs of a block's [`LANES`] contacts, lane by lane (structure of arrays: each
+/// quantity's lanes side by side, as the block computes them); lane `l` is
+/// [`SphereForceLanes::lane`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SphereForceLanes {
+    /// Force on p \[N\], by component.
+    pub force_p: [[f64; LANES]; 3],
+    /// Torque on p about its centre [N m], by component.
+    pub torque_p: [[f64; LANES]; 3],
+    /// Torque on q about its centre [N m], by component.
+    pub torque_q: [[f64; LANES]; 3],
+    /// Whether the contact is at the Coulomb limit.
+    pub sliding: [bool; LANES],
+    /// Creep displacement of the step in `(t1, t2)` \[m\], by component.
+    pub creep_displacement: [[f64; LANES]; 2],
+    /// Energy dissipated by the normal damping \[J\].
+    pub damping: [f64; LANES],
+    /// Energy dissipated by micro-slip and gross slip \[J\].
+    pub slip: [f64; LANES],
+    /// Energy dissipated by creep \[J\].
+    pub creep: [f64; LANES],
+    /// Energy added by the tier's simplifications \[J\].
+    pub truncation: [f64; LANES],
+}
+
+impl SphereForceLanes {
+    /// Lane `l`'s outputs (`l` < [`LANES`]; panics otherwise).
+    #[inline(always)]
+    pub fn lane(&self, l: usize) -> SphereForces {
+        let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+        SphereForces {
+            force_p: v(&self.force_p),
+            torque_p: v(&self.torque_p),
+            torque_q: v(&self.torque_q),
+            sliding: self.sliding[l],
+            creep_displacement: Vec2::new(
+                self.creep_displacement[0][l],
+                self.creep_displacement[1][l],
+            ),
+            dissipation: PairDissipation {
+                damping: self.damping[l],
+                slip: self.slip[l],
+                creep: self.creep[l],
+                rolling: 0.0,
+                truncation: self.truncation[l],
+            },
+        }
+    }
+}
+
 /// Whether the block takes contacts with constants `c` at all: no rolling resistance, and
 /// with creep, Kuhn's steady law (the others go to the one-contact kernel).
 #[inline]
@@ -328,6 +378,10 @@ impl V {
         }
     }
     #[inline(always)]
+    fn store(self) -> [[f64; LANES]; 3] {
+        [self.x.0, self.y.0, self.z.0]
+    }
+    #[inline(always)]
     fn lane(self, l: usize) -> Vec3 {
         Vec3::new(self.x.0[l], self.y.0[l], self.z.0[l])
     }
@@ -512,6 +566,28 @@ pub fn cheap_sphere_block(
     used: usize,
     dt: f64,
 ) -> u32 {
+    let mut lanes = SphereForceLanes::default();
+    let done = cheap_sphere_block_lanes(c, pairs, hist, idx, used, dt, &mut lanes);
+    for l in 0..used.min(LANES) {
+        if done >> l & 1 == 1 {
+            out[idx[l]] = lanes.lane(l);
+        }
+    }
+    done
+}
+
+/// [`cheap_sphere_block`] with the outputs lane by lane in `out` (lane `l` valid where the
+/// returned mask sets bit `l`), for a host that adds them to its bodies itself.
+#[inline(always)]
+pub fn cheap_sphere_block_lanes(
+    c: &PairConstants,
+    pairs: &SphereLanes,
+    hist: &mut [ContactHistory<Cheap>],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+    out: &mut SphereForceLanes,
+) -> u32 {
     let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
     let pm = &c.material;
     let creep_on = c.creep.is_some();
@@ -657,21 +733,18 @@ pub fn cheap_sphere_block(
         hl.t1 = t1.lane(l);
         hl.normal = n.lane(l);
         hl.overlap = delta.0[l];
-        out[idx[l]] = SphereForces {
-            force_p: f_p.lane(l),
-            torque_p: torque_p.lane(l),
-            torque_q: torque_q.lane(l),
-            sliding: bits(sliding.0[l]) != 0,
-            creep_displacement: Vec2::new(cx.0[l], cy.0[l]),
-            dissipation: PairDissipation {
-                damping: damping.0[l],
-                slip: slip.0[l],
-                creep: creep_e.0[l],
-                rolling: 0.0,
-                truncation: truncation.0[l],
-            },
-        };
     }
+    *out = SphereForceLanes {
+        force_p: f_p.store(),
+        torque_p: torque_p.store(),
+        torque_q: torque_q.store(),
+        sliding: std::array::from_fn(|l| bits(sliding.0[l]) != 0),
+        creep_displacement: [cx.0, cy.0],
+        damping: damping.0,
+        slip: slip.0,
+        creep: creep_e.0,
+        truncation: truncation.0,
+    };
     done
 }
 

@@ -1,7 +1,10 @@
 //! The tangential tiers: the [`TangentialLaw`] trait, [`Exact`] (Cattaneo-Mindlin memory with
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
-use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block, exact_sphere_block};
+use super::block::{
+    LANES, SphereForceLanes, SphereForces, SphereLanes, cheap_sphere_block,
+    cheap_sphere_block_lanes, exact_sphere_block,
+};
 use super::kernel::finite;
 use super::{ContactHistory, PairConstants};
 use crate::LawError;
@@ -84,6 +87,23 @@ pub trait TangentialLaw:
         idx: [usize; LANES],
         n: usize,
         dt: f64,
+    ) -> u32 {
+        let _ = (c, pairs, hist, out, idx, n, dt);
+        0
+    }
+
+    /// [`TangentialLaw::sphere_block`] with the outputs lane by lane in `out` (lane `l` where
+    /// the returned mask sets bit `l`). None by default (every lane left to the one-contact
+    /// kernel); the cheap tier's is [`cheap_sphere_block_lanes`](super::cheap_sphere_block_lanes).
+    #[inline(always)]
+    fn sphere_block_lanes(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+        out: &mut SphereForceLanes,
     ) -> u32 {
         let _ = (c, pairs, hist, out, idx, n, dt);
         0
@@ -307,6 +327,19 @@ impl TangentialLaw for Cheap {
         dt: f64,
     ) -> u32 {
         cheap_sphere_block(c, pairs, hist, out, idx, n, dt)
+    }
+
+    #[inline(always)]
+    fn sphere_block_lanes(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+        out: &mut SphereForceLanes,
+    ) -> u32 {
+        cheap_sphere_block_lanes(c, pairs, hist, idx, n, dt, out)
     }
 
     fn write(h: &CheapHistory, out: &mut [f64]) {
