@@ -241,12 +241,23 @@ impl<T: TangentialLaw> Dem<T> {
         let (nl_start, nl_j) = (&self.nl_start[..], &self.nl_j[..]);
         let mut pend = Pending::default();
         let mut lanes = SphereForceLanes::default();
+        // The branch on the periodic axes once per entry instead of once per axis, and the
+        // pair constants' index and whether the block takes them once per pair of materials
+        // met in a row (the materials of two particles in contact rarely change from one
+        // entry to the next).
+        let periodic = arr.grid.is_periodic();
+        let mut last_mats = (u32::MAX, u32::MAX);
+        let (mut last_ci, mut last_block) = (0, false);
         for i in i0..i1 {
             let (a, b) = (nl_start[i] as usize, nl_start[i + 1] as usize);
             let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
             for (k, &j) in (a..b).zip(&nl_j[a..b]) {
                 let j = j as usize;
-                let d = arr.grid.min_image(arr.x[j] - xi);
+                let d = if periodic {
+                    arr.grid.min_image(arr.x[j] - xi)
+                } else {
+                    arr.x[j] - xi
+                };
                 let rs = ri + arr.r[j];
                 let touching = d.dot(d) < rs * rs;
                 let h = &mut hist[k];
@@ -256,10 +267,14 @@ impl<T: TangentialLaw> Dem<T> {
                     } else {
                         (j, i, -d)
                     };
-                    let ci = arr
-                        .table
-                        .pair_index(arr.mat[p] as usize, arr.mat[q] as usize);
-                    if block_supports(&arr.table.pairs[ci]) {
+                    let mats = (arr.mat[p], arr.mat[q]);
+                    if mats != last_mats {
+                        last_mats = mats;
+                        last_ci = arr.table.pair_index(mats.0 as usize, mats.1 as usize);
+                        last_block = block_supports(&arr.table.pairs[last_ci]);
+                    }
+                    let ci = last_ci;
+                    if last_block {
                         if pend.len > 0 && pend.constants != ci {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
