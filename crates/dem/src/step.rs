@@ -149,8 +149,8 @@ impl<T: TangentialLaw> Dem<T> {
     /// entries' contributions in list order (whether it owns the entry or is its partner), and
     /// the energies and counts are summed per block of [`CHUNK`] particles, then block by
     /// block: the parallel loop (`par`) sums in exactly these orders, so both give the same
-    /// bits. A tier with a block kernel ([`TangentialLaw::HAS_BLOCK`]) evaluates a window of
-    /// entries first ([`Dem::pair_outputs`]), then adds them in list order.
+    /// bits. A tier with a block kernel ([`TangentialLaw::HAS_BLOCK_LANES`]) runs
+    /// [`Dem::pair_chunk_block`], which adds the contacts in the same order.
     fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         crate::kernels::dispatch!(self.kernels, pair_forces_avx2<T>(
             dem: &mut Dem<T> = self,
@@ -179,7 +179,7 @@ impl<T: TangentialLaw> Dem<T> {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
-            if Self::use_block(wide) {
+            if Self::use_block_lanes(wide) {
                 self.pair_chunk_block(i0, i1, &mut hist, dt, &mut c, &mut e);
             } else {
                 let arrays = arrays!(self);
@@ -318,7 +318,18 @@ impl<T: TangentialLaw> Dem<T> {
         }
     }
 
-    /// Whether the force loop runs the tier's block kernel: where it has one
+    /// Whether the serial force loop runs the tier's block kernel ([`Dem::pair_chunk_block`]):
+    /// where it has one for a loop without a buffer of outputs
+    /// ([`TangentialLaw::HAS_BLOCK_LANES`]), unless the block pays only with four-lane vector
+    /// registers ([`TangentialLaw::BLOCK_NEEDS_WIDE`]) and the copy (`wide`) has none. The
+    /// results are the same bits either way.
+    #[inline(always)]
+    pub(crate) fn use_block_lanes(wide: bool) -> bool {
+        T::HAS_BLOCK_LANES && (wide || !T::BLOCK_NEEDS_WIDE)
+    }
+
+    #[cfg(feature = "parallel")]
+    /// Whether the parallel force loop runs the tier's block kernel: where it has one
     /// ([`TangentialLaw::HAS_BLOCK`]), unless the block pays only with four-lane vector
     /// registers ([`TangentialLaw::BLOCK_NEEDS_WIDE`]) and the copy (`wide`) has none. The
     /// results are the same bits either way.
@@ -327,6 +338,7 @@ impl<T: TangentialLaw> Dem<T> {
         T::HAS_BLOCK && (wide || !T::BLOCK_NEEDS_WIDE)
     }
 
+    #[cfg(feature = "parallel")]
     /// The end of the window of particles from `w0` (before `i1`) holding about [`WINDOW`]
     /// list entries (at least one particle).
     #[inline(always)]
@@ -338,6 +350,7 @@ impl<T: TangentialLaw> Dem<T> {
         w1
     }
 
+    #[cfg(feature = "parallel")]
     /// The outputs of the list entries of particles `w0..w1` (histories `hist`, from entry
     /// `nl_start[w0]` on) into `outs`, in list order: touching sphere pairs with constants the
     /// block kernel takes and a history that is not virgin go [`LANES`] at a time to
@@ -416,6 +429,7 @@ impl<T: TangentialLaw> Dem<T> {
         }
     }
 
+    #[cfg(feature = "parallel")]
     /// Runs the pending lanes through the block kernel (the unused lanes repeat the first,
     /// their results dropped), the lanes it leaves through the one-contact kernel.
     #[inline(always)]
@@ -452,6 +466,7 @@ impl<T: TangentialLaw> Dem<T> {
         pend.len = 0;
     }
 
+    #[cfg(feature = "parallel")]
     /// [`Dem::pair_out`] for the lanes the block kernel leaves (rare: a contact that opens,
     /// or whose normal turned far): out of line, so that it does not crowd the loop (the
     /// baseline copy only).
@@ -469,6 +484,7 @@ impl<T: TangentialLaw> Dem<T> {
         self.pair_out(&self.arrays(), i, j, h, dt, o, outs);
     }
 
+    #[cfg(feature = "parallel")]
     /// [`Dem::pair`] into window entry `o` of `outs`.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
@@ -683,11 +699,13 @@ pub(crate) struct WallOut {
     pub(crate) creeping: bool,
 }
 
+#[cfg(feature = "parallel")]
 /// List entries per window of [`Dem::pair_outputs`] (evaluated, then added in list order). The
 /// block kernel's last block of a window is partly empty: a long window wastes fewer lanes,
 /// and its outputs (about 17 kB) still stay in the level-1 cache.
 pub(crate) const WINDOW: usize = 128;
 
+#[cfg(feature = "parallel")]
 /// The outputs of a window's list entries: a touching pair's p and q and its outputs, or
 /// `[APART, 0]` and the energy an opening contact's history released (as the slip
 /// dissipation).
@@ -887,6 +905,7 @@ fn pair_one_rare<T: TangentialLaw>(
     acc.add_one(arr.pair(i, j, h, dt));
 }
 
+#[cfg(feature = "parallel")]
 /// The `p` of an entry whose pair is apart.
 pub(crate) const APART: u32 = u32::MAX;
 

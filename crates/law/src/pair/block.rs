@@ -766,6 +766,28 @@ pub fn exact_sphere_block(
     used: usize,
     dt: f64,
 ) -> u32 {
+    let mut lanes = SphereForceLanes::default();
+    let done = exact_sphere_block_lanes(c, pairs, hist, idx, used, dt, &mut lanes);
+    for l in 0..used.min(LANES) {
+        if done >> l & 1 == 1 {
+            out[idx[l]] = lanes.lane(l);
+        }
+    }
+    done
+}
+
+/// [`exact_sphere_block`] with the outputs lane by lane in `out` (lane `l` valid where the
+/// returned mask sets bit `l`), for a host that adds them to its bodies itself.
+#[inline(always)]
+pub fn exact_sphere_block_lanes(
+    c: &PairConstants,
+    pairs: &SphereLanes,
+    hist: &mut [ContactHistory<Exact>],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+    out: &mut SphereForceLanes,
+) -> u32 {
     if c.rolling.is_some() {
         return 0;
     }
@@ -832,24 +854,16 @@ pub fn exact_sphere_block(
     };
     let torque_p = nf * f.rho_p - v0;
     let torque_q = nf * f.rho_q + v0;
-    for l in 0..used.min(LANES) {
-        if done >> l & 1 == 0 {
-            continue;
-        }
-        out[idx[l]] = SphereForces {
-            force_p: f_p.lane(l),
-            torque_p: torque_p.lane(l),
-            torque_q: torque_q.lane(l),
-            sliding: mu_finite && bits(sliding.0[l]) != 0,
-            creep_displacement: Vec2::new(cx.0[l], cy.0[l]),
-            dissipation: PairDissipation {
-                damping: f.damping.0[l],
-                slip: slip.0[l],
-                creep: creep.0[l],
-                rolling: 0.0,
-                truncation: truncation.0[l],
-            },
-        };
-    }
+    *out = SphereForceLanes {
+        force_p: f_p.store(),
+        torque_p: torque_p.store(),
+        torque_q: torque_q.store(),
+        sliding: std::array::from_fn(|l| mu_finite && bits(sliding.0[l]) != 0),
+        creep_displacement: [cx.0, cy.0],
+        damping: f.damping.0,
+        slip: slip.0,
+        creep: creep.0,
+        truncation: truncation.0,
+    };
     done
 }

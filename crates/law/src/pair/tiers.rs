@@ -3,7 +3,7 @@
 
 use super::block::{
     LANES, SphereForceLanes, SphereForces, SphereLanes, cheap_sphere_block,
-    cheap_sphere_block_lanes, exact_sphere_block,
+    cheap_sphere_block_lanes, exact_sphere_block, exact_sphere_block_lanes,
 };
 use super::kernel::finite;
 use super::{ContactHistory, PairConstants};
@@ -65,6 +65,11 @@ pub trait TangentialLaw:
     /// Whether the tier has a kernel of [`LANES`] sphere-sphere contacts at once
     /// ([`TangentialLaw::sphere_block`]).
     const HAS_BLOCK: bool = false;
+
+    /// Whether a host that adds the block's lanes to its bodies as they come, without a buffer
+    /// of outputs, should run [`TangentialLaw::sphere_block_lanes`] (the same bits either
+    /// way). True for both tiers.
+    const HAS_BLOCK_LANES: bool = false;
 
     /// Whether the block kernel pays only where four `f64` fit one vector register (AVX): a
     /// host's build for two-lane registers (SSE2) then runs the one-contact kernel (the same
@@ -161,10 +166,16 @@ impl TangentialLaw for Exact {
     }
 
     /// The block ([`exact_sphere_block`]) exists and gives the one-contact kernel's bits, but
-    /// hosts' loops do not take it: a contact's time is in its memory update, lane by lane,
-    /// and gathering the lanes costs more than the shared vector front saves (measured in
-    /// creep-dem's triaxial test: 5 % slower with the block, with four-lane registers too).
+    /// hosts' loops that buffer its outputs do not take it: a contact's time is in its memory
+    /// update, lane by lane, and gathering the lanes and buffering the outputs cost more than
+    /// the shared vector front saves (measured in creep-dem's triaxial test with a buffer: 5 %
+    /// slower with the block, with four-lane registers too).
     const HAS_BLOCK: bool = false;
+
+    /// Without a buffer of outputs the block pays: creep-dem's serial loop runs fewer
+    /// instructions per contact with it on a dense packing (about 3 %: the shared vector
+    /// front).
+    const HAS_BLOCK_LANES: bool = true;
 
     #[inline(always)]
     fn sphere_block(
@@ -177,6 +188,19 @@ impl TangentialLaw for Exact {
         dt: f64,
     ) -> u32 {
         exact_sphere_block(c, pairs, hist, out, idx, n, dt)
+    }
+
+    #[inline(always)]
+    fn sphere_block_lanes(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+        out: &mut SphereForceLanes,
+    ) -> u32 {
+        exact_sphere_block_lanes(c, pairs, hist, idx, n, dt, out)
     }
 
     fn write(h: &CreepState, out: &mut [f64]) {
@@ -315,6 +339,8 @@ impl TangentialLaw for Cheap {
     }
 
     const HAS_BLOCK: bool = true;
+
+    const HAS_BLOCK_LANES: bool = true;
 
     #[inline(always)]
     fn sphere_block(
