@@ -635,8 +635,9 @@ fn table1() -> MaterialTable {
 #[test]
 fn parallel_force_loop_is_deterministic() {
     deterministic::<Exact>();
-    // The cheap tier's serial loop runs most contacts through the block kernel
-    // (`cheap_sphere_block`), the parallel one through the one-contact kernel: the same bits.
+    // The serial loop runs most contacts of both tiers through the block kernel, adding its
+    // lanes as they come (`sphere_block_lanes`); the parallel one buffers the outputs (the
+    // cheap tier's block, the exact tier's one-contact kernel): the same bits.
     deterministic::<Cheap>();
 }
 
