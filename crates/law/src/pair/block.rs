@@ -478,10 +478,14 @@ fn sphere_front<T: TangentialLaw>(
     let a2 = angle * angle;
     let mut s = angle * (F::splat(1.0) - a2 * (1.0 / 6.0));
     let mut cs = F::splat(1.0) - a2 * 0.5 * (F::splat(1.0) - a2 * (1.0 / 12.0));
-    // Beyond 1e-3 rad per step (`small_sin_cos`'s series) libm's, lane by lane.
-    for l in 0..LANES {
-        if !(angle.0[l].abs() < 1e-3) {
-            (s.0[l], cs.0[l]) = angle.0[l].sin_cos();
+    // Beyond 1e-3 rad per step (`small_sin_cos`'s series) libm's, lane by lane (one vector
+    // test for the block first: the rule is that no lane turns so far).
+    let far_turn = M(std::array::from_fn(|l| mask(!(angle.0[l].abs() < 1e-3))));
+    if far_turn.any() {
+        for l in 0..LANES {
+            if !(angle.0[l].abs() < 1e-3) {
+                (s.0[l], cs.0[l]) = angle.0[l].sin_cos();
+            }
         }
     }
     let spun = t1_old * cs + n.cross(t1_old) * s;
