@@ -823,15 +823,29 @@ struct Acc<'a> {
 }
 
 impl Acc<'_> {
-    /// Adds a touching pair's outputs (p, q and what the kernel gave), as the one-contact
-    /// loop adds them.
+    /// Adds lane `l` of a block's outputs (read in place) for the pair p, q, as the one-contact
+    /// loop adds a touching pair's.
     #[inline(always)]
-    fn add(&mut self, p: usize, q: usize, out: &SphereForces) {
-        self.f[p] += out.force_p;
-        self.f[q] -= out.force_p;
-        self.t[p] += out.torque_p;
-        self.t[q] += out.torque_q;
-        tally_block(self.c, self.e, out);
+    fn add_lane(&mut self, p: usize, q: usize, o: &SphereForceLanes, l: usize) {
+        let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+        let force_p = v(&o.force_p);
+        self.f[p] += force_p;
+        self.f[q] -= force_p;
+        self.t[p] += v(&o.torque_p);
+        self.t[q] += v(&o.torque_q);
+        tally_parts(
+            self.c,
+            self.e,
+            &creep_law::pair::PairDissipation {
+                damping: o.damping[l],
+                slip: o.slip[l],
+                creep: o.creep[l],
+                rolling: 0.0,
+                truncation: o.truncation[l],
+            },
+            o.sliding[l],
+            o.creep_displacement[0][l] != 0.0 || o.creep_displacement[1][l] != 0.0,
+        );
         self.c.contacts += 1;
     }
 
@@ -881,7 +895,7 @@ fn flush_lanes<T: TangentialLaw>(
     for l in 0..n {
         let (k, i, j, p, q) = pend.entry[l];
         if mask >> l & 1 == 1 {
-            acc.add(p as usize, q as usize, &lanes.lane(l));
+            acc.add_lane(p as usize, q as usize, lanes, l);
         } else {
             pair_one_rare(arr, i as usize, j as usize, &mut hist[k as usize], dt, acc);
         }
@@ -920,6 +934,7 @@ struct Pending {
 }
 
 /// [`tally`] of a window entry's outputs.
+#[cfg(feature = "parallel")]
 #[inline(always)]
 pub(crate) fn tally_block(counts: &mut DemCounts, energy: &mut DemEnergy, out: &SphereForces) {
     tally_parts(
