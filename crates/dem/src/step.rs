@@ -1,8 +1,10 @@
 //! One velocity-Verlet step and the force loops (serial; the parallel one is in `par`).
 
+#[cfg(feature = "parallel")]
+use creep_law::pair::SphereForces;
 use creep_law::pair::{
-    ContactGeometry, ContactHistory, LANES, PairBody, SphereForceLanes, SphereForces,
-    SphereLanes, SpherePair, TangentialLaw, block_supports, pair_force, release,
+    ContactGeometry, ContactHistory, LANES, PairBody, SphereForceLanes, SphereLanes, SpherePair,
+    TangentialLaw, block_supports, pair_force, release,
 };
 use creep_law::{Surface, Vec3};
 
