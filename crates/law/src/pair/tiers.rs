@@ -68,7 +68,7 @@ pub trait TangentialLaw:
 
     /// Whether a host that adds the block's lanes to its bodies as they come, without a buffer
     /// of outputs, should run [`TangentialLaw::sphere_block_lanes`] (the same bits either
-    /// way). True for both tiers.
+    /// way). True for the cheap tier.
     const HAS_BLOCK_LANES: bool = false;
 
     /// Whether the block kernel pays only where four `f64` fit one vector register (AVX): a
@@ -172,10 +172,10 @@ impl TangentialLaw for Exact {
     /// slower with the block, with four-lane registers too).
     const HAS_BLOCK: bool = false;
 
-    /// Without a buffer of outputs the block pays: creep-dem's serial loop runs fewer
-    /// instructions per contact with it on a dense packing (about 3 %: the shared vector
-    /// front).
-    const HAS_BLOCK_LANES: bool = true;
+    /// Without a buffer of outputs the block saves about 3 % of the instructions per contact of
+    /// creep-dem's serial loop on a dense packing (the shared vector front), but no time that
+    /// could be measured beside the one-contact loop: hosts keep the one-contact kernel.
+    const HAS_BLOCK_LANES: bool = false;
 
     #[inline(always)]
     fn sphere_block(
