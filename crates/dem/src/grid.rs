@@ -105,6 +105,12 @@ impl Grid {
         x
     }
 
+    /// Whether some axis is periodic (else [`Grid::min_image`] returns its argument).
+    #[inline]
+    pub(crate) fn is_periodic(&self) -> bool {
+        self.periodic.iter().any(Option::is_some)
+    }
+
     /// The minimum image of a separation `d` on periodic axes.
     #[inline]
     pub(crate) fn min_image(&self, mut d: Vec3) -> Vec3 {

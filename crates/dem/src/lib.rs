@@ -15,11 +15,12 @@
 //! * the pair force is creep-law's pure kernel [`creep_law::pair::pair_force`], with the
 //!   tangential tier a generic parameter ([`creep_law::pair::Exact`]: Cattaneo-Mindlin memory
 //!   with Kuhn's creep; [`creep_law::pair::Cheap`]: incremental `8 G* a` spring, rescaled at
-//!   `mu P`, plus creep), monomorphised; the force loop evaluates a window of list entries
-//!   first, the cheap tier's touching sphere pairs four at a time
-//!   ([`creep_law::pair::cheap_sphere_block`]: vector instructions, the same bits as the
-//!   one-contact kernel), then adds the outputs in list order (the exact tier runs the
-//!   one-contact kernel entry by entry: its time is in the memory update of each contact);
+//!   `mu P`, plus creep), monomorphised; the serial force loop runs the cheap tier's touching
+//!   sphere pairs four at a time ([`creep_law::pair::cheap_sphere_block_lanes`]: vector
+//!   instructions, the same bits as the one-contact kernel) and adds each lane's outputs to
+//!   the particles as it comes, the one-contact kernel's entries in their places, so every
+//!   sum keeps the list's order (the exact tier runs the one-contact kernel entry by entry:
+//!   its time is in the memory update of each contact);
 //! * velocity Verlet (Swope et al. 1982) for translation and rotation (spheres: isotropic
 //!   inertia `I = (2/5) m r^2`), the contact forces evaluated at the half-step velocities as in
 //!   LAMMPS;

@@ -143,8 +143,13 @@ pub(crate) fn half_neighbours_of(
 ) {
     let xi = x[i];
     let ri = r[i];
+    let periodic = grid.is_periodic();
     grid.for_half_neighbours(i, stencil, |j| {
-        let d = grid.min_image(x[j] - xi);
+        let d = if periodic {
+            grid.min_image(x[j] - xi)
+        } else {
+            x[j] - xi
+        };
         let cut = ri + r[j] + skin;
         if d.dot(d) < cut * cut {
             let (a, b) = (id[i], id[j]);

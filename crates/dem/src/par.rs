@@ -178,7 +178,8 @@ impl<T: TangentialLaw> Dem<T> {
         let base = self.nl_start[i0] as usize;
         let i1 = (i0 + CHUNK).min(n);
         if Self::use_block(wide) {
-            // The serial loop's windows (block kernel), the outputs to entries.
+            // Windows of entries through the block kernel (`pair_outputs`), the outputs to
+            // entries.
             let mut outs = WindowOut::default();
             let mut w0 = i0;
             while w0 < i1 {

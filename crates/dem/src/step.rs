@@ -1,7 +1,9 @@
 //! One velocity-Verlet step and the force loops (serial; the parallel one is in `par`).
 
+#[cfg(feature = "parallel")]
+use creep_law::pair::SphereForces;
 use creep_law::pair::{
-    ContactGeometry, ContactHistory, LANES, PairBody, SphereForces, SphereLanes, SpherePair,
+    ContactGeometry, ContactHistory, LANES, PairBody, SphereForceLanes, SphereLanes, SpherePair,
     TangentialLaw, block_supports, pair_force, release,
 };
 use creep_law::{Surface, Vec3};
@@ -149,8 +151,8 @@ impl<T: TangentialLaw> Dem<T> {
     /// entries' contributions in list order (whether it owns the entry or is its partner), and
     /// the energies and counts are summed per block of [`CHUNK`] particles, then block by
     /// block: the parallel loop (`par`) sums in exactly these orders, so both give the same
-    /// bits. A tier with a block kernel ([`TangentialLaw::HAS_BLOCK`]) evaluates a window of
-    /// entries first ([`Dem::pair_outputs`]), then adds them in list order.
+    /// bits. A tier with a block kernel ([`TangentialLaw::HAS_BLOCK_LANES`]) runs
+    /// [`Dem::pair_chunk_block`], which adds the contacts in the same order.
     fn pair_forces_serial(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         crate::kernels::dispatch!(self.kernels, pair_forces_avx2<T>(
             dem: &mut Dem<T> = self,
@@ -174,34 +176,13 @@ impl<T: TangentialLaw> Dem<T> {
     ) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
-        let mut outs = WindowOut::default();
         let mut i0 = 0;
         while i0 < n {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
-            if Self::use_block(wide) {
-                let mut w0 = i0;
-                while w0 < i1 {
-                    let w1 = self.window_end(w0, i1);
-                    let base = self.nl_start[w0] as usize;
-                    let end = self.nl_start[w1] as usize;
-                    self.pair_outputs(w0, w1, &mut hist[base..end], dt, &mut outs);
-                    for (&[p, q], out) in outs.pq.iter().zip(&outs.f) {
-                        if p == APART {
-                            e.slip += out.dissipation.slip;
-                            continue;
-                        }
-                        let (p, q) = (p as usize, q as usize);
-                        self.f[p] += out.force_p;
-                        self.f[q] -= out.force_p;
-                        self.t[p] += out.torque_p;
-                        self.t[q] += out.torque_q;
-                        tally_block(&mut c, &mut e, out);
-                        c.contacts += 1;
-                    }
-                    w0 = w1;
-                }
+            if Self::use_block_lanes(wide) {
+                self.pair_chunk_block(i0, i1, &mut hist, dt, &mut c, &mut e);
             } else {
                 let arrays = arrays!(self);
                 for i in i0..i1 {
@@ -231,7 +212,126 @@ impl<T: TangentialLaw> Dem<T> {
         self.nl_h = hist;
     }
 
-    /// Whether the force loop runs the tier's block kernel: where it has one
+    /// The pair forces of the list entries of particles `i0..i1` (histories `hist`, the whole
+    /// list's) with the block kernel, added to the particles' forces and torques and to the
+    /// counts `c` and energies `e` in list order, as [`Dem::pair_outputs`] followed by a walk
+    /// over its outputs: touching sphere pairs with constants the block kernel takes and a
+    /// history that is not virgin wait, [`LANES`] at a time, for
+    /// [`TangentialLaw::sphere_block_lanes`], whose lanes are added as they come; an entry
+    /// the block does not take first runs the waiting lanes (so that the sums keep the list's
+    /// order), then the one-contact kernel ([`Arrays::pair`]), unless it is a virgin entry
+    /// apart (which adds nothing). The lanes the block leaves go to the one-contact kernel in
+    /// their place. The same bits as the one-contact loop.
+    #[inline(always)]
+    fn pair_chunk_block(
+        &mut self,
+        i0: usize,
+        i1: usize,
+        hist: &mut [ContactHistory<T>],
+        dt: f64,
+        c: &mut DemCounts,
+        e: &mut DemEnergy,
+    ) {
+        let arr = arrays!(self);
+        let n = arr.x.len();
+        let mut acc = Acc {
+            f: &mut self.f[..n],
+            t: &mut self.t[..n],
+            c,
+            e,
+        };
+        let (nl_start, nl_j) = (&self.nl_start[..], &self.nl_j[..]);
+        let mut pend = Pending::default();
+        let mut lanes = SphereForceLanes::default();
+        // The branch on the periodic axes once per entry instead of once per axis, and the
+        // pair constants' index and whether the block takes them once per pair of materials
+        // met in a row (the materials of two particles in contact rarely change from one
+        // entry to the next).
+        let periodic = arr.grid.is_periodic();
+        let mut last_mats = (u32::MAX, u32::MAX);
+        let (mut last_ci, mut last_block) = (0, false);
+        for i in i0..i1 {
+            let (a, b) = (nl_start[i] as usize, nl_start[i + 1] as usize);
+            let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
+            for (k, &j) in (a..b).zip(&nl_j[a..b]) {
+                let j = j as usize;
+                let d = if periodic {
+                    arr.grid.min_image(arr.x[j] - xi)
+                } else {
+                    arr.x[j] - xi
+                };
+                let rs = ri + arr.r[j];
+                let touching = d.dot(d) < rs * rs;
+                let h = &mut hist[k];
+                if touching && !h.is_virgin() {
+                    let (p, q, dpq) = if id_i < arr.id[j] {
+                        (i, j, d)
+                    } else {
+                        (j, i, -d)
+                    };
+                    let mats = (arr.mat[p], arr.mat[q]);
+                    if mats != last_mats {
+                        last_mats = mats;
+                        last_ci = arr.table.pair_index(mats.0 as usize, mats.1 as usize);
+                        last_block = block_supports(&arr.table.pairs[last_ci]);
+                    }
+                    let ci = last_ci;
+                    if last_block {
+                        if pend.len > 0 && pend.constants != ci {
+                            flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+                        }
+                        let xp = arr.x[p];
+                        let l = pend.len;
+                        pend.constants = ci;
+                        pend.entry[l] = (k as u32, i as u32, j as u32, p as u32, q as u32);
+                        pend.pairs.set(
+                            l,
+                            &SpherePair {
+                                xp,
+                                xq: xp + dpq,
+                                rp: arr.r[p],
+                                rq: arr.r[q],
+                                vp: arr.v[p],
+                                vq: arr.v[q],
+                                wp: arr.w[p],
+                                wq: arr.w[q],
+                                mp: arr.mass[p],
+                                mq: arr.mass[q],
+                            },
+                        );
+                        pend.len += 1;
+                        if pend.len == LANES {
+                            flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+                        }
+                        continue;
+                    }
+                } else if !touching && h.is_virgin() {
+                    // The one-contact kernel would give `Err(0.0)`: nothing to add.
+                    continue;
+                }
+                if pend.len > 0 {
+                    flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+                }
+                acc.add_one(arr.pair(i, j, &mut hist[k], dt));
+            }
+        }
+        if pend.len > 0 {
+            flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
+        }
+    }
+
+    /// Whether the serial force loop runs the tier's block kernel ([`Dem::pair_chunk_block`]):
+    /// where it has one for a loop without a buffer of outputs
+    /// ([`TangentialLaw::HAS_BLOCK_LANES`]), unless the block pays only with four-lane vector
+    /// registers ([`TangentialLaw::BLOCK_NEEDS_WIDE`]) and the copy (`wide`) has none. The
+    /// results are the same bits either way.
+    #[inline(always)]
+    pub(crate) fn use_block_lanes(wide: bool) -> bool {
+        T::HAS_BLOCK_LANES && (wide || !T::BLOCK_NEEDS_WIDE)
+    }
+
+    #[cfg(feature = "parallel")]
+    /// Whether the parallel force loop runs the tier's block kernel: where it has one
     /// ([`TangentialLaw::HAS_BLOCK`]), unless the block pays only with four-lane vector
     /// registers ([`TangentialLaw::BLOCK_NEEDS_WIDE`]) and the copy (`wide`) has none. The
     /// results are the same bits either way.
@@ -240,6 +340,7 @@ impl<T: TangentialLaw> Dem<T> {
         T::HAS_BLOCK && (wide || !T::BLOCK_NEEDS_WIDE)
     }
 
+    #[cfg(feature = "parallel")]
     /// The end of the window of particles from `w0` (before `i1`) holding about [`WINDOW`]
     /// list entries (at least one particle).
     #[inline(always)]
@@ -251,6 +352,7 @@ impl<T: TangentialLaw> Dem<T> {
         w1
     }
 
+    #[cfg(feature = "parallel")]
     /// The outputs of the list entries of particles `w0..w1` (histories `hist`, from entry
     /// `nl_start[w0]` on) into `outs`, in list order: touching sphere pairs with constants the
     /// block kernel takes and a history that is not virgin go [`LANES`] at a time to
@@ -329,6 +431,7 @@ impl<T: TangentialLaw> Dem<T> {
         }
     }
 
+    #[cfg(feature = "parallel")]
     /// Runs the pending lanes through the block kernel (the unused lanes repeat the first,
     /// their results dropped), the lanes it leaves through the one-contact kernel.
     #[inline(always)]
@@ -365,6 +468,7 @@ impl<T: TangentialLaw> Dem<T> {
         pend.len = 0;
     }
 
+    #[cfg(feature = "parallel")]
     /// [`Dem::pair_out`] for the lanes the block kernel leaves (rare: a contact that opens,
     /// or whose normal turned far): out of line, so that it does not crowd the loop (the
     /// baseline copy only).
@@ -382,6 +486,7 @@ impl<T: TangentialLaw> Dem<T> {
         self.pair_out(&self.arrays(), i, j, h, dt, o, outs);
     }
 
+    #[cfg(feature = "parallel")]
     /// [`Dem::pair`] into window entry `o` of `outs`.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
@@ -596,11 +701,13 @@ pub(crate) struct WallOut {
     pub(crate) creeping: bool,
 }
 
+#[cfg(feature = "parallel")]
 /// List entries per window of [`Dem::pair_outputs`] (evaluated, then added in list order). The
 /// block kernel's last block of a window is partly empty: a long window wastes fewer lanes,
 /// and its outputs (about 17 kB) still stay in the level-1 cache.
 pub(crate) const WINDOW: usize = 128;
 
+#[cfg(feature = "parallel")]
 /// The outputs of a window's list entries: a touching pair's p and q and its outputs, or
 /// `[APART, 0]` and the energy an opening contact's history released (as the slip
 /// dissipation).
@@ -708,6 +815,113 @@ impl Arrays<'_> {
     }
 }
 
+/// Where [`Dem::pair_chunk_block`] adds the contacts' outputs: the particles' forces and
+/// torques, the counts and the energies.
+struct Acc<'a> {
+    f: &'a mut [Vec3],
+    t: &'a mut [Vec3],
+    c: &'a mut DemCounts,
+    e: &'a mut DemEnergy,
+}
+
+impl Acc<'_> {
+    /// Adds lane `l` of a block's outputs (read in place) for the pair p, q, as the one-contact
+    /// loop adds a touching pair's.
+    #[inline(always)]
+    fn add_lane(&mut self, p: usize, q: usize, o: &SphereForceLanes, l: usize) {
+        let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+        let force_p = v(&o.force_p);
+        self.f[p] += force_p;
+        self.f[q] -= force_p;
+        self.t[p] += v(&o.torque_p);
+        self.t[q] += v(&o.torque_q);
+        tally_parts(
+            self.c,
+            self.e,
+            &creep_law::pair::PairDissipation {
+                damping: o.damping[l],
+                slip: o.slip[l],
+                creep: o.creep[l],
+                rolling: 0.0,
+                truncation: o.truncation[l],
+            },
+            o.sliding[l],
+            o.creep_displacement[0][l] != 0.0 || o.creep_displacement[1][l] != 0.0,
+        );
+        self.c.contacts += 1;
+    }
+
+    /// Adds the one-contact kernel's result for an entry ([`Arrays::pair`]).
+    #[inline(always)]
+    fn add_one(&mut self, r: Result<(usize, usize, creep_law::pair::PairForces), f64>) {
+        match r {
+            Ok((p, q, out)) => {
+                self.f[p] += out.force_p;
+                self.f[q] -= out.force_p;
+                self.t[p] += out.torque_p;
+                self.t[q] += out.torque_q;
+                tally(self.c, self.e, &out);
+                self.c.contacts += 1;
+            }
+            Err(released) => self.e.slip += released,
+        }
+    }
+}
+
+/// Runs the pending lanes through the block kernel (the unused lanes repeat the first, their
+/// results dropped) and adds each lane's outputs in order; a lane the block leaves goes
+/// through the one-contact kernel in its place.
+#[inline(always)]
+fn flush_lanes<T: TangentialLaw>(
+    arr: &Arrays<'_>,
+    pend: &mut Pending,
+    hist: &mut [ContactHistory<T>],
+    dt: f64,
+    lanes: &mut SphereForceLanes,
+    acc: &mut Acc<'_>,
+) {
+    let n = pend.len;
+    for l in n..LANES {
+        pend.pairs.copy_lane(0, l);
+    }
+    let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }].0 as usize);
+    let mask = T::sphere_block_lanes(
+        &arr.table.pairs[pend.constants],
+        &pend.pairs,
+        hist,
+        idx,
+        n,
+        dt,
+        lanes,
+    );
+    for l in 0..n {
+        let (k, i, j, p, q) = pend.entry[l];
+        if mask >> l & 1 == 1 {
+            acc.add_lane(p as usize, q as usize, lanes, l);
+        } else {
+            pair_one_rare(arr, i as usize, j as usize, &mut hist[k as usize], dt, acc);
+        }
+    }
+    pend.len = 0;
+}
+
+/// [`Acc::add_one`] of [`Arrays::pair`] for a lane the block kernel leaves (rare: a contact
+/// that opens, or whose normal turned far): out of line, so that it does not crowd the loop
+/// (the baseline copy only).
+#[inline(never)]
+#[cold]
+fn pair_one_rare<T: TangentialLaw>(
+    arr: &Arrays<'_>,
+    i: usize,
+    j: usize,
+    h: &mut ContactHistory<T>,
+    dt: f64,
+    acc: &mut Acc<'_>,
+) {
+    acc.add_one(arr.pair(i, j, h, dt));
+}
+
+#[cfg(feature = "parallel")]
 /// The `p` of an entry whose pair is apart.
 pub(crate) const APART: u32 = u32::MAX;
 
@@ -722,6 +936,7 @@ struct Pending {
 }
 
 /// [`tally`] of a window entry's outputs.
+#[cfg(feature = "parallel")]
 #[inline(always)]
 pub(crate) fn tally_block(counts: &mut DemCounts, energy: &mut DemEnergy, out: &SphereForces) {
     tally_parts(

@@ -635,8 +635,9 @@ fn table1() -> MaterialTable {
 #[test]
 fn parallel_force_loop_is_deterministic() {
     deterministic::<Exact>();
-    // The cheap tier's serial loop runs most contacts through the block kernel
-    // (`cheap_sphere_block`), the parallel one through the one-contact kernel: the same bits.
+    // The cheap tier's serial loop runs most contacts through the block kernel, adding its
+    // lanes as they come (`sphere_block_lanes`), the parallel one through the block with a
+    // buffer of outputs (the exact tier: the one-contact kernel in both): the same bits.
     deterministic::<Cheap>();
 }
 

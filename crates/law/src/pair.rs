@@ -6,7 +6,8 @@
 //! style can call it through a C ABI (the history is a flat `[f64]`, see
 //! [`ContactHistory::write`] / [`ContactHistory::read`]). [`cheap_sphere_block`] and
 //! [`exact_sphere_block`] step [`LANES`] sphere-sphere contacts at once (vector
-//! instructions), the same bits as [`pair_force`] lane by lane.
+//! instructions), the same bits as [`pair_force`] lane by lane; [`cheap_sphere_block_lanes`]
+//! and [`exact_sphere_block_lanes`] hand their outputs lane by lane ([`SphereForceLanes`]).
 //!
 //! # The law (all in f64)
 //! Bodies p and q, unit normal `n` from p to q, overlap `delta`, contact point `c` in the middle
@@ -51,8 +52,8 @@ mod kernel;
 mod tiers;
 
 pub use block::{
-    LANES, SphereForces, SphereLanes, SpherePair, block_supports, cheap_sphere_block,
-    exact_sphere_block,
+    LANES, SphereForceLanes, SphereForces, SphereLanes, SpherePair, block_supports,
+    cheap_sphere_block, cheap_sphere_block_lanes, exact_sphere_block, exact_sphere_block_lanes,
 };
 pub use constants::{ContactGeometry, PairBody, PairConstants};
 pub use damping::{MIN_RESTITUTION, damping_coefficient};

@@ -135,6 +135,56 @@ pub struct SphereForces {
     pub dissipation: PairDissipation,
 }
 
+/// The outputs of a block's [`LANES`] contacts, lane by lane (structure of arrays: each
+/// quantity's lanes side by side, as the block computes them); lane `l` is
+/// [`SphereForceLanes::lane`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SphereForceLanes {
+    /// Force on p \[N\], by component.
+    pub force_p: [[f64; LANES]; 3],
+    /// Torque on p about its centre [N m], by component.
+    pub torque_p: [[f64; LANES]; 3],
+    /// Torque on q about its centre [N m], by component.
+    pub torque_q: [[f64; LANES]; 3],
+    /// Whether the contact is at the Coulomb limit.
+    pub sliding: [bool; LANES],
+    /// Creep displacement of the step in `(t1, t2)` \[m\], by component.
+    pub creep_displacement: [[f64; LANES]; 2],
+    /// Energy dissipated by the normal damping \[J\].
+    pub damping: [f64; LANES],
+    /// Energy dissipated by micro-slip and gross slip \[J\].
+    pub slip: [f64; LANES],
+    /// Energy dissipated by creep \[J\].
+    pub creep: [f64; LANES],
+    /// Energy added by the tier's simplifications \[J\].
+    pub truncation: [f64; LANES],
+}
+
+impl SphereForceLanes {
+    /// Lane `l`'s outputs (`l` < [`LANES`]; panics otherwise).
+    #[inline(always)]
+    pub fn lane(&self, l: usize) -> SphereForces {
+        let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+        SphereForces {
+            force_p: v(&self.force_p),
+            torque_p: v(&self.torque_p),
+            torque_q: v(&self.torque_q),
+            sliding: self.sliding[l],
+            creep_displacement: Vec2::new(
+                self.creep_displacement[0][l],
+                self.creep_displacement[1][l],
+            ),
+            dissipation: PairDissipation {
+                damping: self.damping[l],
+                slip: self.slip[l],
+                creep: self.creep[l],
+                rolling: 0.0,
+                truncation: self.truncation[l],
+            },
+        }
+    }
+}
+
 /// Whether the block takes contacts with constants `c` at all: no rolling resistance, and
 /// with creep, Kuhn's steady law (the others go to the one-contact kernel).
 #[inline]
@@ -158,6 +208,22 @@ fn mask(b: bool) -> f64 {
 #[inline(always)]
 fn bits(x: f64) -> u64 {
     x.to_bits()
+}
+
+/// `f64::MAX` in every lane, passed through [`std::hint::black_box`] once per block, so that
+/// the compiler cannot see the value: it would fold the tests of one lane's value (`x > 0`
+/// with `x` finite, `x < inf`) into one floating-point class test, which it evaluates lane by
+/// lane in integer registers (about 40 instructions per contact), where with an opaque bound
+/// each test stays one vector compare. `x <= f64::MAX` for `|x|` is the same test as
+/// [`f64::is_finite`], and for `x > 0` as `x < inf`.
+#[derive(Clone, Copy)]
+struct Big(F);
+
+impl Big {
+    #[inline(always)]
+    fn new() -> Big {
+        Big(F::splat(std::hint::black_box(f64::MAX)))
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -236,8 +302,14 @@ impl F {
         M(std::array::from_fn(|l| mask(self.0[l] >= o.0[l])))
     }
     #[inline(always)]
-    fn finite(self) -> M {
-        M(std::array::from_fn(|l| mask(finite(self.0[l]))))
+    fn le(self, o: F) -> M {
+        M(std::array::from_fn(|l| mask(self.0[l] <= o.0[l])))
+    }
+    /// Whether each lane is finite, as [`f64::is_finite`]: `|x| <= big` with `big` the largest
+    /// finite `f64` ([`Big`]).
+    #[inline(always)]
+    fn finite(self, big: Big) -> M {
+        M(std::array::from_fn(|l| mask(self.0[l].abs() <= big.0.0[l])))
     }
 }
 
@@ -306,6 +378,10 @@ impl V {
         }
     }
     #[inline(always)]
+    fn store(self) -> [[f64; LANES]; 3] {
+        [self.x.0, self.y.0, self.z.0]
+    }
+    #[inline(always)]
     fn lane(self, l: usize) -> Vec3 {
         Vec3::new(self.x.0[l], self.y.0[l], self.z.0[l])
     }
@@ -317,6 +393,8 @@ impl V {
 struct Front {
     /// The lanes the block can take so far.
     ok: M,
+    /// The opaque `f64::MAX` of the block's finiteness tests.
+    big: Big,
     n: V,
     t1: V,
     t2: V,
@@ -345,6 +423,7 @@ fn sphere_front<T: TangentialLaw>(
 ) -> Front {
     let pm = &c.material;
     let creep_on = c.creep.is_some();
+    let big = Big::new();
     let xp = V::load(&pairs.xp);
     let xq = V::load(&pairs.xq);
     let (rp, rq, mp, mq) = (F(pairs.rp), F(pairs.rq), F(pairs.mp), F(pairs.mq));
@@ -352,7 +431,7 @@ fn sphere_front<T: TangentialLaw>(
     // Geometry (`ContactGeometry::sphere_sphere`).
     let d = xq - xp;
     let dist = d.dot(d).sqrt();
-    let mut ok = dist.gt(F::splat(f64::MIN_POSITIVE)).and(dist.finite());
+    let mut ok = dist.gt(F::splat(f64::MIN_POSITIVE)).and(dist.finite(big));
     let n = d * (F::splat(1.0) / dist);
     let delta = rp + rq - dist;
 
@@ -363,14 +442,14 @@ fn sphere_front<T: TangentialLaw>(
         .and(mp.gt(F::splat(0.0)))
         .and(mq.gt(F::splat(0.0)))
         .and(inv.gt(F::splat(0.0)))
-        .and(inv.finite())
-        .and(sm.finite());
+        .and(inv.finite(big))
+        .and(sm.finite(big));
     let r_star = rp * rq * sm * inv;
     let m_star = mp * mq * sr * inv;
     ok = ok
         .and(delta.gt(F::splat(0.0)))
         .and(m_star.gt(F::splat(0.0)))
-        .and(r_star.finite());
+        .and(r_star.finite(big));
 
     // Kuhn & Bagi's rates for two spheres (`sphere_rates_and_approach`).
     let rho_p = rp - delta * 0.5;
@@ -383,7 +462,7 @@ fn sphere_front<T: TangentialLaw>(
     let dvn = dv.dot(n);
     let dv_t = dv - n * dvn;
     let dd = rho_p + rho_q;
-    ok = ok.and(dd.gt(F::splat(0.0))).and(dd.finite());
+    ok = ok.and(dd.gt(F::splat(0.0))).and(dd.finite(big));
     let v_roll =
         dv_t * ((rho_q - rho_p) / (dd * 2.0)) + (a_w * rho_p - b_w * rho_q) * F::splat(0.5);
     let v_disp = dv_t - a_w * rho_p - b_w * rho_q;
@@ -399,10 +478,14 @@ fn sphere_front<T: TangentialLaw>(
     let a2 = angle * angle;
     let mut s = angle * (F::splat(1.0) - a2 * (1.0 / 6.0));
     let mut cs = F::splat(1.0) - a2 * 0.5 * (F::splat(1.0) - a2 * (1.0 / 12.0));
-    // Beyond 1e-3 rad per step (`small_sin_cos`'s series) libm's, lane by lane.
-    for l in 0..LANES {
-        if !(angle.0[l].abs() < 1e-3) {
-            (s.0[l], cs.0[l]) = angle.0[l].sin_cos();
+    // Beyond 1e-3 rad per step (`small_sin_cos`'s series) libm's, lane by lane (one vector
+    // test for the block first: the rule is that no lane turns so far).
+    let far_turn = M(std::array::from_fn(|l| mask(!(angle.0[l].abs() < 1e-3))));
+    if far_turn.any() {
+        for l in 0..LANES {
+            if !(angle.0[l].abs() < 1e-3) {
+                (s.0[l], cs.0[l]) = angle.0[l].sin_cos();
+            }
         }
     }
     let spun = t1_old * cs + n.cross(t1_old) * s;
@@ -441,7 +524,7 @@ fn sphere_front<T: TangentialLaw>(
     // Tangential displacements in the basis.
     let ud = v_disp * F::splat(dt);
     let (dux, duy) = (ud.dot(t1), ud.dot(t2));
-    ok = ok.and(dux.finite()).and(duy.finite());
+    ok = ok.and(dux.finite(big)).and(duy.finite(big));
     let (drx, dry) = if creep_on {
         let ur = v_roll * F::splat(dt);
         (ur.dot(t1), ur.dot(t2))
@@ -451,6 +534,7 @@ fn sphere_front<T: TangentialLaw>(
 
     Front {
         ok,
+        big,
         n,
         t1,
         t2,
@@ -486,6 +570,28 @@ pub fn cheap_sphere_block(
     used: usize,
     dt: f64,
 ) -> u32 {
+    let mut lanes = SphereForceLanes::default();
+    let done = cheap_sphere_block_lanes(c, pairs, hist, idx, used, dt, &mut lanes);
+    for l in 0..used.min(LANES) {
+        if done >> l & 1 == 1 {
+            out[idx[l]] = lanes.lane(l);
+        }
+    }
+    done
+}
+
+/// [`cheap_sphere_block`] with the outputs lane by lane in `out` (lane `l` valid where the
+/// returned mask sets bit `l`), for a host that adds them to its bodies itself.
+#[inline(always)]
+pub fn cheap_sphere_block_lanes(
+    c: &PairConstants,
+    pairs: &SphereLanes,
+    hist: &mut [ContactHistory<Cheap>],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+    out: &mut SphereForceLanes,
+) -> u32 {
     let h: [&ContactHistory<Cheap>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
     let pm = &c.material;
     let creep_on = c.creep.is_some();
@@ -499,6 +605,7 @@ pub fn cheap_sphere_block(
     }
     let Front {
         mut ok,
+        big,
         n,
         t1,
         t2,
@@ -520,11 +627,11 @@ pub fn cheap_sphere_block(
     ok = ok
         .and(p_el.gt(F::splat(0.0)))
         .and(a.gt(F::splat(0.0)))
-        .and(p_el.finite())
-        .and(a.finite());
+        .and(p_el.finite(big))
+        .and(a.finite(big));
     let k = F::splat(8.0 * pm.g_star) * a;
     let mu_p = F::splat(pm.mu) * p_el;
-    ok = ok.and(mu_p.finite());
+    ok = ok.and(mu_p.finite(big));
     let qx = lanes!(l => h[l].tangential.q.x);
     let qy = lanes!(l => h[l].tangential.q.y);
     let hk = lanes!(l => h[l].tangential.k);
@@ -533,14 +640,14 @@ pub fn cheap_sphere_block(
     let trunc_on = q2.gt(zero).and(hk.gt(zero));
     let truncation = trunc_on.sel(q2 * 0.5 * ((hk - k) / (k * hk)), zero);
     let roll2 = drx * drx + dry * dry;
-    let creep_in = roll2.gt(zero).and(q2.gt(zero)).and(roll2.finite());
+    let creep_in = roll2.gt(zero).and(q2.gt(zero)).and(roll2.finite(big));
     // `creep_per_force`, Kuhn's branch; a creeping lane outside it goes to the kernel.
     let ga2 = F::splat(pm.g) * a * a;
     let kuhn = mu_p
         .gt(zero)
-        .and(mu_p.lt(F::splat(f64::INFINITY)))
+        .and(mu_p.le(big.0))
         .and(ga2.gt(zero))
-        .and(ga2.lt(F::splat(f64::INFINITY)));
+        .and(ga2.le(big.0));
     ok = M(std::array::from_fn(|l| {
         f64::from_bits(bits(ok.0[l]) & (!bits(creep_in.0[l]) | bits(kuhn.0[l])))
     }));
@@ -577,7 +684,7 @@ pub fn cheap_sphere_block(
     } else {
         num / den
     };
-    let creep_use = creep_in.and(f.gt(zero)).and(f.finite());
+    let creep_use = creep_in.and(f.gt(zero)).and(f.finite(big));
     let fc = creep_use.sel(f, zero);
     let (cx, cy) = (creep_use.sel(qx * fc, zero), creep_use.sel(qy * fc, zero));
     let creep_e = creep_use.sel(q2 * fc, zero);
@@ -630,21 +737,18 @@ pub fn cheap_sphere_block(
         hl.t1 = t1.lane(l);
         hl.normal = n.lane(l);
         hl.overlap = delta.0[l];
-        out[idx[l]] = SphereForces {
-            force_p: f_p.lane(l),
-            torque_p: torque_p.lane(l),
-            torque_q: torque_q.lane(l),
-            sliding: bits(sliding.0[l]) != 0,
-            creep_displacement: Vec2::new(cx.0[l], cy.0[l]),
-            dissipation: PairDissipation {
-                damping: damping.0[l],
-                slip: slip.0[l],
-                creep: creep_e.0[l],
-                rolling: 0.0,
-                truncation: truncation.0[l],
-            },
-        };
     }
+    *out = SphereForceLanes {
+        force_p: f_p.store(),
+        torque_p: torque_p.store(),
+        torque_q: torque_q.store(),
+        sliding: std::array::from_fn(|l| bits(sliding.0[l]) != 0),
+        creep_displacement: [cx.0, cy.0],
+        damping: damping.0,
+        slip: slip.0,
+        creep: creep_e.0,
+        truncation: truncation.0,
+    };
     done
 }
 
@@ -666,6 +770,28 @@ pub fn exact_sphere_block(
     used: usize,
     dt: f64,
 ) -> u32 {
+    let mut lanes = SphereForceLanes::default();
+    let done = exact_sphere_block_lanes(c, pairs, hist, idx, used, dt, &mut lanes);
+    for l in 0..used.min(LANES) {
+        if done >> l & 1 == 1 {
+            out[idx[l]] = lanes.lane(l);
+        }
+    }
+    done
+}
+
+/// [`exact_sphere_block`] with the outputs lane by lane in `out` (lane `l` valid where the
+/// returned mask sets bit `l`), for a host that adds them to its bodies itself.
+#[inline(always)]
+pub fn exact_sphere_block_lanes(
+    c: &PairConstants,
+    pairs: &SphereLanes,
+    hist: &mut [ContactHistory<Exact>],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+    out: &mut SphereForceLanes,
+) -> u32 {
     if c.rolling.is_some() {
         return 0;
     }
@@ -680,8 +806,8 @@ pub fn exact_sphere_block(
     let ok =
         f.ok.and(f.p_el.gt(zero))
             .and(f.a.gt(zero))
-            .and(f.p_el.finite())
-            .and(f.a.finite())
+            .and(f.p_el.finite(f.big))
+            .and(f.a.finite(f.big))
             .0;
     let (mut q_x, mut q_y) = (zero, zero);
     let (mut cx, mut cy) = (zero, zero);
@@ -732,24 +858,16 @@ pub fn exact_sphere_block(
     };
     let torque_p = nf * f.rho_p - v0;
     let torque_q = nf * f.rho_q + v0;
-    for l in 0..used.min(LANES) {
-        if done >> l & 1 == 0 {
-            continue;
-        }
-        out[idx[l]] = SphereForces {
-            force_p: f_p.lane(l),
-            torque_p: torque_p.lane(l),
-            torque_q: torque_q.lane(l),
-            sliding: mu_finite && bits(sliding.0[l]) != 0,
-            creep_displacement: Vec2::new(cx.0[l], cy.0[l]),
-            dissipation: PairDissipation {
-                damping: f.damping.0[l],
-                slip: slip.0[l],
-                creep: creep.0[l],
-                rolling: 0.0,
-                truncation: truncation.0[l],
-            },
-        };
-    }
+    *out = SphereForceLanes {
+        force_p: f_p.store(),
+        torque_p: torque_p.store(),
+        torque_q: torque_q.store(),
+        sliding: std::array::from_fn(|l| mu_finite && bits(sliding.0[l]) != 0),
+        creep_displacement: [cx.0, cy.0],
+        damping: f.damping.0,
+        slip: slip.0,
+        creep: creep.0,
+        truncation: truncation.0,
+    };
     done
 }

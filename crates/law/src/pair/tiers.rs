@@ -1,7 +1,10 @@
 //! The tangential tiers: the [`TangentialLaw`] trait, [`Exact`] (Cattaneo-Mindlin memory with
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
-use super::block::{LANES, SphereForces, SphereLanes, cheap_sphere_block, exact_sphere_block};
+use super::block::{
+    LANES, SphereForceLanes, SphereForces, SphereLanes, cheap_sphere_block,
+    cheap_sphere_block_lanes, exact_sphere_block, exact_sphere_block_lanes,
+};
 use super::kernel::finite;
 use super::{ContactHistory, PairConstants};
 use crate::LawError;
@@ -63,6 +66,11 @@ pub trait TangentialLaw:
     /// ([`TangentialLaw::sphere_block`]).
     const HAS_BLOCK: bool = false;
 
+    /// Whether a host that adds the block's lanes to its bodies as they come, without a buffer
+    /// of outputs, should run [`TangentialLaw::sphere_block_lanes`] (the same bits either
+    /// way). True for the cheap tier.
+    const HAS_BLOCK_LANES: bool = false;
+
     /// Whether the block kernel pays only where four `f64` fit one vector register (AVX): a
     /// host's build for two-lane registers (SSE2) then runs the one-contact kernel (the same
     /// bits). False for both tiers.
@@ -84,6 +92,23 @@ pub trait TangentialLaw:
         idx: [usize; LANES],
         n: usize,
         dt: f64,
+    ) -> u32 {
+        let _ = (c, pairs, hist, out, idx, n, dt);
+        0
+    }
+
+    /// [`TangentialLaw::sphere_block`] with the outputs lane by lane in `out` (lane `l` where
+    /// the returned mask sets bit `l`). None by default (every lane left to the one-contact
+    /// kernel); the cheap tier's is [`cheap_sphere_block_lanes`](super::cheap_sphere_block_lanes).
+    #[inline(always)]
+    fn sphere_block_lanes(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+        out: &mut SphereForceLanes,
     ) -> u32 {
         let _ = (c, pairs, hist, out, idx, n, dt);
         0
@@ -141,10 +166,16 @@ impl TangentialLaw for Exact {
     }
 
     /// The block ([`exact_sphere_block`]) exists and gives the one-contact kernel's bits, but
-    /// hosts' loops do not take it: a contact's time is in its memory update, lane by lane,
-    /// and gathering the lanes costs more than the shared vector front saves (measured in
-    /// creep-dem's triaxial test: 5 % slower with the block, with four-lane registers too).
+    /// hosts' loops that buffer its outputs do not take it: a contact's time is in its memory
+    /// update, lane by lane, and gathering the lanes and buffering the outputs cost more than
+    /// the shared vector front saves (measured in creep-dem's triaxial test with a buffer: 5 %
+    /// slower with the block, with four-lane registers too).
     const HAS_BLOCK: bool = false;
+
+    /// Without a buffer of outputs the block saves about 3 % of the instructions per contact of
+    /// creep-dem's serial loop on a dense packing (the shared vector front), but no time that
+    /// could be measured beside the one-contact loop: hosts keep the one-contact kernel.
+    const HAS_BLOCK_LANES: bool = false;
 
     #[inline(always)]
     fn sphere_block(
@@ -157,6 +188,19 @@ impl TangentialLaw for Exact {
         dt: f64,
     ) -> u32 {
         exact_sphere_block(c, pairs, hist, out, idx, n, dt)
+    }
+
+    #[inline(always)]
+    fn sphere_block_lanes(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+        out: &mut SphereForceLanes,
+    ) -> u32 {
+        exact_sphere_block_lanes(c, pairs, hist, idx, n, dt, out)
     }
 
     fn write(h: &CreepState, out: &mut [f64]) {
@@ -296,6 +340,8 @@ impl TangentialLaw for Cheap {
 
     const HAS_BLOCK: bool = true;
 
+    const HAS_BLOCK_LANES: bool = true;
+
     #[inline(always)]
     fn sphere_block(
         c: &PairConstants,
@@ -307,6 +353,19 @@ impl TangentialLaw for Cheap {
         dt: f64,
     ) -> u32 {
         cheap_sphere_block(c, pairs, hist, out, idx, n, dt)
+    }
+
+    #[inline(always)]
+    fn sphere_block_lanes(
+        c: &PairConstants,
+        pairs: &SphereLanes,
+        hist: &mut [ContactHistory<Self>],
+        idx: [usize; LANES],
+        n: usize,
+        dt: f64,
+        out: &mut SphereForceLanes,
+    ) -> u32 {
+        cheap_sphere_block_lanes(c, pairs, hist, idx, n, dt, out)
     }
 
     fn write(h: &CheapHistory, out: &mut [f64]) {
