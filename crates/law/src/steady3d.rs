@@ -49,7 +49,7 @@
 //! small creepage are the contact's own, and the onsets of full slip move with them (Kalker's
 //! simplified theory makes a pure creepage's curve a function of `C x`; Kalker 1990, sec.
 //! 1.5). [`Coverage::ExtrapolatedNu`]; looser bounds (docs/CREEP3D.md, "Beyond the computed
-//! nu"). Every computed `a/b` from `0.2` to `5` has `nu = 0` and `0.5`, so a contact there is
+//! nu"). Every computed `a/b` from `0.5` to `5` has `nu = 0` and `0.5`, so a contact there is
 //! never extrapolated; a node added without them would be.
 //!
 //! # Beyond the box

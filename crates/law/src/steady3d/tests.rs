@@ -1069,7 +1069,7 @@ fn table_extrapolated_in_nu_keeps_kalkers_slopes() {
     }
     if checked == 0 {
         // Every computed a/b has nu = 0 (and 0.5): no contact between them is extrapolated.
-        for ab in [0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.5, 3.0, 4.0, 5.0] {
+        for ab in [0.5, 0.7, 1.0, 1.4, 2.0, 2.5, 3.0, 4.0, 5.0] {
             for nu in [0.0, 0.1, 0.25, 0.4, 0.5] {
                 let c = Steady3d::new(ab, nu).unwrap().coverage();
                 assert!(c != Coverage::ExtrapolatedNu, "{ab} {nu}: {c:?}");
