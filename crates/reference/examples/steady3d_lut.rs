@@ -422,7 +422,7 @@ fn emit() -> Result<(), Box<dyn std::error::Error>> {
     ));
     for (k, (ab, nu, grid, _)) in nodes.iter().enumerate() {
         out.push_str(&format!(
-            "    LutNode {{ ab: {ab:?}, nu: {nu:?}, grid: {grid}, loads: &T{k} }},\n"
+            "    LutNode {{\n        ab: {ab:?},\n        nu: {nu:?},\n        grid: {grid},\n        loads: &T{k},\n    }},\n"
         ));
     }
     out.push_str("];\n");
