@@ -280,27 +280,12 @@ impl<T: TangentialLaw> Dem<T> {
                         if pend.len > 0 && pend.constants != ci {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
-                        let xp = arr.x[p];
-                        let l = pend.len;
-                        pend.constants = ci;
-                        pend.entry[l] = (k as u32, i as u32, j as u32, p as u32, q as u32);
-                        pend.pairs.set(
-                            l,
-                            &SpherePair {
-                                xp,
-                                xq: xp + dpq,
-                                rp: arr.r[p],
-                                rq: arr.r[q],
-                                vp: arr.v[p],
-                                vq: arr.v[q],
-                                wp: arr.w[p],
-                                wq: arr.w[q],
-                                mp: arr.mass[p],
-                                mq: arr.mass[q],
-                            },
-                        );
-                        pend.len += 1;
-                        if pend.len == LANES {
+                        if pend.push(
+                            &arr,
+                            ci,
+                            (k as u32, i as u32, j as u32, p as u32, q as u32),
+                            dpq,
+                        ) {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
                         continue;
@@ -397,27 +382,12 @@ impl<T: TangentialLaw> Dem<T> {
                         if pend.len > 0 && pend.constants != ci {
                             self.flush(&mut pend, hist, dt, outs);
                         }
-                        let xp = arr.x[p];
-                        let l = pend.len;
-                        pend.constants = ci;
-                        pend.entry[l] = (o as u32, i as u32, j as u32, p as u32, q as u32);
-                        pend.pairs.set(
-                            l,
-                            &SpherePair {
-                                xp,
-                                xq: xp + dpq,
-                                rp: arr.r[p],
-                                rq: arr.r[q],
-                                vp: arr.v[p],
-                                vq: arr.v[q],
-                                wp: arr.w[p],
-                                wq: arr.w[q],
-                                mp: arr.mass[p],
-                                mq: arr.mass[q],
-                            },
-                        );
-                        pend.len += 1;
-                        if pend.len == LANES {
+                        if pend.push(
+                            &arr,
+                            ci,
+                            (o as u32, i as u32, j as u32, p as u32, q as u32),
+                            dpq,
+                        ) {
                             self.flush(&mut pend, hist, dt, outs);
                         }
                         continue;
@@ -933,6 +903,42 @@ struct Pending {
     constants: usize,
     entry: [(u32, u32, u32, u32, u32); LANES],
     pairs: SphereLanes,
+}
+
+impl Pending {
+    /// Adds the pair of bodies `p, q` (`entry`'s last two; `dpq` from `p` to `q`, the minimum
+    /// image) with pair constants `ci` as the next lane; whether the block is full.
+    #[inline(always)]
+    fn push(
+        &mut self,
+        arr: &Arrays,
+        ci: usize,
+        entry: (u32, u32, u32, u32, u32),
+        dpq: Vec3,
+    ) -> bool {
+        let (p, q) = (entry.3 as usize, entry.4 as usize);
+        let xp = arr.x[p];
+        let l = self.len;
+        self.constants = ci;
+        self.entry[l] = entry;
+        self.pairs.set(
+            l,
+            &SpherePair {
+                xp,
+                xq: xp + dpq,
+                rp: arr.r[p],
+                rq: arr.r[q],
+                vp: arr.v[p],
+                vq: arr.v[q],
+                wp: arr.w[p],
+                wq: arr.w[q],
+                mp: arr.mass[p],
+                mq: arr.mass[q],
+            },
+        );
+        self.len += 1;
+        self.len == LANES
+    }
 }
 
 /// [`tally`] of a window entry's outputs.
