@@ -161,6 +161,17 @@ pub struct SphereForceLanes {
 }
 
 impl SphereForceLanes {
+    /// Writes the lanes `l < used` that `done` sets to `out[idx[l]]` (a block's outputs into a
+    /// host's buffer).
+    #[inline(always)]
+    pub fn scatter(&self, done: u32, out: &mut [SphereForces], idx: [usize; LANES], used: usize) {
+        for l in 0..used.min(LANES) {
+            if done >> l & 1 == 1 {
+                out[idx[l]] = self.lane(l);
+            }
+        }
+    }
+
     /// Lane `l`'s outputs (`l` < [`LANES`]; panics otherwise).
     #[inline(always)]
     pub fn lane(&self, l: usize) -> SphereForces {
@@ -572,11 +583,7 @@ pub fn cheap_sphere_block(
 ) -> u32 {
     let mut lanes = SphereForceLanes::default();
     let done = cheap_sphere_block_lanes(c, pairs, hist, idx, used, dt, &mut lanes);
-    for l in 0..used.min(LANES) {
-        if done >> l & 1 == 1 {
-            out[idx[l]] = lanes.lane(l);
-        }
-    }
+    lanes.scatter(done, out, idx, used);
     done
 }
 
@@ -772,11 +779,7 @@ pub fn exact_sphere_block(
 ) -> u32 {
     let mut lanes = SphereForceLanes::default();
     let done = exact_sphere_block_lanes(c, pairs, hist, idx, used, dt, &mut lanes);
-    for l in 0..used.min(LANES) {
-        if done >> l & 1 == 1 {
-            out[idx[l]] = lanes.lane(l);
-        }
-    }
+    lanes.scatter(done, out, idx, used);
     done
 }
 

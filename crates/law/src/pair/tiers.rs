@@ -2,8 +2,8 @@
 //! Kuhn's creep) and [`Cheap`] (incremental `8 G* a` spring capped at `mu P`, plus creep).
 
 use super::block::{
-    LANES, SphereForceLanes, SphereForces, SphereLanes, cheap_sphere_block,
-    cheap_sphere_block_lanes, exact_sphere_block, exact_sphere_block_lanes,
+    LANES, SphereForceLanes, SphereForces, SphereLanes, cheap_sphere_block_lanes,
+    exact_sphere_block_lanes,
 };
 use super::kernel::finite;
 use super::{ContactHistory, PairConstants};
@@ -80,9 +80,9 @@ pub trait TangentialLaw:
     /// `hist[idx[l]]` (none virgin; lanes from `n` on repeat one of the first and are not
     /// written) and step `dt` \[s\]: the mask of the lanes done (their histories updated, their
     /// outputs in `out[idx[l]]`, the same bits as [`pair_force`](super::pair_force)'s); the others are
-    /// left for the one-contact kernel. None by default; the tiers' are
-    /// [`cheap_sphere_block`](super::cheap_sphere_block) and
-    /// [`exact_sphere_block`](super::exact_sphere_block).
+    /// left for the one-contact kernel. [`TangentialLaw::sphere_block_lanes`]'s lanes written to
+    /// `out` (the tiers': [`cheap_sphere_block`](super::cheap_sphere_block) and
+    /// [`exact_sphere_block`](super::exact_sphere_block)).
     #[inline(always)]
     fn sphere_block(
         c: &PairConstants,
@@ -93,8 +93,10 @@ pub trait TangentialLaw:
         n: usize,
         dt: f64,
     ) -> u32 {
-        let _ = (c, pairs, hist, out, idx, n, dt);
-        0
+        let mut lanes = SphereForceLanes::default();
+        let done = Self::sphere_block_lanes(c, pairs, hist, idx, n, dt, &mut lanes);
+        lanes.scatter(done, out, idx, n);
+        done
     }
 
     /// [`TangentialLaw::sphere_block`] with the outputs lane by lane in `out` (lane `l` where
@@ -165,10 +167,10 @@ impl TangentialLaw for Exact {
         h.mindlin().elastic_energy(pm)
     }
 
-    /// The block ([`exact_sphere_block`]) exists and gives the one-contact kernel's bits, but
-    /// hosts' loops that buffer its outputs do not take it: a contact's time is in its memory
-    /// update, lane by lane, and gathering the lanes and buffering the outputs cost more than
-    /// the shared vector front saves (measured in creep-dem's triaxial test with a buffer: 5 %
+    /// The block ([`exact_sphere_block`](super::exact_sphere_block)) exists and gives the
+    /// one-contact kernel's bits, but hosts' loops that buffer its outputs do not take it: a
+    /// contact's time is in its memory update, lane by lane, and gathering the lanes and
+    /// buffering the outputs cost more than the shared vector front saves (measured in creep-dem's triaxial test with a buffer: 5 %
     /// slower with the block, with four-lane registers too).
     const HAS_BLOCK: bool = false;
 
@@ -176,19 +178,6 @@ impl TangentialLaw for Exact {
     /// creep-dem's serial loop on a dense packing (the shared vector front), but no time that
     /// could be measured beside the one-contact loop: hosts keep the one-contact kernel.
     const HAS_BLOCK_LANES: bool = false;
-
-    #[inline(always)]
-    fn sphere_block(
-        c: &PairConstants,
-        pairs: &SphereLanes,
-        hist: &mut [ContactHistory<Self>],
-        out: &mut [SphereForces],
-        idx: [usize; LANES],
-        n: usize,
-        dt: f64,
-    ) -> u32 {
-        exact_sphere_block(c, pairs, hist, out, idx, n, dt)
-    }
 
     #[inline(always)]
     fn sphere_block_lanes(
@@ -341,19 +330,6 @@ impl TangentialLaw for Cheap {
     const HAS_BLOCK: bool = true;
 
     const HAS_BLOCK_LANES: bool = true;
-
-    #[inline(always)]
-    fn sphere_block(
-        c: &PairConstants,
-        pairs: &SphereLanes,
-        hist: &mut [ContactHistory<Self>],
-        out: &mut [SphereForces],
-        idx: [usize; LANES],
-        n: usize,
-        dt: f64,
-    ) -> u32 {
-        cheap_sphere_block(c, pairs, hist, out, idx, n, dt)
-    }
 
     #[inline(always)]
     fn sphere_block_lanes(

@@ -129,9 +129,10 @@ static PHI_INV: [f64; FINE_NP] = inverse_steps(&FINE_PHI);
 /// A computed table on the read grid: the computed spins as they are; between them the cubic
 /// through the cell's two computed spins and one on each side (Lagrange on the non-uniform
 /// grid; linear in the end cells), its force scaled onto `|F| = mu P` where the cubic
-/// overshoots it; at `eta_n = 0` the reflection `phi -> -phi` kept exact. Linear interpolation between the computed spins misses the loads where they
-/// bend fast (the pure spin's lateral force of `a > b` peaks between the spins `0.2` and
-/// `0.26`); the cubic's points follow the bend at the trilinear read's cost.
+/// overshoots it; at `eta_n = 0` the reflection `phi -> -phi` kept exact. Linear interpolation
+/// between the computed spins misses the loads where they bend fast (the pure spin's lateral
+/// force of `a > b` peaks between the spins `0.2` and `0.26`); the cubic's points follow the
+/// bend at the trilinear read's cost.
 pub fn refine(table: &Table) -> Box<Fine> {
     let n = LUT_PHI.len();
     // Per point of the read grid: the first computed spin it is read from, and four weights.
