@@ -283,6 +283,24 @@ pub fn tour(out: &mut dyn Write) -> Res {
 mod tests {
     use super::*;
 
+    /// The values of `creep law steady3d`'s one output row at `(xi, eta, phi)`.
+    fn steady3d_row(nu: f64, ab: f64, c: [f64; 3]) -> Vec<f64> {
+        let out = run_str(&LawCommand::Steady3d {
+            nu,
+            ab,
+            xi: c[0],
+            eta: c[1],
+            phi: c[2],
+        })
+        .unwrap();
+        out.lines()
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect()
+    }
+
     fn run_str(cmd: &LawCommand) -> Result<String, String> {
         let mut buf = Vec::new();
         run(cmd, &mut buf).map_err(|e| e.to_string())?;
@@ -437,7 +455,7 @@ mod tests {
 
     /// The documented command on an elongated contact (`a/b = 3`, a crowned wheel turned
     /// across its crown) with lateral creepage and spin together, the combined case:
-    /// within the table's bounds there (2.5 % of `mu P` in each force, 3 % of `mu P a` in the
+    /// within the table's bounds there (2 % of `mu P` in each force, 3 % of `mu P a` in the
     /// moment) of the boundary elements on the error map (`nu = 0.3`, between the computed
     /// `nu`), in Kalker's signs. The fitted law that answered `a/b > 2` before missed these by
     /// up to 96 % of `mu P`.
@@ -458,30 +476,16 @@ mod tests {
                 .iter()
                 .find(|p| p.ab == ab && p.nu == nu && p.creepage == c)
                 .unwrap();
-            let out = run_str(&LawCommand::Steady3d {
-                nu,
-                ab,
-                xi: c[0],
-                eta: c[1],
-                phi: c[2],
-            })
-            .unwrap();
-            let v: Vec<f64> = out
-                .lines()
-                .nth(1)
-                .unwrap()
-                .split(',')
-                .map(|x| x.parse().unwrap())
-                .collect();
+            let v = steady3d_row(nu, ab, c);
             // Kalker's signs: every load negated. Moment over mu P c, c = a / sqrt(a/b).
             assert!(
-                (v[3] + p.load[0]).abs() < 0.025,
+                (v[3] + p.load[0]).abs() < 0.02,
                 "{c:?}: Fx {} vs {}",
                 v[3],
                 -p.load[0]
             );
             assert!(
-                (v[4] + p.load[1]).abs() < 0.025,
+                (v[4] + p.load[1]).abs() < 0.02,
                 "{c:?}: Fy {} vs {}",
                 v[4],
                 -p.load[1]
@@ -502,21 +506,7 @@ mod tests {
     /// of `mu P` and `mu P c`, in Kalker's signs.
     #[test]
     fn steady3d_far_in_slip_is_full_slip() {
-        let out = run_str(&LawCommand::Steady3d {
-            nu: 0.28,
-            ab: 1.0,
-            xi: 0.0,
-            eta: 20.0,
-            phi: 25.0,
-        })
-        .unwrap();
-        let v: Vec<f64> = out
-            .lines()
-            .nth(1)
-            .unwrap()
-            .split(',')
-            .map(|x| x.parse().unwrap())
-            .collect();
+        let v = steady3d_row(0.28, 1.0, [0.0, 20.0, 25.0]);
         let q = creep_law::steady3d::full_slip::rigid_slip_loads(1.0, [0.0, 20.0, 25.0], 100);
         assert!((v[4] + q[1]).abs() < 0.02, "Fy {} vs {}", v[4], -q[1]);
         assert!((v[5] + q[2]).abs() < 0.02, "Mz {} vs {}", v[5], -q[2]);
