@@ -217,6 +217,10 @@ pub const SNAP: f64 = 1e-3;
 pub struct Lut {
     tables: [&'static Fine; 4],
     w: [f64; 4],
+    /// The moment's weights: between two computed `a/b`, `w` times the square of the full-slip
+    /// spin moment of the contact over the table's row's ([`super::full_slip::max_moment`]:
+    /// module documentation of [`super`], "The table"); `w` within one computed `a/b`.
+    wm: [f64; 4],
     n: usize,
     between_ratios: bool,
     /// Factors on `(|xi_n|, |eta_n|, phi_n)` before the lookup: 1 within the computed `nu`;
@@ -224,6 +228,27 @@ pub struct Lut {
     /// ([`Lut::at`]).
     scale: [f64; 3],
     extrapolated: bool,
+    /// Kalker's linear theory at the contact's `(a/b, nu)` minus the tables' own slopes at zero
+    /// creepage, `[d11, d22, d23, d32, d33]` (`Fx += d11 xi_n`, `Fy += d22 eta_n + d23 phi_n`,
+    /// `Mz += d32 eta_n + d33 phi_n`), added faded by [`linear_fade`] ([`Lut::at_with`]).
+    lin: [f64; 5],
+}
+
+/// Sum of the normalised creepages' magnitudes `|xi_n| + |eta_n| + |phi_n|` from which on the
+/// table is read as it is: below it Kalker's linear theory is restored at zero creepage
+/// ([`linear_fade`]).
+pub const LINEAR_REACH: f64 = 0.1;
+
+/// The weight `(1 - r/LINEAR_REACH)^2` (0 from [`LINEAR_REACH`] on) with which the difference
+/// between Kalker's linear theory and the tables' own slopes is added at `r = |xi_n| + |eta_n| +
+/// |phi_n|`: 1 at zero creepage, so the slopes there are Kalker's (Kalker 1967/1990, Table E.3,
+/// [`crate::kalker3d`]), as the fitted law's are; the tables' first cell, linear interpolation
+/// from zero, has the secant slope of its first computed creepage, which is a few per cent off
+/// between two computed `nu` or `a/b`. Continuous with its slope at `LINEAR_REACH`.
+#[inline(always)]
+pub fn linear_fade(r: f64) -> f64 {
+    let v = 1.0 - r * (1.0 / LINEAR_REACH);
+    v * v
 }
 
 impl std::fmt::Debug for Lut {
@@ -242,7 +267,9 @@ impl PartialEq for Lut {
         self.n == o.n
             && self.between_ratios == o.between_ratios
             && self.w == o.w
+            && self.wm == o.wm
             && self.scale == o.scale
+            && self.lin == o.lin
             && (0..self.n).all(|i| std::ptr::eq(self.tables[i], o.tables[i]))
     }
 }
@@ -268,13 +295,14 @@ fn row_at(ab: f64, nu: f64) -> Option<Vec<(&'static Fine, f64)>> {
     Some(vec![(fine(ia), 1.0 - w), (fine(ib), w)])
 }
 
-/// The tables at `(a/b, nu)` with weights, and whether they are blended between two computed
+/// The tables at `(a/b, nu)` with weights and their rows' `a/b`, and whether they are blended between two computed
 /// `a/b`: one computed `a/b`'s row, or linear in `ln(a/b)` between the rows of the two computed
 /// `a/b` around it.
-type Parts = (Vec<(&'static Fine, f64)>, bool);
+type Parts = (Vec<(&'static Fine, f64, f64)>, bool);
 fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
     if nodes().iter().any(|n| (n.ab.ln() - ab.ln()).abs() < SNAP) {
-        return row_at(ab, nu).map(|row| (row, false));
+        let row = row_at(ab, nu)?;
+        return Some((row.into_iter().map(|(t, w)| (t, w, ab)).collect(), false));
     }
     let l = ab.ln();
     let lo = nodes()
@@ -288,9 +316,12 @@ fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
         .filter(|&x| x > l)
         .reduce(f64::min)?;
     let w = (l - lo) / (hi - lo);
-    let mut out = row_at(lo.exp(), nu)?;
-    out.iter_mut().for_each(|p| p.1 *= 1.0 - w);
-    out.extend(row_at(hi.exp(), nu)?.into_iter().map(|(t, v)| (t, v * w)));
+    let (lo, hi) = (lo.exp(), hi.exp());
+    let mut out: Vec<_> = row_at(lo, nu)?
+        .into_iter()
+        .map(|(t, v)| (t, v * (1.0 - w), lo))
+        .collect();
+    out.extend(row_at(hi, nu)?.into_iter().map(|(t, v)| (t, v * w, hi)));
     Some((out, true))
 }
 
@@ -364,15 +395,40 @@ impl Lut {
         let mut lut = Lut {
             tables: [first; 4],
             w: [0.0; 4],
+            wm: [0.0; 4],
             n: parts.len(),
             between_ratios,
             scale,
             extrapolated: scale != [1.0; 3],
+            lin: [0.0; 5],
         };
-        for (i, (t, w)) in parts.into_iter().enumerate() {
+        let m = super::full_slip::max_moment(ab);
+        for (i, (t, w, row)) in parts.into_iter().enumerate() {
             lut.tables[i] = t;
             lut.w[i] = w;
+            lut.wm[i] = if between_ratios {
+                let k = m / super::full_slip::max_moment(row);
+                w * k * k
+            } else {
+                w
+            };
         }
+        // The tables' slopes at zero creepage: the first cell is linear from zero along each
+        // axis, so one read within it gives them exactly.
+        let c = crate::kalker3d::coefficients(ab, nu).ok()?;
+        let h = 1e-3;
+        let (x, y, p) = (
+            lut.read(h, 0.0, 0.0),
+            lut.read(0.0, h, 0.0),
+            lut.read(0.0, 0.0, h),
+        );
+        lut.lin = [
+            c.c11 - x.fx / h,
+            c.c22 - y.fy / h,
+            c.c23 - p.fy / h,
+            -c.c23 - y.mz / h,
+            c.c33 - p.mz / h,
+        ];
         Some(lut)
     }
 
@@ -382,10 +438,12 @@ impl Lut {
         Lut {
             tables: [table; 4],
             w: [1.0, 0.0, 0.0, 0.0],
+            wm: [1.0, 0.0, 0.0, 0.0],
             n: 1,
             between_ratios: false,
             scale: [1.0; 3],
             extrapolated: false,
+            lin: [0.0; 5],
         }
     }
 
@@ -423,6 +481,29 @@ impl Lut {
     /// The creepages must be finite ([`super::Steady3d::loads`] sees to it).
     #[inline]
     pub(crate) fn loads(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+        let l = self.read(xi_n, eta_n, phi_n);
+        let r = xi_n.abs() + eta_n.abs() + phi_n.abs();
+        if r >= LINEAR_REACH {
+            return l;
+        }
+        self.near_zero(l, xi_n, eta_n, phi_n, linear_fade(r))
+    }
+
+    /// The loads `l` read from the tables near zero creepage with the faded difference to
+    /// Kalker's linear theory added ([`linear_fade`], weight `f`).
+    #[inline(always)]
+    fn near_zero(&self, l: Loads, xi_n: f64, eta_n: f64, phi_n: f64, f: f64) -> Loads {
+        let [d11, d22, d23, d32, d33] = self.lin;
+        Loads {
+            fx: l.fx + f * d11 * xi_n,
+            fy: l.fy + f * (d22 * eta_n + d23 * phi_n),
+            mz: l.mz + f * (d32 * eta_n + d33 * phi_n),
+        }
+    }
+
+    /// The tables' loads, without the linear theory near zero ([`Lut::loads`]).
+    #[inline(always)]
+    fn read(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         let sx = 1.0f64.copysign(xi_n);
         let sy = 1.0f64.copysign(eta_n);
         let [kx, ky, kp] = self.scale;
@@ -466,14 +547,16 @@ impl Lut {
         let mut out = [0.0f64; 3];
         for t in 0..self.n {
             let cell = &self.tables[t][base..base + NPLANE + NP + 2];
-            let wt = self.w[t];
+            let mut acc = [0.0f64; 3];
             for k in 0..8 {
                 let v = cell[corners[k]];
-                let w = wt * cw[k];
-                out[0] += w * f64::from(v[0]);
-                out[1] += w * f64::from(v[1]);
-                out[2] += w * f64::from(v[2]);
+                acc[0] += cw[k] * f64::from(v[0]);
+                acc[1] += cw[k] * f64::from(v[1]);
+                acc[2] += cw[k] * f64::from(v[2]);
             }
+            out[0] += self.w[t] * acc[0];
+            out[1] += self.w[t] * acc[1];
+            out[2] += self.wm[t] * acc[2];
         }
         Loads {
             fx: sx * out[0],
