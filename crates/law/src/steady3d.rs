@@ -34,10 +34,16 @@
 //! computed `nu` of one `a/b` the two tables' loads are blended linearly in `nu` (one cell for
 //! both, the tables read at the contact's creepages); between
 //! two computed `a/b` whose rows both cover
-//! `nu`, the two rows' loads are blended linearly in `ln(a/b)` ([`Coverage::BetweenRatios`],
-//! looser bounds); a `nu` outside the computed ones is extrapolated ("Beyond the computed nu").
-//! Elsewhere (an `a/b` below the lowest or above the highest computed one) the fitted law below
-//! ([`Steady3d::coverage`] says which).
+//! `nu`, the two rows' loads are blended linearly in `ln(a/b)`, the moment with the weights
+//! times `(M_max/M_max,row)^2` ([`full_slip::max_moment`], the full-slip spin moment; an
+//! empirical exponent, docs/CREEP3D.md) ([`Coverage::BetweenRatios`], looser bounds); a `nu`
+//! outside the computed ones is extrapolated ("Beyond the computed nu"). Near zero creepage
+//! (`|xi_n| + |eta_n| + |phi_n| <` [`lut::LINEAR_REACH`]) the difference between Kalker's linear
+//! theory and the tables' own slopes (the secants of their first cells, a few per cent off
+//! Kalker's between computed `nu` or `a/b`) is added, faded out by [`lut::linear_fade`]: the
+//! slopes at zero are Kalker's, as the fitted law's are. Elsewhere (an `a/b` below the lowest
+//! computed one, `0.2`, or above the highest, `5`) the fitted law below ([`Steady3d::coverage`]
+//! says which).
 //! The computed nodes are listed by [`lut::nodes`] and in docs/CREEP3D.md. The inverse at zero spin,
 //! [`Steady3d::creepages_for_force`], is the fitted law's everywhere.
 //!
@@ -201,11 +207,11 @@
 //!
 //! # Accuracy and cost of the table
 //!
-//! Where the table covers the contact, every signed point of the error map is within
-//! 1.4 % of `mu P` in each force and 2.1 % of `mu P a` in the moment (`a/b = 1`, `0.5` at
-//! `nu = 0.25, 0.3, 0.5`; `cargo run --release -p creep-reference --example steady3d_map --
-//! grade`) (2 % of `mu P` in each force and 3 % of `mu P a` in the moment at every covered
-//! case; creep-reference's test `table_meets_the_bounds_where_it_covers_the_map`). An
+//! The table serves every case of the error map (`a/b = 0.2 ... 5`): at a computed `a/b` up to
+//! 3 every signed point is within 2 % of `mu P` in each force and 3 % of `mu P a` in the
+//! moment, at `a/b = 5` within 2.26 % and 0.61 %, between two computed `a/b` within 3.98 % and
+//! 4.24 % (`cargo run --release -p creep-reference --example steady3d_map -- grade`;
+//! creep-reference's test `table_meets_the_bounds_where_it_covers_the_map`, docs/CREEP3D.md). An
 //! evaluation costs the fitted law's or less: 287 instructions at a node, 372 blending two
 //! (`valgrind --tool=callgrind` on the bench's `--count` mode; the fitted law 320-328), 21.5 /
 //! 28.3 ns (the bench's `--time` mode, a quiet machine; the fitted law 31.9 ns on a loaded one).
