@@ -718,7 +718,13 @@ impl Steady3d {
     #[inline(never)]
     fn beyond_the_box(&self, xi_n: f64, eta_n: f64, phi_n: f64, s: f64) -> Loads {
         let k = 1.0 / s;
-        let e = self.in_the_box(xi_n * k, eta_n * k, phi_n * k);
+        // At the box's edge (`|xi_n|` or `|eta_n|` = 2, or `|phi_n|` = 4) the table is read as
+        // it is: its linear theory near zero does not reach there.
+        let (x, y, p) = (xi_n * k, eta_n * k, phi_n * k);
+        let e = match &self.lut {
+            Some(t) => t.read(x, y, p),
+            None => self.in_the_box(x, y, p),
+        };
         let f = self.fs.loads(xi_n, eta_n, phi_n);
         Loads {
             fx: f.fx + (e.fx - f.fx) * k,

@@ -501,9 +501,10 @@ impl Lut {
         }
     }
 
-    /// The tables' loads, without the linear theory near zero ([`Lut::loads`]).
+    /// The tables' loads, without the linear theory near zero ([`Lut::loads`]; the same
+    /// from `|xi_n| + |eta_n| + |phi_n| >=` [`LINEAR_REACH`] on).
     #[inline(always)]
-    fn read(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
+    pub(crate) fn read(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         let sx = 1.0f64.copysign(xi_n);
         let sy = 1.0f64.copysign(eta_n);
         let [kx, ky, kp] = self.scale;
