@@ -99,23 +99,25 @@ fn print(name: &str, r: &RobotRun) {
 }
 
 /// Turning on the spot (rim speeds -0.1, +0.1 m/s; b = 0.2 m): the yaw rate follows the rim
-/// speeds, `(v_r - v_l)/b`, within 2 % (creep: measured -0.42 %; twin -0.15 %); each wheel's
-/// spin creepage is `2/b` within 3 % (it rolls on a circle of radius `b/2`; measured -0.60 %,
-/// +0.26 %); the creep run's dissipation is mostly the wheels' spin creep (Kalker's twisting
+/// speeds, `(v_r - v_l)/b`, within 2 % (creep: measured -0.43 %; twin -0.15 %); each wheel's
+/// spin creepage is `2/b` within 3 % (it rolls on a circle of radius `b/2`; measured -0.59 %,
+/// +0.24 %); the creep run's dissipation is mostly the wheels' spin creep (Kalker's twisting
 /// moment times the relative spin, over 90 %), and equals the hook's booked creep energy within
-/// 10 % (measured -5.9 %: the measured lateral creepage reads `-Omega dt` more than the motion,
+/// 10 % (measured -3.9 %: the measured lateral creepage reads `-Omega dt` more than the motion,
 /// the wheels' velocities after a step belonging to the step's start and the sample's axes to
 /// its end (module docs of `robot`), which times the spin's lateral force reads as -4.7e-4 W
 /// per wheel). The Coulomb twin's single patch point has no
-/// twisting friction: it dissipates under a tenth of the creep run (measured 1.0 %).
+/// twisting friction: it dissipates under a tenth of the creep run (measured 0.97 %).
 ///
-/// The wheels' lateral force (the axle squeezed by 1.28 N per wheel) is the **lateral force of
-/// spin** (Kalker's `C23` term): each wheel's measured force is the creep law's at its
-/// creepages within 3 % (measured -0.00 %, -0.02 %, at phi_n = 0.33: the
-/// kernel applies the law's force at the creepages of its target); Kalker's exact theory for
-/// pure spin (boundary elements) gives 0.296 `mu P` = 1.23 N there (linear between the table's
-/// points, which lies below the concave curve; the law's own lateral creepage is small,
-/// eta_n < 1e-3). Before the wheel's patch contact took its geometry from the floor's face
+/// The wheels' lateral force (the axle squeezed by 1.14 N per wheel) is the **lateral force of
+/// spin** (Kalker's `C23` term) less what a lateral creepage against the spin takes: each
+/// wheel's measured force is the creep law's at its creepages within 3 % (measured -0.31 %,
+/// +0.02 %, at phi_n = 0.33, eta_n = -0.013: the kernel applies the law's force at the
+/// creepages of its target); Kalker's exact theory for pure spin (boundary elements) gives 0.296
+/// `mu P` = 1.23 N there (linear between the table's points, which lies below the concave
+/// curve). The lateral creepage is set in the first steps from rest, the wheels' spin near zero:
+/// with the table's own slopes there (a few per cent off Kalker's coefficients) instead of
+/// Kalker's the run settles at eta_n = +0.0016 and 1.29 N per wheel. Before the wheel's patch contact took its geometry from the floor's face
 /// (creep-rapier's wheel path) Rapier's narrow phase lost the wheels' contact now and then
 /// and this force read 0.76-0.79 N (the Coulomb twin -0.48 N, now -0.20 N), and the dissipation
 /// was measured at the manifold point the patch contact names instead of the patch.
