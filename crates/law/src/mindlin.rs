@@ -879,15 +879,26 @@ fn enforce_capacity<const N: usize>(
         }
         // Otherwise the least-squares merge (force-preserving, energy-non-increasing) of the
         // narrowest neighbour pair whose merged field stays within the limit.
-        let mut order = [(0.0f64, 0usize); 2 * (MAX_PIECES + 1)];
+        // The pairs are tried narrowest first (ties: inner first), each found by a scan of the
+        // widths: the first try nearly always succeeds, so sorting them all costs more.
+        let mut width = [0.0f64; 2 * (MAX_PIECES + 1)];
         let mut lo = 0.0;
         for i in 0..n - 1 {
-            order[i] = (out[i + 1].x_hi - lo, i);
+            width[i] = out[i + 1].x_hi - lo;
             lo = out[i].x_hi;
         }
-        order[..n - 1].sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         let mut merged = false;
-        for &(_, i) in &order[..n - 1] {
+        let mut tried: u32 = 0;
+        for _ in 0..n - 1 {
+            let mut i = usize::MAX;
+            for j in 0..n - 1 {
+                if tried >> j & 1 == 0
+                    && (i == usize::MAX || width[j].total_cmp(&width[i]).is_lt())
+                {
+                    i = j;
+                }
+            }
+            tried |= 1 << i;
             let lo = if i == 0 { 0.0 } else { out[i - 1].x_hi };
             let (p, q) = (out[i], out[i + 1]);
             let old = piece_u2(&p, a, lo, p.x_hi) + piece_u2(&q, a, p.x_hi, q.x_hi);
