@@ -410,6 +410,14 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let g_star = pair.g_star;
+        // The leading wholly stuck pieces (other than the springs entering now) are already
+        // the merged list's first pieces: [`Merge`] keeps an untouched piece after an untouched
+        // one as it is, in its slot (no split before it), so the merge starts after them.
+        let mut k = 0;
+        while k < n_old && cuts[k] == self.pieces[k].x_hi {
+            k += 1;
+        }
+        let k_lo = if k > 0 { self.pieces[k - 1].x_hi } else { 0.0 };
         let (n, d_u2) = if m_in + splits <= MAX_PIECES + 1 {
             // The parts fit in the storage: first move every piece to the slot of its first
             // part (from the outermost, so nothing unread is overwritten; a split piece's
@@ -423,9 +431,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 off -= (split_bits >> i & 1) as usize;
                 self.pieces[i + off] = self.pieces[i];
             }
-            let mut st = Merge::new(a, kappa, a2);
-            let mut pos = 0;
-            for (i, &cut) in cuts[..m_in].iter().enumerate() {
+            let mut st = Merge::after(a, kappa, a2, k, k_lo);
+            let mut pos = k;
+            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
                 let p = self.pieces[pos];
                 let entering = i == n_old;
                 pos += split_bits as usize >> i & 1;
@@ -443,8 +451,11 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         } else {
             // Into a scratch list (a full memory with a split piece).
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
-            let mut st = Merge::new(a, kappa, a2);
-            for (i, &cut) in cuts[..m_in].iter().enumerate() {
+            for (dst, src) in out[..k].iter_mut().zip(&self.pieces[..k]) {
+                *dst = *src;
+            }
+            let mut st = Merge::after(a, kappa, a2, k, k_lo);
+            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
                 let p = self.pieces[i];
                 st.piece::<COALESCE>(
                     &mut out,
@@ -771,6 +782,16 @@ impl Merge {
             n: 0,
             x_lo: 0.0,
             prev_touched: false,
+        }
+    }
+
+    /// A merge whose list already holds `n` untouched pieces, the last one ending at `x_lo`.
+    #[inline(always)]
+    fn after(a: f64, kappa: f64, a2: f64, n: usize, x_lo: f64) -> Self {
+        Self {
+            n,
+            x_lo,
+            ..Self::new(a, kappa, a2)
         }
     }
 
