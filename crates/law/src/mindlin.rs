@@ -913,8 +913,7 @@ fn enforce_capacity<const N: usize>(
         for _ in 0..n - 1 {
             let mut i = usize::MAX;
             for j in 0..n - 1 {
-                if tried >> j & 1 == 0
-                    && (i == usize::MAX || width[j].total_cmp(&width[i]).is_lt())
+                if tried >> j & 1 == 0 && (i == usize::MAX || width[j].total_cmp(&width[i]).is_lt())
                 {
                     i = j;
                 }
