@@ -410,6 +410,14 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let g_star = pair.g_star;
+        // The leading wholly stuck pieces (other than the springs entering now) are already
+        // the merged list's first pieces: [`Merge`] keeps an untouched piece after an untouched
+        // one as it is, in its slot (no split before it), so the merge starts after them.
+        let mut k = 0;
+        while k < n_old && cuts[k] == self.pieces[k].x_hi {
+            k += 1;
+        }
+        let k_lo = if k > 0 { self.pieces[k - 1].x_hi } else { 0.0 };
         let (n, d_u2) = if m_in + splits <= MAX_PIECES + 1 {
             // The parts fit in the storage: first move every piece to the slot of its first
             // part (from the outermost, so nothing unread is overwritten; a split piece's
@@ -423,9 +431,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 off -= (split_bits >> i & 1) as usize;
                 self.pieces[i + off] = self.pieces[i];
             }
-            let mut st = Merge::new(a, kappa, a2);
-            let mut pos = 0;
-            for (i, &cut) in cuts[..m_in].iter().enumerate() {
+            let mut st = Merge::after(a, kappa, a2, k, k_lo);
+            let mut pos = k;
+            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
                 let p = self.pieces[pos];
                 let entering = i == n_old;
                 pos += split_bits as usize >> i & 1;
@@ -443,8 +451,11 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         } else {
             // Into a scratch list (a full memory with a split piece).
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
-            let mut st = Merge::new(a, kappa, a2);
-            for (i, &cut) in cuts[..m_in].iter().enumerate() {
+            for (dst, src) in out[..k].iter_mut().zip(&self.pieces[..k]) {
+                *dst = *src;
+            }
+            let mut st = Merge::after(a, kappa, a2, k, k_lo);
+            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
                 let p = self.pieces[i];
                 st.piece::<COALESCE>(
                     &mut out,
@@ -774,6 +785,16 @@ impl Merge {
         }
     }
 
+    /// A merge whose list already holds `n` untouched pieces, the last one ending at `x_lo`.
+    #[inline(always)]
+    fn after(a: f64, kappa: f64, a2: f64, n: usize, x_lo: f64) -> Self {
+        Self {
+            n,
+            x_lo,
+            ..Self::new(a, kappa, a2)
+        }
+    }
+
     /// The parts of the trial piece `p` (inner radius the last piece's outer one) cut at
     /// `cut`: the stuck part `x <= cut` as it is, the slipping part onto the limit
     /// ([`slip_to_limit`], its work added to `dissipated`); `entering`: the piece of springs
@@ -879,15 +900,25 @@ fn enforce_capacity<const N: usize>(
         }
         // Otherwise the least-squares merge (force-preserving, energy-non-increasing) of the
         // narrowest neighbour pair whose merged field stays within the limit.
-        let mut order = [(0.0f64, 0usize); 2 * (MAX_PIECES + 1)];
+        // The pairs are tried narrowest first (ties: inner first), each found by a scan of the
+        // widths: the first try nearly always succeeds, so sorting them all costs more.
+        let mut width = [0.0f64; 2 * (MAX_PIECES + 1)];
         let mut lo = 0.0;
         for i in 0..n - 1 {
-            order[i] = (out[i + 1].x_hi - lo, i);
+            width[i] = out[i + 1].x_hi - lo;
             lo = out[i].x_hi;
         }
-        order[..n - 1].sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         let mut merged = false;
-        for &(_, i) in &order[..n - 1] {
+        let mut tried: u32 = 0;
+        for _ in 0..n - 1 {
+            let mut i = usize::MAX;
+            for j in 0..n - 1 {
+                if tried >> j & 1 == 0 && (i == usize::MAX || width[j].total_cmp(&width[i]).is_lt())
+                {
+                    i = j;
+                }
+            }
+            tried |= 1 << i;
             let lo = if i == 0 { 0.0 } else { out[i - 1].x_hi };
             let (p, q) = (out[i], out[i + 1]);
             let old = piece_u2(&p, a, lo, p.x_hi) + piece_u2(&q, a, p.x_hi, q.x_hi);
