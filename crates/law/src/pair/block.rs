@@ -216,6 +216,12 @@ fn mask(b: bool) -> f64 {
     f64::from_bits((b as u64).wrapping_neg())
 }
 
+/// Lane `l` of a vector stored by components.
+#[inline(always)]
+fn lane3(a: &[[f64; LANES]; 3], l: usize) -> Vec3 {
+    Vec3::new(a[0][l], a[1][l], a[2][l])
+}
+
 #[inline(always)]
 fn bits(x: f64) -> u64 {
     x.to_bits()
@@ -481,7 +487,7 @@ fn sphere_front<T: TangentialLaw>(
 
     // The carried basis (`carry_tangent`, the projection branch); the kernel's spin `0.5 * s`
     // is the same product as `s * 0.5`.
-    let t1 = carried_t1(h, n, (wp + wq).dot(n) * 0.5, dt, &mut ok);
+    let (t1, mut ok) = carried_t1(h, n, (wp + wq).dot(n) * 0.5, dt, ok);
     let t2 = n.cross(t1);
 
     // Normal force: Hertz + Tsuji, never attractive.
@@ -528,7 +534,7 @@ fn sphere_front<T: TangentialLaw>(
 /// The carried first tangent of the pairs with histories `h` on the new normals `n`, turned by
 /// the pairs' mean spins `spin` \[rad/s\] over the step `dt` \[s\]: the one-contact kernel's
 /// `carry_tangent` (the projection branch, `spin_without_axial` and `renormalize`), operation
-/// for operation; `ok` loses the lanes it does not take (a normal that turned beyond 45
+/// for operation, and `ok` without the lanes it does not take (a normal that turned beyond 45
 /// degrees, a tangent that degenerates).
 #[inline(always)]
 fn carried_t1<T: TangentialLaw>(
@@ -536,11 +542,12 @@ fn carried_t1<T: TangentialLaw>(
     n: V,
     spin: F,
     dt: f64,
-    ok: &mut M,
-) -> V {
+    ok: M,
+) -> (V, M) {
+    let mut ok = ok;
     let t1_old = V::gather(|l| h[l].t1);
     let from = V::gather(|l| h[l].normal);
-    *ok = ok.and(from.dot(n).gt(F::splat(std::f64::consts::FRAC_1_SQRT_2)));
+    ok = ok.and(from.dot(n).gt(F::splat(std::f64::consts::FRAC_1_SQRT_2)));
     let angle = spin * dt;
     let a2 = angle * angle;
     let mut s = angle * (F::splat(1.0) - a2 * (1.0 / 6.0));
@@ -568,14 +575,14 @@ fn carried_t1<T: TangentialLaw>(
     let far = M(std::array::from_fn(|l| f64::from_bits(!bits(near.0[l])))).any();
     if far {
         let len = l2.sqrt();
-        *ok = ok.and(M(std::array::from_fn(|l| {
+        ok = ok.and(M(std::array::from_fn(|l| {
             f64::from_bits(
                 bits(near.0[l]) | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
             )
         })));
-        near.sel_v(newton, t * (F::splat(1.0) / len))
+        (near.sel_v(newton, t * (F::splat(1.0) / len)), ok)
     } else {
-        newton
+        (newton, ok)
     }
 }
 
@@ -831,6 +838,7 @@ pub fn exact_sphere_block_lanes(
     let (mut cx, mut cy) = (zero, zero);
     let (mut slip, mut creep, mut truncation) = (zero, zero, zero);
     let mut done = 0;
+    let (t1a, na) = (f.t1.store(), f.n.store());
     for l in 0..used.min(LANES) {
         if bits(ok[l]) == 0 {
             continue;
@@ -856,8 +864,8 @@ pub fn exact_sphere_block_lanes(
         (q_x.0[l], q_y.0[l]) = (s.q.x, s.q.y);
         (cx.0[l], cy.0[l]) = (s.creep_displacement.x, s.creep_displacement.y);
         (slip.0[l], creep.0[l], truncation.0[l]) = (s.slip, s.creep, s.truncation);
-        hl.t1 = f.t1.lane(l);
-        hl.normal = f.n.lane(l);
+        hl.t1 = lane3(&t1a, l);
+        hl.normal = lane3(&na, l);
         hl.overlap = f.delta.0[l];
     }
 
@@ -1053,7 +1061,7 @@ pub fn wall_block_lanes<T: TangentialLaw>(
     let cp = closest - n * (delta * 0.5);
     // `m*` is the sphere's mass where it can move (the wall cannot), `R*` its radius
     // (`PairBody::reduced_mass`, `PairConstants::pair_material`).
-    let mut ok = delta
+    let ok = delta
         .gt(zero)
         .and(mq.gt(zero))
         .and(mq.finite(big))
@@ -1071,9 +1079,9 @@ pub fn wall_block_lanes<T: TangentialLaw>(
     let delta_dot = du.dot(n).neg();
 
     // The carried basis.
-    let t1 = {
+    let (t1, ok) = {
         let h: [&ContactHistory<T>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
-        carried_t1(&h, n, (v0 + wq).dot(n) * 0.5, dt, &mut ok)
+        carried_t1(&h, n, (v0 + wq).dot(n) * 0.5, dt, ok)
     };
     let t2 = n.cross(t1);
 
@@ -1109,6 +1117,9 @@ pub fn wall_block_lanes<T: TangentialLaw>(
     let mut creeping = [false; LANES];
     let (mut slip, mut creep, mut truncation) = (zero, zero, zero);
     let mut done = 0;
+    // The basis lane by lane from arrays stored once (extracting a lane from the vectors in the
+    // loop stored them again at every lane).
+    let (t1a, na) = (t1.store(), n.store());
     for l in 0..used.min(LANES) {
         if bits(ok[l]) == 0 {
             continue;
@@ -1128,8 +1139,8 @@ pub fn wall_block_lanes<T: TangentialLaw>(
         (q_x.0[l], q_y.0[l]) = (s.q.x, s.q.y);
         creeping[l] = s.creep_displacement != Vec2::ZERO;
         (slip.0[l], creep.0[l], truncation.0[l]) = (s.slip, s.creep, s.truncation);
-        hl.t1 = t1.lane(l);
-        hl.normal = n.lane(l);
+        hl.t1 = lane3(&t1a, l);
+        hl.normal = lane3(&na, l);
         hl.overlap = delta.0[l];
     }
 
