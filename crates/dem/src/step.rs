@@ -1019,8 +1019,10 @@ impl Pending {
         dpq: Vec3,
     ) -> bool {
         let (p, q) = (entry.3 as usize, entry.4 as usize);
+        // `len < LANES` here (a full block is flushed); the mask tells the compiler so, which
+        // drops the lane checks and lets it store each value as it loads it.
+        let l = self.len % LANES;
         let xp = arr.x[p];
-        let l = self.len;
         self.constants = ci;
         self.entry[l] = entry;
         self.pairs.set(
