@@ -398,10 +398,6 @@ impl V {
     fn store(self) -> [[f64; LANES]; 3] {
         [self.x.0, self.y.0, self.z.0]
     }
-    #[inline(always)]
-    fn lane(self, l: usize) -> Vec3 {
-        Vec3::new(self.x.0[l], self.y.0[l], self.z.0[l])
-    }
 }
 
 /// The part of [`pair_force`](super::pair_force) before the tangential law, on [`LANES`]
@@ -755,6 +751,9 @@ pub fn cheap_sphere_block_lanes(
         };
     let ok = ok.0;
     let mut done = 0;
+    // The basis lane by lane from arrays stored once (extracting a lane from the vectors in the
+    // loop stored them again at every lane).
+    let (t1a, na) = (t1.store(), n.store());
     for l in 0..used.min(LANES) {
         if bits(ok[l]) == 0 {
             continue;
@@ -763,8 +762,8 @@ pub fn cheap_sphere_block_lanes(
         let hl = &mut hist[idx[l]];
         hl.tangential.q = Vec2::new(q_x.0[l], q_y.0[l]);
         hl.tangential.k = k.0[l];
-        hl.t1 = t1.lane(l);
-        hl.normal = n.lane(l);
+        hl.t1 = lane3(&t1a, l);
+        hl.normal = lane3(&na, l);
         hl.overlap = delta.0[l];
     }
     *out = SphereForceLanes {
