@@ -749,6 +749,17 @@ pub fn cheap_sphere_block_lanes(
             y: zero,
             z: zero,
         };
+    *out = SphereForceLanes {
+        force_p: f_p.store(),
+        torque_p: torque_p.store(),
+        torque_q: torque_q.store(),
+        sliding: std::array::from_fn(|l| bits(sliding.0[l]) != 0),
+        creep_displacement: [cx.0, cy.0],
+        damping: damping.0,
+        slip: slip.0,
+        creep: creep_e.0,
+        truncation: truncation.0,
+    };
     let ok = ok.0;
     let mut done = 0;
     // The basis lane by lane from arrays stored once (extracting a lane from the vectors in the
@@ -766,17 +777,6 @@ pub fn cheap_sphere_block_lanes(
         hl.normal = lane3(&na, l);
         hl.overlap = delta.0[l];
     }
-    *out = SphereForceLanes {
-        force_p: f_p.store(),
-        torque_p: torque_p.store(),
-        torque_q: torque_q.store(),
-        sliding: std::array::from_fn(|l| bits(sliding.0[l]) != 0),
-        creep_displacement: [cx.0, cy.0],
-        damping: damping.0,
-        slip: slip.0,
-        creep: creep_e.0,
-        truncation: truncation.0,
-    };
     done
 }
 
