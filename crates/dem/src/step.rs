@@ -177,13 +177,18 @@ impl<T: TangentialLaw> Dem<T> {
     ) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
+        // The material of every particle, where they share one.
+        let uniform_mat = match self.mat.split_first() {
+            Some((&m0, rest)) if rest.iter().all(|&m| m == m0) => Some(m0),
+            _ => None,
+        };
         let mut i0 = 0;
         while i0 < n {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
             if Self::use_block_lanes(wide) {
-                self.pair_chunk_block(i0, i1, &mut hist, dt, &mut c, &mut e);
+                self.pair_chunk_block(i0, i1, uniform_mat, &mut hist, dt, &mut c, &mut e);
             } else {
                 let arrays = arrays!(self);
                 for i in i0..i1 {
@@ -228,6 +233,7 @@ impl<T: TangentialLaw> Dem<T> {
         &mut self,
         i0: usize,
         i1: usize,
+        uniform_mat: Option<u32>,
         hist: &mut [ContactHistory<T>],
         dt: f64,
         c: &mut DemCounts,
@@ -251,6 +257,13 @@ impl<T: TangentialLaw> Dem<T> {
         let periodic = arr.grid.is_periodic();
         let mut last_mats = (u32::MAX, u32::MAX);
         let (mut last_ci, mut last_block) = (0, false);
+        // One material for every particle (the rule): its pair's constants for every entry,
+        // without the two loads and the compare per entry.
+        let uniform = uniform_mat.is_some();
+        if let Some(m0) = uniform_mat {
+            last_ci = arr.table.pair_index(m0 as usize, m0 as usize);
+            last_block = block_supports(&arr.table.pairs[last_ci]);
+        }
         for i in i0..i1 {
             let (a, b) = (nl_start[i] as usize, nl_start[i + 1] as usize);
             let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
@@ -270,11 +283,13 @@ impl<T: TangentialLaw> Dem<T> {
                     } else {
                         (j, i, -d)
                     };
-                    let mats = (arr.mat[p], arr.mat[q]);
-                    if mats != last_mats {
-                        last_mats = mats;
-                        last_ci = arr.table.pair_index(mats.0 as usize, mats.1 as usize);
-                        last_block = block_supports(&arr.table.pairs[last_ci]);
+                    if !uniform {
+                        let mats = (arr.mat[p], arr.mat[q]);
+                        if mats != last_mats {
+                            last_mats = mats;
+                            last_ci = arr.table.pair_index(mats.0 as usize, mats.1 as usize);
+                            last_block = block_supports(&arr.table.pairs[last_ci]);
+                        }
                     }
                     let ci = last_ci;
                     if last_block {
