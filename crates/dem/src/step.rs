@@ -227,7 +227,9 @@ impl<T: TangentialLaw> Dem<T> {
     /// the block does not take first runs the waiting lanes (so that the sums keep the list's
     /// order), then the one-contact kernel ([`Arrays::pair`]), unless it is a virgin entry
     /// apart (which adds nothing). The lanes the block leaves go to the one-contact kernel in
-    /// their place. The same bits as the one-contact loop.
+    /// their place. The same bits as the one-contact loop. `uniform_mat`: the material of
+    /// every particle where they share one (its pair's constants then serve every entry).
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn pair_chunk_block(
         &mut self,

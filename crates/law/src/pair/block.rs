@@ -1067,7 +1067,11 @@ pub fn wall_block_lanes<T: TangentialLaw>(
         .and(rq.finite(big));
 
     // Kuhn & Bagi's rates, the general form (`contact_rates_and_approach`, plane p).
-    let up = V::load(&walls.velocity) + v0.cross(cp - cp);
+    // The wall's arm to the contact point: the point less the wall body's position, which is
+    // the contact point itself (zero where finite, as the kernel computes it).
+    #[allow(clippy::eq_op)]
+    let arm_p = cp - cp;
+    let up = V::load(&walls.velocity) + v0.cross(arm_p);
     let uq = vq + wq.cross(cp - xq);
     let du = uq - up;
     let v_disp = du - n * du.dot(n);
