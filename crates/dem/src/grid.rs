@@ -25,7 +25,7 @@ const HALF: [[i32; 3]; 13] = [
 /// Most cells per particle (a sparse cloud gets larger cells instead).
 const MAX_CELLS_PER_PARTICLE: f64 = 4.0;
 
-/// The half stencil's particle ranges of one cell (see [`Grid::for_half_neighbours`]).
+/// The half stencil's particle ranges of one cell (see [`Grid::half_neighbour_ranges`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Stencil {
     /// The cell they are of (`u32::MAX`: none yet).
@@ -206,31 +206,27 @@ impl Grid {
         order
     }
 
-    /// Calls `f(j)` for every particle `j` of the own cell with `j > i` and of the 13 half-stencil
-    /// cells of particle `i` (sorted order), in that order. Needs at least 3 cells on periodic
+    /// The particles `j` of the own cell with `j > i` and of the 13 half-stencil cells of
+    /// particle `i` (sorted order), in that order. Needs at least 3 cells on periodic
     /// axes (checked in [`Grid::new`]) so that no cell is visited twice. `stencil` caches the
     /// stencil's particle ranges for the cell of the last call (consecutive particles of one
     /// cell share it: about two per cell in a dense packing); start with
     /// `Stencil::default()`.
-    #[inline]
-    pub(crate) fn for_half_neighbours(
+    ///
+    /// Returned as the particle ranges to sweep, `i + 1..` the end of `i`'s cell first, then
+    /// the stencil's, so that the caller's loop body is written once, inline (a closure called
+    /// from two loops was not inlined: a call per candidate).
+    #[inline(always)]
+    pub(crate) fn half_neighbour_ranges<'s>(
         &self,
         i: usize,
-        stencil: &mut Stencil,
-        mut f: impl FnMut(usize),
-    ) {
+        stencil: &'s mut Stencil,
+    ) -> ((u32, u32), &'s [(u32, u32)]) {
         let c = self.cell_of[i];
         if stencil.cell != c {
             self.fill_stencil(c as usize, stencil);
         }
-        for j in i + 1..stencil.end as usize {
-            f(j);
-        }
-        for &(a, b) in &stencil.ranges[..stencil.len] {
-            for j in a as usize..b as usize {
-                f(j);
-            }
-        }
+        ((i as u32 + 1, stencil.end), &stencil.ranges[..stencil.len])
     }
 
     /// The particle ranges of cell `c`'s half stencil (the 13 cells after it in [`HALF`]'s

@@ -144,19 +144,28 @@ pub(crate) fn half_neighbours_of(
     let xi = x[i];
     let ri = r[i];
     let periodic = grid.is_periodic();
-    grid.for_half_neighbours(i, stencil, |j| {
-        let d = if periodic {
-            grid.min_image(x[j] - xi)
-        } else {
-            x[j] - xi
-        };
-        let cut = ri + r[j] + skin;
-        if d.dot(d) < cut * cut {
-            let (a, b) = (id[i], id[j]);
-            nl_j.push(j as u32);
-            src.push(carry.find(a.min(b), a.max(b)).map_or(NONE, |k| k as u32));
+    let id_i = id[i];
+    let (own, ranges) = grid.half_neighbour_ranges(i, stencil);
+    for (a, b) in std::iter::once(own).chain(ranges.iter().copied()) {
+        let (a, b) = (a as usize, b as usize);
+        for ((j, &xj), &rj) in (a..b).zip(&x[a..b]).zip(&r[a..b]) {
+            let d = if periodic {
+                grid.min_image(xj - xi)
+            } else {
+                xj - xi
+            };
+            let cut = ri + rj + skin;
+            if d.dot(d) < cut * cut {
+                let id_j = id[j];
+                nl_j.push(j as u32);
+                src.push(
+                    carry
+                        .find(id_i.min(id_j), id_i.max(id_j))
+                        .map_or(NONE, |k| k as u32),
+                );
+            }
         }
-    });
+    }
 }
 
 /// Rearranges `v` in place so that afterwards `v[k]` is the old `v[src[k]]` (or `fill` where
@@ -284,6 +293,7 @@ impl Carry {
         self.wall_start = csr(&mut self.walls, n);
     }
     /// Index in the old pair list of the contact `(lo, hi)`, if it was touching.
+    #[inline]
     fn find(&self, lo: u32, hi: u32) -> Option<usize> {
         lookup(&self.start, &self.entries, lo, hi)
     }

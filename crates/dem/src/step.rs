@@ -4,7 +4,8 @@
 use creep_law::pair::SphereForces;
 use creep_law::pair::{
     ContactGeometry, ContactHistory, LANES, PairBody, SphereForceLanes, SphereLanes, SpherePair,
-    TangentialLaw, block_supports, pair_force, release,
+    TangentialLaw, WallForceLanes, WallLanes, WallSphere, block_supports, pair_force, release,
+    wall_block_lanes,
 };
 use creep_law::{Surface, Vec3};
 
@@ -176,13 +177,18 @@ impl<T: TangentialLaw> Dem<T> {
     ) {
         let n = self.len();
         let mut hist = std::mem::take(&mut self.nl_h);
+        // The material of every particle, where they share one.
+        let uniform_mat = match self.mat.split_first() {
+            Some((&m0, rest)) if rest.iter().all(|&m| m == m0) => Some(m0),
+            _ => None,
+        };
         let mut i0 = 0;
         while i0 < n {
             let i1 = (i0 + CHUNK).min(n);
             let mut c = DemCounts::default();
             let mut e = DemEnergy::default();
             if Self::use_block_lanes(wide) {
-                self.pair_chunk_block(i0, i1, &mut hist, dt, &mut c, &mut e);
+                self.pair_chunk_block(i0, i1, uniform_mat, &mut hist, dt, &mut c, &mut e);
             } else {
                 let arrays = arrays!(self);
                 for i in i0..i1 {
@@ -221,12 +227,15 @@ impl<T: TangentialLaw> Dem<T> {
     /// the block does not take first runs the waiting lanes (so that the sums keep the list's
     /// order), then the one-contact kernel ([`Arrays::pair`]), unless it is a virgin entry
     /// apart (which adds nothing). The lanes the block leaves go to the one-contact kernel in
-    /// their place. The same bits as the one-contact loop.
+    /// their place. The same bits as the one-contact loop. `uniform_mat`: the material of
+    /// every particle where they share one (its pair's constants then serve every entry).
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn pair_chunk_block(
         &mut self,
         i0: usize,
         i1: usize,
+        uniform_mat: Option<u32>,
         hist: &mut [ContactHistory<T>],
         dt: f64,
         c: &mut DemCounts,
@@ -250,6 +259,13 @@ impl<T: TangentialLaw> Dem<T> {
         let periodic = arr.grid.is_periodic();
         let mut last_mats = (u32::MAX, u32::MAX);
         let (mut last_ci, mut last_block) = (0, false);
+        // One material for every particle (the rule): its pair's constants for every entry,
+        // without the two loads and the compare per entry.
+        let uniform = uniform_mat.is_some();
+        if let Some(m0) = uniform_mat {
+            last_ci = arr.table.pair_index(m0 as usize, m0 as usize);
+            last_block = block_supports(&arr.table.pairs[last_ci]);
+        }
         for i in i0..i1 {
             let (a, b) = (nl_start[i] as usize, nl_start[i + 1] as usize);
             let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
@@ -269,11 +285,13 @@ impl<T: TangentialLaw> Dem<T> {
                     } else {
                         (j, i, -d)
                     };
-                    let mats = (arr.mat[p], arr.mat[q]);
-                    if mats != last_mats {
-                        last_mats = mats;
-                        last_ci = arr.table.pair_index(mats.0 as usize, mats.1 as usize);
-                        last_block = block_supports(&arr.table.pairs[last_ci]);
+                    if !uniform {
+                        let mats = (arr.mat[p], arr.mat[q]);
+                        if mats != last_mats {
+                            last_mats = mats;
+                            last_ci = arr.table.pair_index(mats.0 as usize, mats.1 as usize);
+                            last_block = block_supports(&arr.table.pairs[last_ci]);
+                        }
                     }
                     let ci = last_ci;
                     if last_block {
@@ -500,21 +518,122 @@ impl<T: TangentialLaw> Dem<T> {
         })
     }
 
-    /// [`Dem::wall_forces`]' loop, inlined into each compiled copy (`kernels`).
+    /// [`Dem::wall_forces`]' loop, inlined into each compiled copy (`kernels`): touching
+    /// contacts with constants the block kernel takes and a history that is not virgin wait,
+    /// [`LANES`] at a time, for [`wall_block_lanes`], whose lanes are added as they come; an
+    /// entry the block does not take first runs the waiting lanes (so that the sums keep the
+    /// list's order), then the one-contact kernel ([`Dem::wall_pair`]), as do the lanes the
+    /// block leaves, in their place. The same bits as the one-contact loop.
     #[inline(always)]
     fn wall_forces_body(&mut self, dt: f64, counts: &mut DemCounts, energy: &mut DemEnergy) {
         for f in &mut self.wall_force {
             *f = Vec3::ZERO;
         }
         let mut hist = std::mem::take(&mut self.wl_h);
+        let mut pend = WallPending::default();
+        let mut lanes = WallForceLanes::default();
+        let mut last_mats = (usize::MAX, u32::MAX);
+        let (mut last_ci, mut last_block) = (0, false);
         for e in 0..hist.len() {
             if let Some(ahead) = hist.get(e + crate::kernels::PREFETCH_AHEAD) {
                 crate::kernels::prefetch(ahead);
             }
+            let k = self.wl_k[e] as usize;
+            let i = self.wl_i[e] as usize;
+            let wall = self.walls[k];
+            let (xq, rq) = (self.x[i], self.r[i]);
+            // The overlap as `ContactGeometry::plane_sphere` computes it.
+            let overlap = rq - (xq - wall.point).dot(wall.normal);
+            if overlap > 0.0 && !hist[e].is_virgin() {
+                let mats = (wall.material, self.mat[i]);
+                if mats != last_mats {
+                    last_mats = mats;
+                    last_ci = self.table.pair_index(mats.0, mats.1 as usize);
+                    last_block = block_supports(&self.table.pairs[last_ci]);
+                }
+                if last_block {
+                    if pend.len > 0 && pend.constants != last_ci {
+                        self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                    }
+                    let l = pend.len;
+                    pend.constants = last_ci;
+                    pend.entry[l] = e as u32;
+                    pend.walls.set(
+                        l,
+                        &WallSphere {
+                            point: wall.point,
+                            normal: wall.normal,
+                            velocity: wall.velocity,
+                            xq,
+                            vq: self.v[i],
+                            wq: self.w[i],
+                            rq,
+                            mq: self.mass[i],
+                        },
+                    );
+                    pend.len += 1;
+                    if pend.len == LANES {
+                        self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                    }
+                    continue;
+                }
+            }
+            if pend.len > 0 {
+                self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+            }
             let out = self.wall_pair(e, &mut hist[e], dt);
             self.apply_wall(e, out, counts, energy);
         }
+        if pend.len > 0 {
+            self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+        }
         self.wl_h = hist;
+    }
+
+    /// Runs the waiting wall lanes through the block kernel (the unused lanes repeat the first,
+    /// their results dropped) and adds each lane's outputs in order; a lane the block leaves
+    /// goes through the one-contact kernel in its place.
+    #[inline(always)]
+    fn flush_walls(
+        &mut self,
+        pend: &mut WallPending,
+        hist: &mut [ContactHistory<T>],
+        dt: f64,
+        lanes: &mut WallForceLanes,
+        counts: &mut DemCounts,
+        energy: &mut DemEnergy,
+    ) {
+        let n = pend.len;
+        for l in n..LANES {
+            pend.walls.copy_lane(0, l);
+        }
+        let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }] as usize);
+        let mask = wall_block_lanes(
+            &self.table.pairs[pend.constants],
+            &pend.walls,
+            hist,
+            idx,
+            n,
+            dt,
+            lanes,
+        );
+        for (l, &e) in pend.entry[..n].iter().enumerate() {
+            let e = e as usize;
+            let out = if mask >> l & 1 == 1 {
+                let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+                Ok(WallOut {
+                    force_p: v(&lanes.force_p),
+                    torque_q: v(&lanes.torque_q),
+                    dissipation: lanes.dissipation(l),
+                    sliding: lanes.sliding[l],
+                    creeping: lanes.creeping[l],
+                })
+            } else {
+                self.wall_pair(e, &mut hist[e], dt)
+            };
+            self.apply_wall(e, out, counts, energy);
+        }
+        pend.len = 0;
     }
 
     /// The contact of wall-list entry `e` (the wall is p): the kernel's output when touching,
@@ -917,8 +1036,10 @@ impl Pending {
         dpq: Vec3,
     ) -> bool {
         let (p, q) = (entry.3 as usize, entry.4 as usize);
+        // `len < LANES` here (a full block is flushed); the mask tells the compiler so, which
+        // drops the lane checks and lets it store each value as it loads it.
+        let l = self.len % LANES;
         let xp = arr.x[p];
-        let l = self.len;
         self.constants = ci;
         self.entry[l] = entry;
         self.pairs.set(
@@ -939,6 +1060,16 @@ impl Pending {
         self.len += 1;
         self.len == LANES
     }
+}
+
+/// The wall contacts waiting for the block kernel: their wall-list entries, bodies, and the
+/// index of their pair constants.
+#[derive(Default)]
+struct WallPending {
+    len: usize,
+    constants: usize,
+    entry: [u32; LANES],
+    walls: WallLanes,
 }
 
 /// [`tally`] of a window entry's outputs.

@@ -52,8 +52,9 @@ mod kernel;
 mod tiers;
 
 pub use block::{
-    LANES, SphereForceLanes, SphereForces, SphereLanes, SpherePair, block_supports,
-    cheap_sphere_block, cheap_sphere_block_lanes, exact_sphere_block, exact_sphere_block_lanes,
+    LANES, SphereForceLanes, SphereForces, SphereLanes, SpherePair, WallForceLanes, WallLanes,
+    WallSphere, block_supports, cheap_sphere_block, cheap_sphere_block_lanes, exact_sphere_block,
+    exact_sphere_block_lanes, wall_block_lanes,
 };
 pub use constants::{ContactGeometry, PairBody, PairConstants};
 pub use damping::{MIN_RESTITUTION, damping_coefficient};

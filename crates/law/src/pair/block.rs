@@ -216,6 +216,12 @@ fn mask(b: bool) -> f64 {
     f64::from_bits((b as u64).wrapping_neg())
 }
 
+/// Lane `l` of a vector stored by components.
+#[inline(always)]
+fn lane3(a: &[[f64; LANES]; 3], l: usize) -> Vec3 {
+    Vec3::new(a[0][l], a[1][l], a[2][l])
+}
+
 #[inline(always)]
 fn bits(x: f64) -> u64 {
     x.to_bits()
@@ -392,10 +398,6 @@ impl V {
     fn store(self) -> [[f64; LANES]; 3] {
         [self.x.0, self.y.0, self.z.0]
     }
-    #[inline(always)]
-    fn lane(self, l: usize) -> Vec3 {
-        Vec3::new(self.x.0[l], self.y.0[l], self.z.0[l])
-    }
 }
 
 /// The part of [`pair_force`](super::pair_force) before the tangential law, on [`LANES`]
@@ -479,48 +481,9 @@ fn sphere_front<T: TangentialLaw>(
     let v_disp = dv_t - a_w * rho_p - b_w * rho_q;
     let delta_dot = dvn.neg();
 
-    // The carried basis (`carry_tangent`, the projection branch).
-    let t1_old = V::gather(|l| h[l].t1);
-    let from = V::gather(|l| h[l].normal);
-    ok = ok.and(from.dot(n).gt(F::splat(std::f64::consts::FRAC_1_SQRT_2)));
-    let spin = (wp + wq).dot(n) * 0.5;
-    // `0.5 * s` and `s * 0.5` are the same product.
-    let angle = spin * dt;
-    let a2 = angle * angle;
-    let mut s = angle * (F::splat(1.0) - a2 * (1.0 / 6.0));
-    let mut cs = F::splat(1.0) - a2 * 0.5 * (F::splat(1.0) - a2 * (1.0 / 12.0));
-    // Beyond 1e-3 rad per step (`small_sin_cos`'s series) libm's, lane by lane (one vector
-    // test for the block first: the rule is that no lane turns so far).
-    let far_turn = M(std::array::from_fn(|l| mask(!(angle.0[l].abs() < 1e-3))));
-    if far_turn.any() {
-        for l in 0..LANES {
-            if !(angle.0[l].abs() < 1e-3) {
-                (s.0[l], cs.0[l]) = angle.0[l].sin_cos();
-            }
-        }
-    }
-    let spun = t1_old * cs + n.cross(t1_old) * s;
-    let zero_angle = M(std::array::from_fn(|l| mask(angle.0[l] == 0.0)));
-    let spun = zero_angle.sel_v(t1_old, spun);
-    let t = spun - n * spun.dot(n);
-    let l2 = t.dot(t);
-    // `renormalize`: one Newton step near 1, else `try_normalize`.
-    let near = lanes!(l => (l2.0[l] - 1.0).abs()).lt(F::splat(1e-8));
-    let newton = t * (F::splat(1.5) - l2 * 0.5);
-    // The square root and the division only where some lane needs them (every lane near 1 is
-    // the rule): the selects below give the same bits either way.
-    let far = M(std::array::from_fn(|l| f64::from_bits(!bits(near.0[l])))).any();
-    let t1 = if far {
-        let len = l2.sqrt();
-        ok = ok.and(M(std::array::from_fn(|l| {
-            f64::from_bits(
-                bits(near.0[l]) | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
-            )
-        })));
-        near.sel_v(newton, t * (F::splat(1.0) / len))
-    } else {
-        newton
-    };
+    // The carried basis (`carry_tangent`, the projection branch); the kernel's spin `0.5 * s`
+    // is the same product as `s * 0.5`.
+    let (t1, mut ok) = carried_t1(h, n, (wp + wq).dot(n) * 0.5, dt, ok);
     let t2 = n.cross(t1);
 
     // Normal force: Hertz + Tsuji, never attractive.
@@ -561,6 +524,61 @@ fn sphere_front<T: TangentialLaw>(
         rho_p,
         rho_q,
         r_star,
+    }
+}
+
+/// The carried first tangent of the pairs with histories `h` on the new normals `n`, turned by
+/// the pairs' mean spins `spin` \[rad/s\] over the step `dt` \[s\]: the one-contact kernel's
+/// `carry_tangent` (the projection branch, `spin_without_axial` and `renormalize`), operation
+/// for operation, and `ok` without the lanes it does not take (a normal that turned beyond 45
+/// degrees, a tangent that degenerates).
+#[inline(always)]
+fn carried_t1<T: TangentialLaw>(
+    h: &[&ContactHistory<T>; LANES],
+    n: V,
+    spin: F,
+    dt: f64,
+    ok: M,
+) -> (V, M) {
+    let mut ok = ok;
+    let t1_old = V::gather(|l| h[l].t1);
+    let from = V::gather(|l| h[l].normal);
+    ok = ok.and(from.dot(n).gt(F::splat(std::f64::consts::FRAC_1_SQRT_2)));
+    let angle = spin * dt;
+    let a2 = angle * angle;
+    let mut s = angle * (F::splat(1.0) - a2 * (1.0 / 6.0));
+    let mut cs = F::splat(1.0) - a2 * 0.5 * (F::splat(1.0) - a2 * (1.0 / 12.0));
+    // Beyond 1e-3 rad per step (`small_sin_cos`'s series) libm's, lane by lane (one vector
+    // test for the block first: the rule is that no lane turns so far).
+    let far_turn = M(std::array::from_fn(|l| mask(!(angle.0[l].abs() < 1e-3))));
+    if far_turn.any() {
+        for l in 0..LANES {
+            if !(angle.0[l].abs() < 1e-3) {
+                (s.0[l], cs.0[l]) = angle.0[l].sin_cos();
+            }
+        }
+    }
+    let spun = t1_old * cs + n.cross(t1_old) * s;
+    let zero_angle = M(std::array::from_fn(|l| mask(angle.0[l] == 0.0)));
+    let spun = zero_angle.sel_v(t1_old, spun);
+    let t = spun - n * spun.dot(n);
+    let l2 = t.dot(t);
+    // `renormalize`: one Newton step near 1, else `try_normalize`.
+    let near = lanes!(l => (l2.0[l] - 1.0).abs()).lt(F::splat(1e-8));
+    let newton = t * (F::splat(1.5) - l2 * 0.5);
+    // The square root and the division only where some lane needs them (every lane near 1 is
+    // the rule): the selects below give the same bits either way.
+    let far = M(std::array::from_fn(|l| f64::from_bits(!bits(near.0[l])))).any();
+    if far {
+        let len = l2.sqrt();
+        ok = ok.and(M(std::array::from_fn(|l| {
+            f64::from_bits(
+                bits(near.0[l]) | bits(mask(len.0[l].is_finite() & (len.0[l] > f64::MIN_POSITIVE))),
+            )
+        })));
+        (near.sel_v(newton, t * (F::splat(1.0) / len)), ok)
+    } else {
+        (newton, ok)
     }
 }
 
@@ -731,20 +749,6 @@ pub fn cheap_sphere_block_lanes(
             y: zero,
             z: zero,
         };
-    let ok = ok.0;
-    let mut done = 0;
-    for l in 0..used.min(LANES) {
-        if bits(ok[l]) == 0 {
-            continue;
-        }
-        done |= 1 << l;
-        let hl = &mut hist[idx[l]];
-        hl.tangential.q = Vec2::new(q_x.0[l], q_y.0[l]);
-        hl.tangential.k = k.0[l];
-        hl.t1 = t1.lane(l);
-        hl.normal = n.lane(l);
-        hl.overlap = delta.0[l];
-    }
     *out = SphereForceLanes {
         force_p: f_p.store(),
         torque_p: torque_p.store(),
@@ -756,6 +760,23 @@ pub fn cheap_sphere_block_lanes(
         creep: creep_e.0,
         truncation: truncation.0,
     };
+    let ok = ok.0;
+    let mut done = 0;
+    // The basis lane by lane from arrays stored once (extracting a lane from the vectors in the
+    // loop stored them again at every lane).
+    let (t1a, na) = (t1.store(), n.store());
+    for l in 0..used.min(LANES) {
+        if bits(ok[l]) == 0 {
+            continue;
+        }
+        done |= 1 << l;
+        let hl = &mut hist[idx[l]];
+        hl.tangential.q = Vec2::new(q_x.0[l], q_y.0[l]);
+        hl.tangential.k = k.0[l];
+        hl.t1 = lane3(&t1a, l);
+        hl.normal = lane3(&na, l);
+        hl.overlap = delta.0[l];
+    }
     done
 }
 
@@ -816,6 +837,7 @@ pub fn exact_sphere_block_lanes(
     let (mut cx, mut cy) = (zero, zero);
     let (mut slip, mut creep, mut truncation) = (zero, zero, zero);
     let mut done = 0;
+    let (t1a, na) = (f.t1.store(), f.n.store());
     for l in 0..used.min(LANES) {
         if bits(ok[l]) == 0 {
             continue;
@@ -841,8 +863,8 @@ pub fn exact_sphere_block_lanes(
         (q_x.0[l], q_y.0[l]) = (s.q.x, s.q.y);
         (cx.0[l], cy.0[l]) = (s.creep_displacement.x, s.creep_displacement.y);
         (slip.0[l], creep.0[l], truncation.0[l]) = (s.slip, s.creep, s.truncation);
-        hl.t1 = f.t1.lane(l);
-        hl.normal = f.n.lane(l);
+        hl.t1 = lane3(&t1a, l);
+        hl.normal = lane3(&na, l);
         hl.overlap = f.delta.0[l];
     }
 
@@ -868,6 +890,282 @@ pub fn exact_sphere_block_lanes(
         sliding: std::array::from_fn(|l| mu_finite && bits(sliding.0[l]) != 0),
         creep_displacement: [cx.0, cy.0],
         damping: f.damping.0,
+        slip: slip.0,
+        creep: creep.0,
+        truncation: truncation.0,
+    };
+    done
+}
+
+/// One lane's bodies of a wall contact: the wall p (a plane through `point` with unit
+/// `normal` towards the sphere, moving at `velocity`, not turning, immovable) and the sphere q.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WallSphere {
+    /// A point of the wall's plane \[m\].
+    pub point: Vec3,
+    /// The wall's unit normal, towards the sphere [-].
+    pub normal: Vec3,
+    /// Velocity of the wall [m/s].
+    pub velocity: Vec3,
+    /// Centre of q \[m\].
+    pub xq: Vec3,
+    /// Velocity of q [m/s].
+    pub vq: Vec3,
+    /// Angular velocity of q [rad/s].
+    pub wq: Vec3,
+    /// Radius of q \[m\].
+    pub rq: f64,
+    /// Mass of q \[kg\].
+    pub mq: f64,
+}
+
+/// The bodies of [`LANES`] wall contacts, lane by lane (structure of arrays).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WallLanes {
+    point: [[f64; LANES]; 3],
+    normal: [[f64; LANES]; 3],
+    velocity: [[f64; LANES]; 3],
+    xq: [[f64; LANES]; 3],
+    vq: [[f64; LANES]; 3],
+    wq: [[f64; LANES]; 3],
+    rq: [f64; LANES],
+    mq: [f64; LANES],
+}
+
+impl WallLanes {
+    /// Sets lane `l` (< [`LANES`]; panics otherwise) to the contact `s`.
+    #[inline(always)]
+    pub fn set(&mut self, l: usize, s: &WallSphere) {
+        assert!(l < LANES, "lane {l} of {LANES}");
+        let put = |a: &mut [[f64; LANES]; 3], v: Vec3| {
+            a[0][l] = v.x;
+            a[1][l] = v.y;
+            a[2][l] = v.z;
+        };
+        put(&mut self.point, s.point);
+        put(&mut self.normal, s.normal);
+        put(&mut self.velocity, s.velocity);
+        put(&mut self.xq, s.xq);
+        put(&mut self.vq, s.vq);
+        put(&mut self.wq, s.wq);
+        self.rq[l] = s.rq;
+        self.mq[l] = s.mq;
+    }
+
+    /// Copies lane `from` into lane `to` (to fill the unused lanes of a block).
+    #[inline]
+    pub fn copy_lane(&mut self, from: usize, to: usize) {
+        for a in [
+            &mut self.point,
+            &mut self.normal,
+            &mut self.velocity,
+            &mut self.xq,
+            &mut self.vq,
+            &mut self.wq,
+        ] {
+            for c in a.iter_mut() {
+                c[to] = c[from];
+            }
+        }
+        for a in [&mut self.rq, &mut self.mq] {
+            a[to] = a[from];
+        }
+    }
+}
+
+/// The outputs of [`wall_block_lanes`], lane by lane: those of
+/// [`PairForces`](super::PairForces) a DEM host uses for a wall contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WallForceLanes {
+    /// Force on the wall \[N\] (`-force_p` on the sphere), by component.
+    pub force_p: [[f64; LANES]; 3],
+    /// Torque on the sphere about its centre [N m], by component.
+    pub torque_q: [[f64; LANES]; 3],
+    /// Whether the contact is at the Coulomb limit.
+    pub sliding: [bool; LANES],
+    /// Whether the contact crept (a creep displacement not zero).
+    pub creeping: [bool; LANES],
+    /// Energy dissipated by the normal damping \[J\].
+    pub damping: [f64; LANES],
+    /// Energy dissipated by micro-slip and gross slip \[J\].
+    pub slip: [f64; LANES],
+    /// Energy dissipated by creep \[J\].
+    pub creep: [f64; LANES],
+    /// Energy added by the tier's simplifications \[J\].
+    pub truncation: [f64; LANES],
+}
+
+impl WallForceLanes {
+    /// Lane `l`'s dissipation (`rolling` zero: the block takes no rolling resistance).
+    #[inline(always)]
+    pub fn dissipation(&self, l: usize) -> PairDissipation {
+        PairDissipation {
+            damping: self.damping[l],
+            slip: self.slip[l],
+            creep: self.creep[l],
+            rolling: 0.0,
+            truncation: self.truncation[l],
+        }
+    }
+}
+
+/// The step of [`LANES`] sphere-wall contacts, either tier, with the same constants `c` (which
+/// [`block_supports`]), bodies `walls` and histories `hist[idx[l]]` (none virgin; the first
+/// `used` lanes are contacts, the others repeat one of them and are not written), time step
+/// `dt` \[s\]: [`pair_force`](super::pair_force) with the wall as p (a
+/// [`Surface::Plane`] at the contact point, moving at the wall's velocity, not turning, of
+/// infinite mass) and the sphere as q, on the geometry
+/// [`ContactGeometry::plane_sphere`](super::ContactGeometry::plane_sphere), operation for
+/// operation (the terms of the wall's zero angular velocity included, so that the signs of
+/// zeros are the kernel's). The geometry, the rates, the carried basis, Hertz + Tsuji and the
+/// outputs run on the lanes at once, the tangential law lane by lane (the tier's own step: a
+/// frictionless wall's is a few operations). For each lane whose bit the returned mask sets,
+/// its history is updated and `out` holds its outputs, the same bits as the one-contact kernel
+/// (test `wall_block_equals_the_one_contact_kernel`); the others (apart, a normal that
+/// turned far, an unloaded contact, a non-finite value) are left as they were, for the
+/// caller's one-contact kernel.
+#[inline(always)]
+pub fn wall_block_lanes<T: TangentialLaw>(
+    c: &PairConstants,
+    walls: &WallLanes,
+    hist: &mut [ContactHistory<T>],
+    idx: [usize; LANES],
+    used: usize,
+    dt: f64,
+    out: &mut WallForceLanes,
+) -> u32 {
+    if c.rolling.is_some() {
+        return 0;
+    }
+    let pm = &c.material;
+    let creep_on = c.creep.is_some();
+    let big = Big::new();
+    let zero = F::splat(0.0);
+    let v0 = V {
+        x: zero,
+        y: zero,
+        z: zero,
+    };
+    let x0 = V::load(&walls.point);
+    let n = V::load(&walls.normal);
+    let xq = V::load(&walls.xq);
+    let vq = V::load(&walls.vq);
+    let wq = V::load(&walls.wq);
+    let (rq, mq) = (F(walls.rq), F(walls.mq));
+
+    // Geometry (`ContactGeometry::plane_sphere`).
+    let dist = (xq - x0).dot(n);
+    let delta = rq - dist;
+    let closest = xq - n * dist;
+    let cp = closest - n * (delta * 0.5);
+    // `m*` is the sphere's mass where it can move (the wall cannot), `R*` its radius
+    // (`PairBody::reduced_mass`, `PairConstants::pair_material`).
+    let ok = delta
+        .gt(zero)
+        .and(mq.gt(zero))
+        .and(mq.finite(big))
+        .and(rq.finite(big));
+
+    // Kuhn & Bagi's rates, the general form (`contact_rates_and_approach`, plane p).
+    // The wall's arm to the contact point: the point less the wall body's position, which is
+    // the contact point itself (zero where finite, as the kernel computes it).
+    #[allow(clippy::eq_op)]
+    let arm_p = cp - cp;
+    let up = V::load(&walls.velocity) + v0.cross(arm_p);
+    let uq = vq + wq.cross(cp - xq);
+    let du = uq - up;
+    let v_disp = du - n * du.dot(n);
+    let rho_q = (xq - cp).dot(n);
+    let c_dot = vq - v0.cross(n) * rho_q;
+    let mid = (up + uq) * F::splat(0.5) - c_dot;
+    let v_roll = mid - n * mid.dot(n);
+    let delta_dot = du.dot(n).neg();
+
+    // The carried basis.
+    let (t1, ok) = {
+        let h: [&ContactHistory<T>; LANES] = std::array::from_fn(|l| &hist[idx[l]]);
+        carried_t1(&h, n, (v0 + wq).dot(n) * 0.5, dt, ok)
+    };
+    let t2 = n.cross(t1);
+
+    // Normal force: Hertz + Tsuji, never attractive.
+    let a = (rq * delta).sqrt();
+    let e43 = 4.0 / 3.0 * pm.e_star;
+    let p_el = F::splat(e43) * a * delta;
+    let damp = F::splat(c.alpha) * (F::splat(e43) * mq * a).sqrt();
+    let p_try = p_el + damp * delta_dot;
+    let p_tot = p_try.gt(zero).sel(p_try, zero);
+    let damping = (p_tot - p_el) * delta_dot * dt;
+
+    // Tangential displacements in the basis.
+    let ud = v_disp * F::splat(dt);
+    let (dux, duy) = (ud.dot(t1), ud.dot(t2));
+    let (drx, dry) = if creep_on {
+        let ur = v_roll * F::splat(dt);
+        (ur.dot(t1), ur.dot(t2))
+    } else {
+        (zero, zero)
+    };
+    let ok = ok
+        .and(dux.finite(big))
+        .and(duy.finite(big))
+        .and(p_el.gt(zero))
+        .and(a.gt(zero))
+        .and(p_el.finite(big))
+        .and(a.finite(big))
+        .0;
+
+    // The tangential law, lane by lane.
+    let (mut q_x, mut q_y) = (zero, zero);
+    let mut creeping = [false; LANES];
+    let (mut slip, mut creep, mut truncation) = (zero, zero, zero);
+    let mut done = 0;
+    // The basis lane by lane from arrays stored once (extracting a lane from the vectors in the
+    // loop stored them again at every lane).
+    let (t1a, na) = (t1.store(), n.store());
+    for l in 0..used.min(LANES) {
+        if bits(ok[l]) == 0 {
+            continue;
+        }
+        done |= 1 << l;
+        let lane_pm = c.pair_material(Surface::Plane, Surface::Sphere(walls.rq[l]));
+        let hl = &mut hist[idx[l]];
+        let s = T::step(
+            &mut hl.tangential,
+            c,
+            &lane_pm,
+            p_el.0[l],
+            a.0[l],
+            Vec2::new(dux.0[l], duy.0[l]),
+            Vec2::new(drx.0[l], dry.0[l]),
+        );
+        (q_x.0[l], q_y.0[l]) = (s.q.x, s.q.y);
+        creeping[l] = s.creep_displacement != Vec2::ZERO;
+        (slip.0[l], creep.0[l], truncation.0[l]) = (s.slip, s.creep, s.truncation);
+        hl.t1 = lane3(&t1a, l);
+        hl.normal = lane3(&na, l);
+        hl.overlap = delta.0[l];
+    }
+
+    // Outputs (the one-contact kernel's general forms: the wall's arm is not along the normal
+    // through a centre).
+    let q_world = t1 * q_x + t2 * q_y;
+    let limit = F::splat((1.0 - 1e-9) * pm.mu) * p_el;
+    let mu_finite = finite(pm.mu);
+    let sliding = (q_x * q_x + q_y * q_y).ge(limit * limit);
+    let f_p = q_world - n * p_tot;
+    let f_q = V {
+        x: f_p.x.neg(),
+        y: f_p.y.neg(),
+        z: f_p.z.neg(),
+    };
+    let torque_q = (cp - xq).cross(f_q) + v0;
+    *out = WallForceLanes {
+        force_p: f_p.store(),
+        torque_q: torque_q.store(),
+        sliding: std::array::from_fn(|l| mu_finite && bits(sliding.0[l]) != 0),
+        creeping,
+        damping: damping.0,
         slip: slip.0,
         creep: creep.0,
         truncation: truncation.0,

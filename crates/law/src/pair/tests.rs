@@ -780,3 +780,165 @@ fn block_equals_one_contact<T: TangentialLaw>() {
         "block took {taken} of {lanes} lanes"
     );
 }
+
+#[test]
+fn wall_block_equals_the_one_contact_kernel() {
+    wall_block_equals_one_contact::<Cheap>();
+    wall_block_equals_one_contact::<Exact>();
+}
+
+fn wall_block_equals_one_contact<T: TangentialLaw>() {
+    // Random spheres pressed onto walls (axis-aligned normals of either sign, as a box's, and
+    // oblique ones; walls at rest and moving; frictionless, sticking, sliding and creeping
+    // contacts; small and large spins; normals that turned far), stepped a few times from a
+    // virgin history by the one-contact kernel, then once more by the block and by the kernel:
+    // every lane the block takes has the kernel's outputs and history, bit for bit (the signs
+    // of zeros included), the lanes it leaves are untouched, and most lanes are taken.
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let dt = 2e-6;
+    let (mut taken, mut lanes) = (0, 0);
+    let axes = [
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(-1.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        Vec3::new(0.0, -1.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.0, 0.0, -1.0),
+    ];
+    for (case, creep) in [Some(CreepModel::Kuhn), None]
+        .into_iter()
+        .cycle()
+        .take(1200)
+        .enumerate()
+    {
+        let mu = [0.0, 0.5, 0.05, 1.0][case % 4];
+        let c = constants(mu, 0.6, creep);
+        assert!(block_supports(&c));
+        let mut walls = WallLanes::default();
+        let mut hist = [ContactHistory::<T>::default(); LANES];
+        let mut bodies = Vec::new();
+        for l in 0..LANES {
+            let rq = 0.001 * (1.0 + 0.4 * rnd());
+            let normal = if (case + l) % 3 == 0 {
+                Vec3::new(rnd(), rnd(), rnd()).try_normalize().unwrap()
+            } else {
+                axes[(case + 2 * l) % 6]
+            };
+            let point = Vec3::new(rnd(), rnd(), rnd()) * 0.01;
+            let along = Vec3::new(rnd(), rnd(), rnd()) * 0.01;
+            let xq = point + along.reject(normal) + normal * (rq * (1.0 - 0.002 * (rnd() + 0.5)));
+            let speed = [1e-3, 0.1, 3.0][(case + l) % 3];
+            let spin = [0.0, 1.0, 100.0, 1e3][(case / 3 + l) % 4];
+            let mut v = |s: f64| Vec3::new(rnd(), rnd(), rnd()) * s;
+            let velocity = if (case + l) % 2 == 0 {
+                Vec3::ZERO
+            } else {
+                v(speed)
+            };
+            let q = sphere(xq, v(speed), v(spin), rq);
+            let wall = |g: &ContactGeometry| PairBody {
+                position: g.point,
+                velocity,
+                angular_velocity: Vec3::ZERO,
+                surface: Surface::Plane,
+                mass: f64::INFINITY,
+            };
+            let g = ContactGeometry::plane_sphere(point, normal, q.position, rq);
+            for _ in 0..1 + (case + l) % 4 {
+                pair_force(&c, &wall(&g), &q, &g, &mut hist[l], dt);
+            }
+            if (case + l) % 7 == 0 {
+                hist[l].normal = hist[l].t1;
+            }
+            let point = point + velocity * dt;
+            let q = PairBody {
+                position: q.position + q.velocity * dt,
+                ..q
+            };
+            walls.set(
+                l,
+                &WallSphere {
+                    point,
+                    normal,
+                    velocity,
+                    xq: q.position,
+                    vq: q.velocity,
+                    wq: q.angular_velocity,
+                    rq,
+                    mq: q.mass,
+                },
+            );
+            bodies.push((point, normal, velocity, q, rq));
+        }
+        let before = hist;
+        let mut out = WallForceLanes::default();
+        let idx = std::array::from_fn(|l| l);
+        let mask = wall_block_lanes(&c, &walls, &mut hist, idx, LANES, dt, &mut out);
+        for l in 0..LANES {
+            lanes += 1;
+            if mask >> l & 1 == 0 {
+                assert_eq!(
+                    hist[l], before[l],
+                    "case {case} lane {l}: a left lane changed"
+                );
+                continue;
+            }
+            taken += 1;
+            let (point, normal, velocity, q, rq) = bodies[l];
+            let mut h = before[l];
+            let g = ContactGeometry::plane_sphere(point, normal, q.position, rq);
+            let p = PairBody {
+                position: g.point,
+                velocity,
+                angular_velocity: Vec3::ZERO,
+                surface: Surface::Plane,
+                mass: f64::INFINITY,
+            };
+            let f = pair_force(&c, &p, &q, &g, &mut h, dt);
+            assert!(f.touching);
+            let bits3 = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+            let lane3 = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+            assert_eq!(
+                bits3(lane3(&out.force_p)),
+                bits3(f.force_p),
+                "case {case} lane {l}: force"
+            );
+            assert_eq!(
+                bits3(lane3(&out.torque_q)),
+                bits3(f.torque_q),
+                "case {case} lane {l}: torque"
+            );
+            assert_eq!(out.sliding[l], f.sliding, "case {case} lane {l}");
+            assert_eq!(
+                out.creeping[l],
+                f.creep_displacement != crate::vector::Vec2::ZERO,
+                "case {case} lane {l}"
+            );
+            let d = |x: PairDissipation| {
+                [x.damping, x.slip, x.creep, x.rolling, x.truncation].map(f64::to_bits)
+            };
+            assert_eq!(
+                d(out.dissipation(l)),
+                d(f.dissipation),
+                "case {case} lane {l}"
+            );
+            let hb = |h: &ContactHistory<T>| {
+                let mut v = vec![0.0; ContactHistory::<T>::LEN];
+                h.write(&mut v).unwrap();
+                v.into_iter().map(f64::to_bits).collect::<Vec<_>>()
+            };
+            assert_eq!(hb(&hist[l]), hb(&h), "case {case} lane {l}: history");
+        }
+    }
+    println!("wall block ({}) took {taken} of {lanes} lanes", T::NAME);
+    assert!(
+        taken * 10 > lanes * 6,
+        "wall block took {taken} of {lanes} lanes"
+    );
+}

@@ -298,7 +298,15 @@ impl TangentialLaw for Cheap {
         // evaluate them for every contact and select (it did: 8 % of the plugin's run).
         let t2 = trial.length_squared();
         let (q, slip) = if t2 > mu_p * mu_p && finite(mu_p) {
-            onto_coulomb_limit(trial, t2, mu_p, k)
+            if mu_p == 0.0 {
+                // A frictionless contact (e.g. a wall) slides at every step: with `t2 > 0`,
+                // `mu_p / sqrt(t2)` is `mu_p` itself (a zero of its sign), so the same bits
+                // without the call, whose spills cost more than the rest of the law.
+                let q = trial * mu_p;
+                (q, q.dot(trial - q) / k)
+            } else {
+                onto_coulomb_limit(trial, t2, mu_p, k)
+            }
         } else {
             (trial, 0.0)
         };
