@@ -71,7 +71,7 @@ cp "$root/Cargo.lock" "$rapier/Cargo.lock"
   else
     cargo test --lib
     cargo test --test ball_rolling_substeps --test speed_cap --test recycled_contact_modification \
-      --test total_contact_impulse --test contact_clustering --test snapshot_roundtrip \
+      --test empty_manifold_hook --test total_contact_impulse --test contact_clustering --test snapshot_roundtrip \
       --test persistent_islands --test sleep_wake
   fi
 )

@@ -78,6 +78,32 @@ const RECYCLE: ActiveHooks = ActiveHooks::RECYCLE_MODIFIED_SOLVER_CONTACTS;
 #[cfg(not(feature = "rapier-patched"))]
 const RECYCLE: ActiveHooks = ActiveHooks::empty();
 
+/// The flag by which a ball collider's manifolds without solver contacts skip the hook on full
+/// updates (feature `rapier-patched`: `ActiveHooks::SKIP_EMPTY_SOLVER_CONTACTS`); none without
+/// the feature. The hook has nothing to do on such a manifold unless a wheel (a cylinder) is on
+/// it, and a ball's pair never takes the wheel path, whose other side is flat (module
+/// `dispatch`). The engine still calls the hook there if the other collider's hook is on
+/// without the flag.
+#[cfg(feature = "rapier-patched")]
+const SKIP_EMPTY: ActiveHooks = ActiveHooks::SKIP_EMPTY_SOLVER_CONTACTS;
+/// (Without the feature `rapier-patched`, crates.io's Rapier has no such flag.)
+#[cfg(not(feature = "rapier-patched"))]
+const SKIP_EMPTY: ActiveHooks = ActiveHooks::empty();
+
+/// The flags a registered collider whose hook is on may add to `MODIFY_SOLVER_CONTACTS`:
+/// [`RECYCLE`] ([`recycle_opt_in`]) and [`SKIP_EMPTY`] (a ball).
+const OPT_INS: ActiveHooks = RECYCLE.union(SKIP_EMPTY);
+
+/// [`SKIP_EMPTY`] for a ball collider, else nothing.
+fn skip_empty_opt_in(co: &Collider) -> ActiveHooks {
+    if !SKIP_EMPTY.is_empty() && co.shape().shape_type() == rapier3d::parry::shape::ShapeType::Ball
+    {
+        SKIP_EMPTY
+    } else {
+        ActiveHooks::empty()
+    }
+}
+
 /// Speed \[m/s\] (`|v| + |w| r`, as for [`CreepSettings::activation_speed`]) below which an
 /// active collider opts in to recycling ([`recycle_opt_in`]). A recycled contact keeps the
 /// lever arms of its pair's last full update, and Rapier's friction position bias reads the
@@ -387,7 +413,7 @@ impl CreepHooks {
                 // Out of Rapier's contact solve altogether (no solver contacts, no hook), so its
                 // pairs keep Rapier's contact recycling: the compliant regime needs only the
                 // narrow phase's pair list, and computes the geometry itself.
-                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS - RECYCLE;
+                let flags = co.active_hooks() - ActiveHooks::MODIFY_SOLVER_CONTACTS - OPT_INS;
                 if (flags != co.active_hooks() || co.solver_groups() != InteractionGroups::none())
                     && let Some(co) = colliders.get_mut(handle)
                 {
@@ -407,15 +433,19 @@ impl CreepHooks {
             // Active (flag on) -> clearing (flag on, marked: pairs of two quiet colliders are
             // left as Rapier built them) -> off (flag off: recycled clean). With the feature
             // `rapier-patched`, an active collider may opt in to recycling ([`RECYCLE`],
-            // [`recycle_opt_in`]); the clearing mark still keeps its pairs from being recycled.
+            // [`recycle_opt_in`]) and a ball skips the hook on manifolds without solver
+            // contacts ([`SKIP_EMPTY`]); the clearing mark still keeps its pairs from being
+            // recycled. (Both flags change only with `MODIFY_SOLVER_CONTACTS` or the speed
+            // that decides recycling, so the colliders written here are those written without
+            // them.)
             let modify = ActiveHooks::MODIFY_SOLVER_CONTACTS;
             let wanted = if moving {
-                let opt_in = recycle_opt_in(co, mat, bodies);
-                (flags | modify | opt_in) - CLEARING_MARK - (RECYCLE - opt_in)
+                let opt_in = recycle_opt_in(co, mat, bodies) | skip_empty_opt_in(co);
+                (flags | modify | opt_in) - CLEARING_MARK - (OPT_INS - opt_in)
             } else if flags.contains(modify) && !flags.contains(CLEARING_MARK) {
                 flags | CLEARING_MARK
             } else {
-                flags - modify - RECYCLE - CLEARING_MARK
+                flags - modify - OPT_INS - CLEARING_MARK
             };
             let on = wanted.contains(modify);
             if wanted != flags
