@@ -57,6 +57,24 @@ pub struct SpherePair {
     pub mq: f64,
 }
 
+/// Stores `v` in lane `l` of a vector's lanes (`l < LANES`, checked by the caller).
+#[inline(always)]
+fn put_lane(a: &mut [[f64; LANES]; 3], l: usize, v: Vec3) {
+    a[0][l] = v.x;
+    a[1][l] = v.y;
+    a[2][l] = v.z;
+}
+
+/// Copies lane `from` into lane `to` of each vector's lanes.
+#[inline]
+fn copy_lanes<const N: usize>(vectors: [&mut [[f64; LANES]; 3]; N], from: usize, to: usize) {
+    for a in vectors {
+        for c in a.iter_mut() {
+            c[to] = c[from];
+        }
+    }
+}
+
 /// The bodies of [`LANES`] sphere pairs, lane by lane (structure of arrays: each quantity's
 /// lanes side by side, as the block loads them).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -79,17 +97,12 @@ impl SphereLanes {
     pub fn set(&mut self, l: usize, s: &SpherePair) {
         // One check here instead of one per store below.
         assert!(l < LANES, "lane {l} of {LANES}");
-        let put = |a: &mut [[f64; LANES]; 3], v: Vec3| {
-            a[0][l] = v.x;
-            a[1][l] = v.y;
-            a[2][l] = v.z;
-        };
-        put(&mut self.xp, s.xp);
-        put(&mut self.xq, s.xq);
-        put(&mut self.vp, s.vp);
-        put(&mut self.vq, s.vq);
-        put(&mut self.wp, s.wp);
-        put(&mut self.wq, s.wq);
+        put_lane(&mut self.xp, l, s.xp);
+        put_lane(&mut self.xq, l, s.xq);
+        put_lane(&mut self.vp, l, s.vp);
+        put_lane(&mut self.vq, l, s.vq);
+        put_lane(&mut self.wp, l, s.wp);
+        put_lane(&mut self.wq, l, s.wq);
         self.rp[l] = s.rp;
         self.rq[l] = s.rq;
         self.mp[l] = s.mp;
@@ -99,18 +112,18 @@ impl SphereLanes {
     /// Copies lane `from` into lane `to` (to fill the unused lanes of a block).
     #[inline]
     pub fn copy_lane(&mut self, from: usize, to: usize) {
-        for a in [
-            &mut self.xp,
-            &mut self.xq,
-            &mut self.vp,
-            &mut self.vq,
-            &mut self.wp,
-            &mut self.wq,
-        ] {
-            for c in a.iter_mut() {
-                c[to] = c[from];
-            }
-        }
+        copy_lanes(
+            [
+                &mut self.xp,
+                &mut self.xq,
+                &mut self.vp,
+                &mut self.vq,
+                &mut self.wp,
+                &mut self.wq,
+            ],
+            from,
+            to,
+        );
         for a in [&mut self.rp, &mut self.rq, &mut self.mp, &mut self.mq] {
             a[to] = a[from];
         }
@@ -937,17 +950,12 @@ impl WallLanes {
     #[inline(always)]
     pub fn set(&mut self, l: usize, s: &WallSphere) {
         assert!(l < LANES, "lane {l} of {LANES}");
-        let put = |a: &mut [[f64; LANES]; 3], v: Vec3| {
-            a[0][l] = v.x;
-            a[1][l] = v.y;
-            a[2][l] = v.z;
-        };
-        put(&mut self.point, s.point);
-        put(&mut self.normal, s.normal);
-        put(&mut self.velocity, s.velocity);
-        put(&mut self.xq, s.xq);
-        put(&mut self.vq, s.vq);
-        put(&mut self.wq, s.wq);
+        put_lane(&mut self.point, l, s.point);
+        put_lane(&mut self.normal, l, s.normal);
+        put_lane(&mut self.velocity, l, s.velocity);
+        put_lane(&mut self.xq, l, s.xq);
+        put_lane(&mut self.vq, l, s.vq);
+        put_lane(&mut self.wq, l, s.wq);
         self.rq[l] = s.rq;
         self.mq[l] = s.mq;
     }
@@ -955,18 +963,18 @@ impl WallLanes {
     /// Copies lane `from` into lane `to` (to fill the unused lanes of a block).
     #[inline]
     pub fn copy_lane(&mut self, from: usize, to: usize) {
-        for a in [
-            &mut self.point,
-            &mut self.normal,
-            &mut self.velocity,
-            &mut self.xq,
-            &mut self.vq,
-            &mut self.wq,
-        ] {
-            for c in a.iter_mut() {
-                c[to] = c[from];
-            }
-        }
+        copy_lanes(
+            [
+                &mut self.point,
+                &mut self.normal,
+                &mut self.velocity,
+                &mut self.xq,
+                &mut self.vq,
+                &mut self.wq,
+            ],
+            from,
+            to,
+        );
         for a in [&mut self.rq, &mut self.mq] {
             a[to] = a[from];
         }
