@@ -295,28 +295,21 @@ fn row_at(ab: f64, nu: f64) -> Option<Vec<(&'static Fine, f64)>> {
     Some(vec![(fine(ia), 1.0 - w), (fine(ib), w)])
 }
 
-/// The tables at `(a/b, nu)` with weights and their rows' `a/b`, and whether they are blended between two computed
-/// `a/b`: one computed `a/b`'s row, or linear in `ln(a/b)` between the rows of the two computed
-/// `a/b` around it.
+/// The tables at `(a/b, nu)` with weights and their rows' `a/b`, and whether they are blended
+/// between two computed `a/b`: the row of the computed `a/b` at `ab` ([`rows_of`]), or linear in
+/// `ln(a/b)` between the rows of the two computed `a/b` around it.
 type Parts = (Vec<(&'static Fine, f64, f64)>, bool);
 fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
-    if nodes().iter().any(|n| (n.ab.ln() - ab.ln()).abs() < SNAP) {
-        let row = row_at(ab, nu)?;
-        return Some((row.into_iter().map(|(t, w)| (t, w, ab)).collect(), false));
+    let rows = rows_of(ab)?;
+    if let [row] = rows[..] {
+        let tables = row_at(row, nu)?;
+        return Some((
+            tables.into_iter().map(|(t, w)| (t, w, row)).collect(),
+            false,
+        ));
     }
-    let l = ab.ln();
-    let lo = nodes()
-        .iter()
-        .map(|n| n.ab.ln())
-        .filter(|&x| x < l)
-        .reduce(f64::max)?;
-    let hi = nodes()
-        .iter()
-        .map(|n| n.ab.ln())
-        .filter(|&x| x > l)
-        .reduce(f64::min)?;
-    let w = (l - lo) / (hi - lo);
-    let (lo, hi) = (lo.exp(), hi.exp());
+    let (lo, hi) = (rows[0], rows[1]);
+    let w = (ab.ln() - lo.ln()) / (hi.ln() - lo.ln());
     let mut out: Vec<_> = row_at(lo, nu)?
         .into_iter()
         .map(|(t, v)| (t, v * (1.0 - w), lo))
