@@ -198,6 +198,13 @@ impl RigidCreep {
             loop_gain: 0.0,
         }
     }
+    /// The kernels' first answer ([`ball_creep`], [`wheel_creep`]): a contact without load
+    /// (`p_force` \[N\] not above zero: new, or within the prediction distance but apart) or
+    /// without friction (`mu` not above zero) is left to Coulomb; `None` for a loaded contact
+    /// with friction. A host may ask before it builds the kernel's input.
+    pub fn unloaded(p_force: f64, mu: f64) -> Option<Self> {
+        (!(p_force > 0.0 && mu > 0.0)).then(|| Self::coulomb(CoulombReason::NoLoad))
+    }
     /// Whether the contact creeps.
     pub fn creeps(&self) -> bool {
         self.coulomb.is_none()

@@ -33,8 +33,8 @@ pub fn ball_creep(
     let dt = contact.dt;
     let n = contact.normal;
     let p_force = contact.normal_impulse / dt;
-    if !(p_force > 0.0 && mu > 0.0) {
-        return RigidCreep::coulomb(CoulombReason::NoLoad);
+    if let Some(out) = RigidCreep::unloaded(p_force, mu) {
+        return out;
     }
     let (p, q) = (&contact.p, &contact.q);
     let rates = contact_rates(p, q, contact.point, n);

@@ -118,8 +118,8 @@ pub fn wheel_creep(
     let frame =
         heading.map(|h| RollFrame::along(if h.dot(rates.v_roll) > 0.0 { -h } else { h }, n));
     let roll = frame.map_or(0.0, |f| rates.v_roll.dot(f.x).abs());
-    if !(p_force > 0.0 && mu > 0.0) {
-        return RigidCreep::coulomb(CoulombReason::NoLoad);
+    if let Some(out) = RigidCreep::unloaded(p_force, mu) {
+        return out;
     }
     let Some(frame) = frame.filter(|_| roll > 0.0) else {
         return RigidCreep::coulomb(CoulombReason::NotRolling);

@@ -252,13 +252,15 @@ fn ball_contact(
         rec.target = Vec3::ZERO;
         return None;
     }
-    // A contact without load (new, or within the prediction distance but apart: about half
-    // of a moving pile's solver contacts) or without friction: the kernel's first test,
-    // `ball_creep`'s `CoulombReason::NoLoad`, answered here before the contact's friction
-    // impulse and the kernel's input are built. (A contact on a mesh is solved from its
-    // coincident group's load, below.)
-    if coincident.is_none() && !(p_force > 0.0 && m.pair.mu > 0.0) {
-        let out = creep_law::rigid::RigidCreep::coulomb(creep_law::rigid::CoulombReason::NoLoad);
+    // A contact without load (about half of a moving pile's solver contacts) or without
+    // friction: the kernel's first answer (`RigidCreep::unloaded`), asked here before the
+    // contact's friction impulse and the kernel's input are built. (A contact on a mesh is
+    // solved from its coincident group's load, below.)
+    let unloaded = match coincident {
+        None => creep_law::rigid::RigidCreep::unloaded(p_force, m.pair.mu),
+        Some(_) => None,
+    };
+    if let Some(out) = unloaded {
         counts.book(&out, 1);
         rec.set_creep(&out);
         return None;
