@@ -511,19 +511,24 @@ fn creep_per_force_equals_the_steady_law() {
     }
 }
 
+/// A small deterministic generator (xorshift64) of numbers uniform in `[-0.5, 0.5)`, for the
+/// random cases of the tests below.
+fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+}
+
 #[test]
 fn sphere_forms_equal_the_general_ones() {
     // Two spheres: the kernel's short forms of Kuhn & Bagi's rates and of the torques (arms
     // along the normal) against the general ones (kinematics::contact_rates; `(c - x) x f`)
     // on random pairs, to rounding: relative to the size of the terms, 1e-14.
     use crate::kinematics::{BodyMotion, contact_rates};
-    let mut seed = 0x1234_5678_9abc_def1u64;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut rnd = uniform(0x1234_5678_9abc_def1u64);
     let c = constants(0.5, 0.6, Some(CreepModel::Kuhn));
     let mut checked = 0;
     for _ in 0..2000 {
@@ -656,13 +661,7 @@ fn block_equals_one_contact<T: TangentialLaw>() {
     // sliding and creeping contacts, small and large spins, normals that turn far): every lane
     // the block takes has the one-contact kernel's outputs and history, bit for bit, and the
     // lanes it leaves are untouched; most lanes are taken.
-    let mut seed = 0x2545_f491_4f6c_dd1du64;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut rnd = uniform(0x2545_f491_4f6c_dd1du64);
     let dt = 2e-6;
     let (mut taken, mut lanes) = (0, 0);
     for (case, creep) in [Some(CreepModel::Kuhn), None]
@@ -794,13 +793,7 @@ fn wall_block_equals_one_contact<T: TangentialLaw>() {
     // virgin history by the one-contact kernel, then once more by the block and by the kernel:
     // every lane the block takes has the kernel's outputs and history, bit for bit (the signs
     // of zeros included), the lanes it leaves are untouched, and most lanes are taken.
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut rnd = uniform(0x9e37_79b9_7f4a_7c15u64);
     let dt = 2e-6;
     let (mut taken, mut lanes) = (0, 0);
     let axes = [
