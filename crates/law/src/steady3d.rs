@@ -33,10 +33,11 @@
 //! scaled onto it); beyond it see "Beyond the box". Between two
 //! computed `nu` of one `a/b` the two tables' loads are blended linearly in `nu` (one cell for
 //! both, the tables read at the contact's creepages); between
-//! two computed `a/b` whose rows both cover
-//! `nu`, the two rows' loads are blended linearly in `ln(a/b)`, the moment with the weights
-//! times `(M_max/M_max,row)^2` ([`full_slip::max_moment`], the full-slip spin moment; an
-//! empirical exponent, docs/CREEP3D.md) ([`Coverage::BetweenRatios`], looser bounds); a `nu`
+//! two computed `a/b`, the rows of the four computed `a/b` nearest around it (three in the end
+//! intervals) are blended by Lagrange's cubic in `ln(a/b)`, the moment in units of each row's
+//! full-slip spin moment `M_max` ([`full_slip::max_moment`]; docs/CREEP3D.md)
+//! ([`Coverage::BetweenRatios`], looser bounds). A blend is made once per `(a/b, nu)` into a
+//! read table of its own (`lut::baked`, at its first use), so every contact reads one table; a `nu`
 //! outside the computed ones is extrapolated ("Beyond the computed nu"). Near zero creepage
 //! (`|xi_n| + |eta_n| + |phi_n| <` [`lut::LINEAR_REACH`]) the difference between Kalker's linear
 //! theory and the tables' own slopes (the secants of their first cells, a few per cent off
@@ -541,10 +542,11 @@ pub enum Coverage {
     /// `nu`): within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment on the
     /// error map.
     Table,
-    /// Between two computed `a/b`, linear in `ln(a/b)`: within 4.5 % of `mu P` in each force
-    /// and 4 % of `mu P a` in the moment on the error map and its off-grid validation (worst
-    /// measured: Fy 4.08 % at `a/b = 1.4`, `nu = 0.5`, between the computed `1` and `2`; Mz
-    /// 3.71 % at `a/b = 0.7`, between `0.5` and `1`).
+    /// Between two computed `a/b`, the cubic in `ln(a/b)` through the four nearest rows: within
+    /// 3 % of `mu P` in each force and 3 % of `mu P a` in the moment on the error map and its
+    /// off-grid validation from `a/b = 0.5` on (worst measured: Fy 2.95 % at `a/b = 1.2`, `nu =
+    /// 0.3`; on the map Fy 2.25 % at `a/b = 1.4`, `nu = 0.5`); 3.5 % and 9 % between `0.2` and
+    /// `0.5` (Mz 8.79 % at one point near full slip, `a/b = 0.27`; docs/CREEP3D.md).
     BetweenRatios,
     /// The table at the nearest computed `nu` (a `nu` outside the range its rows compute) with
     /// the creepages scaled by Kalker's coefficients (module documentation, "Beyond the computed

@@ -24,7 +24,7 @@ pub const BUCKET: f64 = 0.004;
 pub const LUT_LEN: usize = LUT_XI.len() * LUT_XI.len() * LUT_PHI.len();
 
 use super::Loads;
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 /// Points of the read grid [`FINE_PHI`] per cell of [`LUT_PHI`] (2: the midpoints added).
 /// Finer read grids are closer to the cubic (measured on the error map, `a/b = 5`, `nu = 0`:
@@ -215,13 +215,19 @@ pub const SNAP: f64 = 1e-3;
 /// computed `a/b` (linear in `ln(a/b)` between the two rows, each at `nu`).
 #[derive(Clone, Copy)]
 pub struct Lut {
-    tables: [&'static Fine; 4],
-    w: [f64; 4],
-    /// The moment's weights: between two computed `a/b`, `w` times the square of the full-slip
-    /// spin moment of the contact over the table's row's ([`super::full_slip::max_moment`]:
-    /// module documentation of [`super`], "The table"); `w` within one computed `a/b`.
-    wm: [f64; 4],
+    /// The read tables: a node's, or the blend of several ([`baked`]); the parts themselves
+    /// when more than [`BAKED_MAX`] blends are kept.
+    tables: [&'static Fine; 8],
+    w: [f64; 8],
+    /// The moment's weights: between computed `a/b`, `w` times the full-slip spin moment of the
+    /// contact over the table's row's ([`super::full_slip::max_moment`]: the moment is
+    /// interpolated in units of it; module documentation of [`super`], "The table"); `w` within
+    /// one computed `a/b`.
+    wm: [f64; 8],
+    /// Tables read at each evaluation: 1, but for more than [`BAKED_MAX`] blends.
     n: usize,
+    /// Computed tables blended into the loads (1 at a node, up to 8 between computed `a/b`).
+    parts: usize,
     between_ratios: bool,
     /// Factors on `(|xi_n|, |eta_n|, phi_n)` before the lookup: 1 within the computed `nu`;
     /// extrapolated in `nu`, Kalker's `C11, C22, C23` at the contact's `nu` over the tables'
@@ -254,7 +260,8 @@ pub fn linear_fade(r: f64) -> f64 {
 impl std::fmt::Debug for Lut {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Lut")
-            .field("tables", &self.n)
+            .field("tables", &self.parts)
+            .field("read", &self.n)
             .field("between_ratios", &self.between_ratios)
             .field("w", &&self.w[..self.n])
             .field("scale", &self.scale)
@@ -296,8 +303,11 @@ fn row_at(ab: f64, nu: f64) -> Option<Vec<(&'static Fine, f64)>> {
 }
 
 /// The tables at `(a/b, nu)` with weights and their rows' `a/b`, and whether they are blended
-/// between two computed `a/b`: the row of the computed `a/b` at `ab` ([`rows_of`]), or linear in
-/// `ln(a/b)` between the rows of the two computed `a/b` around it.
+/// between computed `a/b`: the row of the computed `a/b` at `ab` ([`rows_of`]), or, between
+/// two computed `a/b`, Lagrange's cubic in `ln(a/b)` through the rows of the four computed
+/// `a/b` nearest around it (the quadratic through three in the end intervals). Its weights
+/// sum to one and are one at each row; a cubic follows the loads' curvature across the rows,
+/// which linear blending of the two rows around `a/b` misses by up to 4 % (docs/CREEP3D.md).
 type Parts = (Vec<(&'static Fine, f64, f64)>, bool);
 fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
     let rows = rows_of(ab)?;
@@ -308,13 +318,21 @@ fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
             false,
         ));
     }
-    let (lo, hi) = (rows[0], rows[1]);
-    let w = (ab.ln() - lo.ln()) / (hi.ln() - lo.ln());
-    let mut out: Vec<_> = row_at(lo, nu)?
-        .into_iter()
-        .map(|(t, v)| (t, v * (1.0 - w), lo))
-        .collect();
-    out.extend(row_at(hi, nu)?.into_iter().map(|(t, v)| (t, v * w, hi)));
+    let mut all: Vec<f64> = nodes().iter().map(|n| n.ab).collect();
+    all.dedup_by(|a, b| (a.ln() - b.ln()).abs() < SNAP);
+    let lo = all.iter().position(|&x| x == rows[0])?;
+    let stencil = &all[lo.saturating_sub(1)..(lo + 3).min(all.len())];
+    let x = ab.ln();
+    let mut out = Vec::with_capacity(2 * stencil.len());
+    for (i, &r) in stencil.iter().enumerate() {
+        let w: f64 = stencil
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != i)
+            .map(|(_, q)| (x - q.ln()) / (r.ln() - q.ln()))
+            .product();
+        out.extend(row_at(r, nu)?.into_iter().map(|(t, v)| (t, v * w, r)));
+    }
     Some((out, true))
 }
 
@@ -368,11 +386,17 @@ impl Lut {
     /// nearest computed `nu` with the creepages scaled by Kalker's coefficients (module
     /// documentation of [`super`], "Beyond the computed nu").
     pub fn at_with(ab: f64, nu: f64, extrapolate: bool) -> Option<Lut> {
+        Self::build(ab, nu, extrapolate, true)
+    }
+
+    /// [`Lut::at_with`]; with `bake` false a blend reads its computed tables at each
+    /// evaluation, as beyond [`BAKED_MAX`] blends (for the tests).
+    pub(crate) fn build(ab: f64, nu: f64, extrapolate: bool, bake: bool) -> Option<Lut> {
         if !(ab.is_finite() && ab > 0.0 && nu.is_finite()) {
             return None;
         }
-        let (parts, between_ratios, scale) = match tables_at(ab, nu) {
-            Some((p, b)) => (p, b, [1.0; 3]),
+        let (parts, between_ratios, scale, nu_t) = match tables_at(ab, nu) {
+            Some((p, b)) => (p, b, [1.0; 3], nu),
             // Beyond the computed nu: the nearest computed nu of the rows, scaled.
             None if extrapolate => {
                 let (lo, hi) = shared_nu(ab)?;
@@ -380,16 +404,17 @@ impl Lut {
                 let (p, b) = tables_at(ab, nu_r)?;
                 let t = crate::kalker3d::coefficients(ab, nu).ok()?;
                 let r = crate::kalker3d::coefficients(ab, nu_r).ok()?;
-                (p, b, [t.c11 / r.c11, t.c22 / r.c22, t.c23 / r.c23])
+                (p, b, [t.c11 / r.c11, t.c22 / r.c22, t.c23 / r.c23], nu_r)
             }
             None => return None,
         };
         let first = parts[0].0;
         let mut lut = Lut {
-            tables: [first; 4],
-            w: [0.0; 4],
-            wm: [0.0; 4],
+            tables: [first; 8],
+            w: [0.0; 8],
+            wm: [0.0; 8],
             n: parts.len(),
+            parts: parts.len(),
             between_ratios,
             scale,
             extrapolated: scale != [1.0; 3],
@@ -400,11 +425,19 @@ impl Lut {
             lut.tables[i] = t;
             lut.w[i] = w;
             lut.wm[i] = if between_ratios {
-                let k = m / super::full_slip::max_moment(row);
-                w * k * k
+                w * m / super::full_slip::max_moment(row)
             } else {
                 w
             };
+        }
+        if bake
+            && lut.n > 1
+            && let Some(t) = baked((ab.to_bits(), nu_t.to_bits()), &lut)
+        {
+            lut.tables = [t; 8];
+            lut.w = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            lut.wm = lut.w;
+            lut.n = 1;
         }
         // The tables' slopes at zero creepage: the first cell is linear from zero along each
         // axis, so one read within it gives them exactly.
@@ -429,10 +462,11 @@ impl Lut {
     /// a table before it is emitted; [`super::Steady3d::new`] finds the nodes itself).
     pub fn of_table(table: &'static Fine) -> Lut {
         Lut {
-            tables: [table; 4],
-            w: [1.0, 0.0, 0.0, 0.0],
-            wm: [1.0, 0.0, 0.0, 0.0],
+            tables: [table; 8],
+            w: [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            wm: [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
             n: 1,
+            parts: 1,
             between_ratios: false,
             scale: [1.0; 3],
             extrapolated: false,
@@ -458,9 +492,9 @@ impl Lut {
         self.between_ratios
     }
 
-    /// The number of tables blended (1 at a node).
+    /// The number of computed tables blended (1 at a node; read as one table, [`BAKED_MAX`]).
     pub fn len(&self) -> usize {
-        self.n
+        self.parts
     }
 
     /// Whether no table is blended (never: a `Lut` has at least one).
@@ -552,12 +586,59 @@ impl Lut {
             out[1] += self.w[t] * acc[1];
             out[2] += self.wm[t] * acc[2];
         }
+        if self.n > 1 {
+            // Blended at each read (more than BAKED_MAX blends): the cubic's weights may
+            // overshoot Coulomb's bound, which `baked` keeps at every point.
+            let s = 1.0f64.min(1.0 / out[0].hypot(out[1]));
+            out[0] *= s;
+            out[1] *= s;
+        }
         Loads {
             fx: sx * out[0],
             fy: sy * out[1],
             mz: sy * out[2],
         }
     }
+}
+
+/// Most blended read tables kept ([`baked`]; 368 KB each, 24 MB in all). A contact whose
+/// `(a/b, nu)` needs more than one computed table (between computed `nu` or `a/b`) reads one
+/// table made for it once; beyond this many distinct `(a/b, nu)` in a process, a contact
+/// reads its computed tables at each evaluation (up to eight reads; the same loads but for
+/// `f32` rounding and Coulomb's bound applied to the read loads rather than at the grid's points).
+pub const BAKED_MAX: usize = 64;
+
+/// The read table of `lut`'s blend, `sum w_t F_t` and `sum wm_t M_t` at every point of the read
+/// grid, the force scaled onto `|F| = mu P` where the cubic's weights overshoot it (as
+/// [`refine`] does), made at the first request of `key` (the contact's `a/b` and the tables'
+/// `nu`) and kept; `None` once [`BAKED_MAX`] are kept.
+fn baked(key: (u64, u64), lut: &Lut) -> Option<&'static Fine> {
+    static BAKED: Mutex<Vec<((u64, u64), &'static Fine)>> = Mutex::new(Vec::new());
+    let mut kept = BAKED.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(&(_, t)) = kept.iter().find(|(k, _)| *k == key) {
+        return Some(t);
+    }
+    if kept.len() >= BAKED_MAX {
+        return None;
+    }
+    let mut out: Box<Fine> = vec![[0.0f32; 3]; FINE_LEN]
+        .into_boxed_slice()
+        .try_into()
+        .unwrap_or_else(|_| unreachable!("FINE_LEN elements"));
+    for (i, o) in out.iter_mut().enumerate() {
+        let mut v = [0.0f64; 3];
+        for t in 0..lut.n {
+            let x = lut.tables[t][i];
+            v[0] += lut.w[t] * f64::from(x[0]);
+            v[1] += lut.w[t] * f64::from(x[1]);
+            v[2] += lut.wm[t] * f64::from(x[2]);
+        }
+        let s = 1.0f64.min(1.0 / v[0].hypot(v[1]));
+        *o = [(v[0] * s) as f32, (v[1] * s) as f32, v[2] as f32];
+    }
+    let t: &'static Fine = Box::leak(out);
+    kept.push((key, t));
+    Some(t)
 }
 
 /// Creepages beyond the table's box (`s > 1` the largest of `|xi|/XI_MAX, |eta|/XI_MAX,
