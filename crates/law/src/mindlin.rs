@@ -351,7 +351,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         //     (A pass of its own: folded into the cuts' pass below, the step ran 9 % slower.)
         let da2 = a2 - a2_old;
         let n_old = self.n;
-        for p in &mut self.pieces[..n_old] {
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..n_old {
+            let p = &mut self.pieces[i];
             p.c += du - p.beta * da2;
         }
         // Springs entering during the step: the one at x entered when a(t)^2 = x^2 and, with the
@@ -433,7 +435,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             }
             let mut st = Merge::after(a, kappa, a2, k, k_lo);
             let mut pos = k;
-            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
+            #[allow(clippy::needless_range_loop)]
+            for i in k..m_in {
+                let cut = cuts[i];
                 let p = self.pieces[pos];
                 let entering = i == n_old;
                 pos += split_bits as usize >> i & 1;
@@ -455,7 +459,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 *dst = *src;
             }
             let mut st = Merge::after(a, kappa, a2, k, k_lo);
-            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
+            #[allow(clippy::needless_range_loop)]
+            for i in k..m_in {
+                let cut = cuts[i];
                 let p = self.pieces[i];
                 st.piece::<COALESCE>(
                     &mut out,
@@ -501,7 +507,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         let mut x_lo = 0.0;
         let mut d_lo = a * a;
         let mut sum = Vec2::ZERO;
-        for p in &self.pieces[..self.n] {
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..self.n {
+            let p = &self.pieces[i];
             let h = p.x_hi - x_lo;
             let d_hi = depth(a, p.x_hi);
             sum += p.c * h + p.beta * int_s_ends(h, d_lo, d_hi);
