@@ -426,10 +426,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             // slipping part takes the next slot), then write and merge in place (the merged
             // list never runs ahead of the pieces still to read).
             let mut off = splits;
-            for i in (0..m_in).rev() {
-                if off == 0 {
-                    break;
-                }
+            let mut i = m_in;
+            while off > 0 {
+                i -= 1;
                 off -= (split_bits >> i & 1) as usize;
                 self.pieces[i + off] = self.pieces[i];
             }
@@ -455,9 +454,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         } else {
             // Into a scratch list (a full memory with a split piece).
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
-            for (dst, src) in out[..k].iter_mut().zip(&self.pieces[..k]) {
-                *dst = *src;
-            }
+            out[..k].copy_from_slice(&self.pieces[..k]);
             let mut st = Merge::after(a, kappa, a2, k, k_lo);
             #[allow(clippy::needless_range_loop)]
             for i in k..m_in {
@@ -473,9 +470,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 );
             }
             let (n, d_u2) = merge_capacity::<N>(&mut out, st.n, a, kappa);
-            for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
-                *dst = *src;
-            }
+            self.pieces[..n].copy_from_slice(&out[..n]);
             (n, d_u2)
         };
         self.a = a;
