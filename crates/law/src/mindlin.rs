@@ -351,7 +351,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         //     (A pass of its own: folded into the cuts' pass below, the step ran 9 % slower.)
         let da2 = a2 - a2_old;
         let n_old = self.n;
-        for p in &mut self.pieces[..n_old] {
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..n_old {
+            let p = &mut self.pieces[i];
             p.c += du - p.beta * da2;
         }
         // Springs entering during the step: the one at x entered when a(t)^2 = x^2 and, with the
@@ -380,6 +382,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         // The depth at the inner end of the piece: the last piece's outer one (`a^2` at 0).
         let mut s_lo = a2;
         let m_in = self.n;
+        let mut stuck_bits: u32 = 0;
         // An index loop: the iterator forms (`zip` with the cuts, or `enumerate`) compiled
         // into a loop that ran the step 2-3 % slower on the peers' packing.
         #[allow(clippy::needless_range_loop)]
@@ -404,19 +407,18 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                     split_bits |= 1 << i;
                 }
             }
+            // The leading wholly stuck pieces (other than the springs entering now) are
+            // already the merged list's first pieces: [`Merge`] keeps an untouched piece after
+            // an untouched one as it is, in its slot (no split before it), so the merge starts
+            // after them.
+            stuck_bits |= ((cut == hi) as u32) << i;
             cuts[i] = cut;
             x_lo = hi;
             s_lo = s_hi;
         }
         // The slip is booked at the force the springs had while they slipped (see `Onset`).
         let g_star = pair.g_star;
-        // The leading wholly stuck pieces (other than the springs entering now) are already
-        // the merged list's first pieces: [`Merge`] keeps an untouched piece after an untouched
-        // one as it is, in its slot (no split before it), so the merge starts after them.
-        let mut k = 0;
-        while k < n_old && cuts[k] == self.pieces[k].x_hi {
-            k += 1;
-        }
+        let k = ((!stuck_bits).trailing_zeros() as usize).min(n_old);
         let k_lo = if k > 0 { self.pieces[k - 1].x_hi } else { 0.0 };
         let (n, d_u2) = if m_in + splits <= MAX_PIECES + 1 {
             // The parts fit in the storage: first move every piece to the slot of its first
@@ -424,16 +426,17 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
             // slipping part takes the next slot), then write and merge in place (the merged
             // list never runs ahead of the pieces still to read).
             let mut off = splits;
-            for i in (0..m_in).rev() {
-                if off == 0 {
-                    break;
-                }
+            let mut i = m_in;
+            while off > 0 {
+                i -= 1;
                 off -= (split_bits >> i & 1) as usize;
                 self.pieces[i + off] = self.pieces[i];
             }
             let mut st = Merge::after(a, kappa, a2, k, k_lo);
             let mut pos = k;
-            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
+            #[allow(clippy::needless_range_loop)]
+            for i in k..m_in {
+                let cut = cuts[i];
                 let p = self.pieces[pos];
                 let entering = i == n_old;
                 pos += split_bits as usize >> i & 1;
@@ -451,11 +454,11 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         } else {
             // Into a scratch list (a full memory with a split piece).
             let mut out = [Piece::default(); 2 * (MAX_PIECES + 1)];
-            for (dst, src) in out[..k].iter_mut().zip(&self.pieces[..k]) {
-                *dst = *src;
-            }
+            out[..k].copy_from_slice(&self.pieces[..k]);
             let mut st = Merge::after(a, kappa, a2, k, k_lo);
-            for (i, &cut) in cuts[..m_in].iter().enumerate().skip(k) {
+            #[allow(clippy::needless_range_loop)]
+            for i in k..m_in {
+                let cut = cuts[i];
                 let p = self.pieces[i];
                 st.piece::<COALESCE>(
                     &mut out,
@@ -467,9 +470,7 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
                 );
             }
             let (n, d_u2) = merge_capacity::<N>(&mut out, st.n, a, kappa);
-            for (dst, src) in self.pieces[..n].iter_mut().zip(&out[..n]) {
-                *dst = *src;
-            }
+            self.pieces[..n].copy_from_slice(&out[..n]);
             (n, d_u2)
         };
         self.a = a;
@@ -501,7 +502,9 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
         let mut x_lo = 0.0;
         let mut d_lo = a * a;
         let mut sum = Vec2::ZERO;
-        for p in &self.pieces[..self.n] {
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..self.n {
+            let p = &self.pieces[i];
             let h = p.x_hi - x_lo;
             let d_hi = depth(a, p.x_hi);
             sum += p.c * h + p.beta * int_s_ends(h, d_lo, d_hi);
@@ -515,7 +518,8 @@ impl<const N: usize, const COALESCE: u32> MindlinMemory<N, COALESCE> {
 /// slipping part, `u = kappa s e`) and adds its slip work to `dissipated` \[J\]; the slip is
 /// booked at the force the springs had while they slipped (see [`Onset`]): contact radius `a`
 /// \[m\] (`a_old` before the step), `da2 = a^2 - a_old^2` [m^2], shear modulus `g_star` \[Pa\].
-/// Always inlined into its three uses in the update.
+/// Also returns `integral s dx` over the slipping part (`int_s(a, cut, p.x_hi)`, for
+/// [`Merge::push`]). Always inlined into its uses in the update.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn slip_to_limit(
@@ -527,7 +531,7 @@ fn slip_to_limit(
     da2: f64,
     g_star: f64,
     dissipated: &mut f64,
-) -> Piece {
+) -> (Piece, f64) {
     let onset = if da2 == 0.0 {
         Onset::Constant
     } else if p.x_hi > a_old {
@@ -535,13 +539,14 @@ fn slip_to_limit(
     } else {
         Onset::Shifted(da2)
     };
-    let (e, work) = slip_piece(p, kappa, a, cut, p.x_hi, onset);
+    let (e, work, is) = slip_piece(p, kappa, a, cut, p.x_hi, onset);
     *dissipated += 8.0 * g_star * work;
-    Piece {
+    let q = Piece {
         x_hi: p.x_hi,
         beta: e * kappa,
         c: Vec2::ZERO,
-    }
+    };
+    (q, is)
 }
 
 /// `kappa = mu E* / (4 G* R*)` [1/m]: the slip limit is `L(x) = kappa (a^2 - x^2)`; `+inf` for
@@ -680,7 +685,7 @@ enum Onset {
 /// the slip work divided by `8 G*` (the force density is `4 G*` times the displacement-valued
 /// `F`, and there are two halves).
 #[inline(always)]
-fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> (Vec2, f64) {
+fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> (Vec2, f64, f64) {
     let is = int_s(a, x1, x2);
     let is2 = int_s2(a, x1, x2);
     let trial = p.beta * is + p.c * (x2 - x1);
@@ -697,7 +702,7 @@ fn slip_piece(p: &Piece, kappa: f64, a: f64, x1: f64, x2: f64, onset: Onset) -> 
         Onset::Entering => 0.5 * kappa * (b1 * is2 + b0 * is - kappa * is2),
         Onset::Shifted(da2) => shifted_slip_work(kappa, a, (x1, x2), (b0, b1), da2, (is, is2)),
     };
-    (e, if work > 0.0 { work } else { 0.0 })
+    (e, if work > 0.0 { work } else { 0.0 }, is)
 }
 
 /// `integral (F_on + kappa s) / 2 (b0 + (b1 - kappa) s) dx` [m^3] over `x1 < x <= x2` for
@@ -722,11 +727,8 @@ fn shifted_slip_work(
     } else {
         x2
     };
-    let mut w = 0.0;
-    for (y1, y2) in [(x1, split), (split, x2)] {
-        if y2 <= y1 {
-            continue;
-        }
+    // The slip work over `y1 < x <= y2` (`js`, `js2`: int_s, int_s2 there).
+    let part = |y1: f64, y2: f64, js: f64, js2: f64| {
         let sm = depth(a, 0.5 * (y1 + y2));
         let (m0, m1) = if kappa * (sm - da2) <= b0 + b1 * sm {
             (-kappa * da2, kappa)
@@ -736,12 +738,15 @@ fn shifted_slip_work(
         // (F_on + kappa s) / 2 = g0 + g1 s; slip = h0 + h1 s.
         let (g0, g1) = (0.5 * m0, 0.5 * (m1 + kappa));
         let (h0, h1) = (b0, b1 - kappa);
-        let (js, js2) = if y1 == x1 && y2 == x2 {
-            (is, is2)
-        } else {
-            (int_s(a, y1, y2), int_s2(a, y1, y2))
-        };
-        w += g0 * h0 * (y2 - y1) + (g0 * h1 + g1 * h0) * js + g1 * h1 * js2;
+        g0 * h0 * (y2 - y1) + (g0 * h1 + g1 * h0) * js + g1 * h1 * js2
+    };
+    let mut w = 0.0;
+    if split > x1 && split < x2 {
+        w += part(x1, split, int_s(a, x1, split), int_s2(a, x1, split));
+        w += part(split, x2, int_s(a, split, x2), int_s2(a, split, x2));
+    } else if x2 > x1 {
+        // No crossing inside (`split` at an end): the whole annulus, whose integrals are known.
+        w += part(x1, x2, is, is2);
     }
     w
 }
@@ -770,6 +775,8 @@ struct Merge {
     n: usize,
     x_lo: f64,
     prev_touched: bool,
+    /// `integral s dx` over the last piece's annulus where known (see [`Merge::push`]).
+    last_is: Option<f64>,
 }
 
 impl Merge {
@@ -782,6 +789,7 @@ impl Merge {
             n: 0,
             x_lo: 0.0,
             prev_touched: false,
+            last_is: None,
         }
     }
 
@@ -812,25 +820,29 @@ impl Merge {
     ) {
         let x_lo = self.x_lo;
         if cut > x_lo {
-            self.push::<COALESCE>(out, Piece { x_hi: cut, ..*p }, entering);
+            self.push::<COALESCE>(out, Piece { x_hi: cut, ..*p }, entering, None);
         }
         if cut < p.x_hi {
             let (a, kappa) = (self.a, self.kappa);
-            let q = slip_to_limit(p, cut, kappa, a, a_old, da2, g_star, dissipated);
-            self.push::<COALESCE>(out, q, true);
+            let (q, is) = slip_to_limit(p, cut, kappa, a, a_old, da2, g_star, dissipated);
+            self.push::<COALESCE>(out, q, true, Some(is));
         }
         self.x_lo = p.x_hi;
     }
 
     /// Appends the part `p` (`t`: touched) to `out[..n]`, joined with the last piece where
-    /// they are equal or coalescible.
+    /// they are equal or coalescible. `is`: `integral s dx` over `p`'s annulus (from the end
+    /// of `out[..n]` to `p.x_hi`) where already known (a slipping part's, from
+    /// [`slip_to_limit`]): kept with the piece while it stands alone, so that a coalescing
+    /// does not evaluate it again (the same function of the same radii: the same bits).
     #[inline(always)]
-    fn push<const COALESCE: u32>(&mut self, out: &mut [Piece], p: Piece, t: bool) {
+    fn push<const COALESCE: u32>(&mut self, out: &mut [Piece], p: Piece, t: bool, is: Option<f64>) {
         let chord2 = MindlinMemory::<MAX_PIECES, COALESCE>::CHORD2;
         let n = self.n;
         if n > 0 && (t || self.prev_touched) && same_form(&out[n - 1], &p, self.a2) {
             out[n - 1].x_hi = p.x_hi;
             self.prev_touched = true;
+            self.last_is = None;
         } else if chord2 > 0.0
             && n > 0
             && (t || self.prev_touched)
@@ -839,13 +851,27 @@ impl Merge {
             // Two neighbours at the limit in nearly the same direction: one along their summed
             // force (module docs, "Coalescing": energy and `|u| <= kappa s` kept, the force
             // changed by at most `1 - cos(theta / 2)` of theirs).
-            let lo = if n >= 2 { out[n - 2].x_hi } else { 0.0 };
-            out[n - 1] = limit_union(&out[n - 1], &p, self.a, self.kappa, lo);
+            let last = &out[n - 1];
+            let i_last = match self.last_is {
+                Some(v) => v,
+                None => int_s(
+                    self.a,
+                    if n >= 2 { out[n - 2].x_hi } else { 0.0 },
+                    last.x_hi,
+                ),
+            };
+            let i_p = match is {
+                Some(v) => v,
+                None => int_s(self.a, last.x_hi, p.x_hi),
+            };
+            out[n - 1] = limit_union_of(last, &p, (i_last, i_p), self.kappa);
             self.prev_touched = true;
+            self.last_is = None;
         } else {
             out[n] = p;
             self.n = n + 1;
             self.prev_touched = t;
+            self.last_is = is;
         }
     }
 }
@@ -921,8 +947,10 @@ fn enforce_capacity<const N: usize>(
             tried |= 1 << i;
             let lo = if i == 0 { 0.0 } else { out[i - 1].x_hi };
             let (p, q) = (out[i], out[i + 1]);
-            let old = piece_u2(&p, a, lo, p.x_hi) + piece_u2(&q, a, p.x_hi, q.x_hi);
-            let mut fit = least_squares_piece(&p, &q, a, lo);
+            // The integrals over the two annuli, shared by their energies and their fit.
+            let ints = PairIntegrals::new(a, lo, p.x_hi, q.x_hi);
+            let old = ints.piece_u2_p(&p) + ints.piece_u2_q(&q);
+            let mut fit = least_squares_piece(&p, &q, &ints);
             let mut ok = fit.beta.length() <= kappa && stick_radius(&fit, kappa, a2) >= fit.x_hi;
             if !ok && fit.beta.length() > kappa {
                 // The fit's slope over the limit's (two annuli near the limit in different
@@ -993,14 +1021,66 @@ fn remove_at(out: &mut [Piece], k: usize, n: usize) {
     }
 }
 
+/// The integrals over two neighbouring annuli `lo < x <= x1` and `x1 < x <= x2` that the
+/// capacity rule's least-squares merge needs for the pair's energy ([`piece_u2`]) and its fit
+/// ([`least_squares_piece`]): each evaluated once, by the same functions of the same radii
+/// (so the same bits as evaluating them where used).
+struct PairIntegrals {
+    lo: f64,
+    x1: f64,
+    x2: f64,
+    /// `int_s` over the inner and the outer annulus.
+    s1: (f64, f64),
+    /// `int_s2` over the inner and the outer annulus.
+    s2: (f64, f64),
+}
+
+impl PairIntegrals {
+    #[inline]
+    fn new(a: f64, lo: f64, x1: f64, x2: f64) -> Self {
+        Self {
+            lo,
+            x1,
+            x2,
+            s1: (int_s(a, lo, x1), int_s(a, x1, x2)),
+            s2: (int_s2(a, lo, x1), int_s2(a, x1, x2)),
+        }
+    }
+
+    /// [`piece_u2`] of `p` over the inner annulus.
+    #[inline]
+    fn piece_u2_p(&self, p: &Piece) -> f64 {
+        piece_u2_of(p, self.lo, self.x1, self.s1.0, self.s2.0)
+    }
+
+    /// [`piece_u2`] of `q` over the outer annulus.
+    #[inline]
+    fn piece_u2_q(&self, q: &Piece) -> f64 {
+        piece_u2_of(q, self.x1, self.x2, self.s1.1, self.s2.1)
+    }
+}
+
+/// [`piece_u2`] with `int_s`, `int_s2` over the annulus given (`is`, `is2`).
+#[inline]
+fn piece_u2_of(p: &Piece, x1: f64, x2: f64, is: f64, is2: f64) -> f64 {
+    if x2 <= x1 {
+        return 0.0;
+    }
+    let mut w = p.c.length_squared() * (x2 - x1);
+    if p.beta != Vec2::ZERO {
+        w += p.beta.length_squared() * is2 + 2.0 * p.beta.dot(p.c) * is;
+    }
+    w
+}
+
 /// The piece `s beta + c` on `lo < x <= q.x_hi` closest in `L2` to the two pieces `p`, `q`
 /// (normal equations in the basis `{s, 1}`): it keeps `integral u dx` (the force) and
 /// `integral s u dx`, and its `integral |u|^2 dx` is never larger (orthogonal projection).
-fn least_squares_piece(p: &Piece, q: &Piece, a: f64, lo: f64) -> Piece {
-    let (x1, x2) = (p.x_hi, q.x_hi);
+fn least_squares_piece(p: &Piece, q: &Piece, ints: &PairIntegrals) -> Piece {
+    let (lo, x1, x2) = (ints.lo, ints.x1, ints.x2);
     let (l1, l2) = (x1 - lo, x2 - x1);
-    let (s1a, s1b) = (int_s(a, lo, x1), int_s(a, x1, x2));
-    let (s2a, s2b) = (int_s2(a, lo, x1), int_s2(a, x1, x2));
+    let (s1a, s1b) = ints.s1;
+    let (s2a, s2b) = ints.s2;
     let (s0, s1, s2) = (l1 + l2, s1a + s1b, s2a + s2b);
     let m0 = p.beta * s1a + p.c * l1 + q.beta * s1b + q.c * l2;
     let m1 = p.beta * s2a + p.c * s1a + q.beta * s2b + q.c * s1b;
@@ -1035,7 +1115,18 @@ fn at_limit(p: &Piece, kappa: f64) -> bool {
 /// `|u| = kappa s` are unchanged; module docs, "Coalescing").
 #[inline]
 fn limit_union(p: &Piece, q: &Piece, a: f64, kappa: f64, lo: f64) -> Piece {
-    let sum = p.beta * int_s(a, lo, p.x_hi) + q.beta * int_s(a, p.x_hi, q.x_hi);
+    limit_union_of(
+        p,
+        q,
+        (int_s(a, lo, p.x_hi), int_s(a, p.x_hi, q.x_hi)),
+        kappa,
+    )
+}
+
+/// [`limit_union`] with `integral s dx` over the two annuli given, `(int_p, int_q)`.
+#[inline]
+fn limit_union_of(p: &Piece, q: &Piece, (int_p, int_q): (f64, f64), kappa: f64) -> Piece {
+    let sum = p.beta * int_p + q.beta * int_q;
     let l = sum.length();
     let e = if l > 0.0 && finite(l) {
         sum * (1.0 / l)
