@@ -66,6 +66,24 @@ impl<T: TangentialLaw> Dem<T> {
     fn kick_drift(&mut self, dt: f64) -> f64 {
         let h = 0.5 * dt;
         let mut d2_max: f64 = 0.0;
+        if !self.grid.is_periodic() {
+            // No periodic axis: `wrap` and `min_image` return their arguments, so the loop
+            // without them (and with the arrays sliced to one length, one bounds check) gives
+            // the same bits.
+            let n = self.len();
+            let (v, w, x) = (&mut self.v[..n], &mut self.w[..n], &mut self.x[..n]);
+            let (f, t) = (&self.f[..n], &self.t[..n]);
+            let (inv_m, inv_i, x_build) = (&self.inv_m[..n], &self.inv_i[..n], &self.x_build[..n]);
+            for i in 0..n {
+                v[i] += f[i] * (h * inv_m[i]);
+                w[i] += t[i] * (h * inv_i[i]);
+                let xi = x[i] + v[i] * dt;
+                x[i] = xi;
+                let d = xi - x_build[i];
+                d2_max = d2_max.max(d.dot(d));
+            }
+            return d2_max;
+        }
         for i in 0..self.len() {
             self.v[i] += self.f[i] * (h * self.inv_m[i]);
             self.w[i] += self.t[i] * (h * self.inv_i[i]);
@@ -79,9 +97,13 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// Velocity Verlet's second half-kick, `h = dt/2` \[s\].
     fn kick(&mut self, h: f64) {
-        for i in 0..self.len() {
-            self.v[i] += self.f[i] * (h * self.inv_m[i]);
-            self.w[i] += self.t[i] * (h * self.inv_i[i]);
+        let n = self.len();
+        let (v, w) = (&mut self.v[..n], &mut self.w[..n]);
+        let (f, t) = (&self.f[..n], &self.t[..n]);
+        let (inv_m, inv_i) = (&self.inv_m[..n], &self.inv_i[..n]);
+        for i in 0..n {
+            v[i] += f[i] * (h * inv_m[i]);
+            w[i] += t[i] * (h * inv_i[i]);
         }
     }
 
@@ -94,9 +116,10 @@ impl<T: TangentialLaw> Dem<T> {
         }
         let n = self.len();
         let g = self.cfg.gravity;
+        let (f, t, mass) = (&mut self.f[..n], &mut self.t[..n], &self.mass[..n]);
         for i in 0..n {
-            self.f[i] = weight(g, self.mass[i]);
-            self.t[i] = Vec3::ZERO;
+            f[i] = weight(g, mass[i]);
+            t[i] = Vec3::ZERO;
         }
         let mut counts = DemCounts {
             neighbours: self.nl_j.len(),
@@ -295,15 +318,10 @@ impl<T: TangentialLaw> Dem<T> {
                     }
                     let ci = last_ci;
                     if last_block {
-                        if pend.len > 0 && pend.constants != ci {
+                        if !uniform && pend.len > 0 && pend.constants != ci {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
-                        if pend.push(
-                            &arr,
-                            ci,
-                            (k as u32, i as u32, j as u32, p as u32, q as u32),
-                            dpq,
-                        ) {
+                        if pend.push(&arr, ci, (k as u32, p as u32, q as u32), dpq) {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
                         continue;
@@ -400,12 +418,7 @@ impl<T: TangentialLaw> Dem<T> {
                         if pend.len > 0 && pend.constants != ci {
                             self.flush(&mut pend, hist, dt, outs);
                         }
-                        if pend.push(
-                            &arr,
-                            ci,
-                            (o as u32, i as u32, j as u32, p as u32, q as u32),
-                            dpq,
-                        ) {
+                        if pend.push(&arr, ci, (o as u32, p as u32, q as u32), dpq) {
                             self.flush(&mut pend, hist, dt, outs);
                         }
                         continue;
@@ -445,12 +458,15 @@ impl<T: TangentialLaw> Dem<T> {
             dt,
         );
         for l in 0..n {
-            let (o, i, j, p, q) = pend.entry[l];
+            let (o, p, q) = pend.entry[l];
             let o = o as usize;
             if mask >> l & 1 == 1 {
                 outs.pq[o] = [p, q];
             } else {
-                self.pair_out_rare(i as usize, j as usize, &mut hist[o], dt, o, outs);
+                // The entry's pair as (p, q) rather than (i, j): the one-contact kernel orders
+                // them by id itself, on the same separation (`x_q - x_p` is `-(x_j - x_i)`
+                // exactly, and so is its minimum image).
+                self.pair_out_rare(p as usize, q as usize, &mut hist[o], dt, o, outs);
             }
         }
         pend.len = 0;
@@ -924,19 +940,16 @@ impl Acc<'_> {
         self.f[q] -= force_p;
         self.t[p] += v(&o.torque_p);
         self.t[q] += v(&o.torque_q);
-        tally_parts(
-            self.c,
-            self.e,
-            &creep_law::pair::PairDissipation {
-                damping: o.damping[l],
-                slip: o.slip[l],
-                creep: o.creep[l],
-                rolling: 0.0,
-                truncation: o.truncation[l],
-            },
-            o.sliding[l],
-            o.creep_displacement[0][l] != 0.0 || o.creep_displacement[1][l] != 0.0,
-        );
+        // `tally_parts` without the rolling dissipation, zero for a block lane: the sum starts
+        // at +0 and so is never -0, which `+ 0.0` alone would change.
+        let e = &mut *self.e;
+        e.damping += o.damping[l];
+        e.slip += o.slip[l];
+        e.creep += o.creep[l];
+        e.truncation += o.truncation[l];
+        self.c.sliding += usize::from(o.sliding[l]);
+        self.c.creeping +=
+            usize::from(o.creep_displacement[0][l] != 0.0 || o.creep_displacement[1][l] != 0.0);
         self.c.contacts += 1;
     }
 
@@ -984,11 +997,14 @@ fn flush_lanes<T: TangentialLaw>(
         lanes,
     );
     for l in 0..n {
-        let (k, i, j, p, q) = pend.entry[l];
+        let (k, p, q) = pend.entry[l];
         if mask >> l & 1 == 1 {
             acc.add_lane(p as usize, q as usize, lanes, l);
         } else {
-            pair_one_rare(arr, i as usize, j as usize, &mut hist[k as usize], dt, acc);
+            // The entry's pair as (p, q) rather than (i, j): the one-contact kernel orders them
+            // by id itself, on the same separation (`x_q - x_p` is `-(x_j - x_i)` exactly, and
+            // so is its minimum image).
+            pair_one_rare(arr, p as usize, q as usize, &mut hist[k as usize], dt, acc);
         }
     }
     pend.len = 0;
@@ -1014,13 +1030,13 @@ fn pair_one_rare<T: TangentialLaw>(
 /// The `p` of an entry whose pair is apart.
 pub(crate) const APART: u32 = u32::MAX;
 
-/// The lanes waiting for the block kernel: their window entry, i, j, p, q, bodies, and the
-/// index of their pair constants.
+/// The lanes waiting for the block kernel: their entry (its history's index), p, q, bodies,
+/// and the index of their pair constants.
 #[derive(Default)]
 struct Pending {
     len: usize,
     constants: usize,
-    entry: [(u32, u32, u32, u32, u32); LANES],
+    entry: [(u32, u32, u32); LANES],
     pairs: SphereLanes,
 }
 
@@ -1028,14 +1044,8 @@ impl Pending {
     /// Adds the pair of bodies `p, q` (`entry`'s last two; `dpq` from `p` to `q`, the minimum
     /// image) with pair constants `ci` as the next lane; whether the block is full.
     #[inline(always)]
-    fn push(
-        &mut self,
-        arr: &Arrays,
-        ci: usize,
-        entry: (u32, u32, u32, u32, u32),
-        dpq: Vec3,
-    ) -> bool {
-        let (p, q) = (entry.3 as usize, entry.4 as usize);
+    fn push(&mut self, arr: &Arrays, ci: usize, entry: (u32, u32, u32), dpq: Vec3) -> bool {
+        let (p, q) = (entry.1 as usize, entry.2 as usize);
         // `len < LANES` here (a full block is flushed); the mask tells the compiler so, which
         // drops the lane checks and lets it store each value as it loads it.
         let l = self.len % LANES;
