@@ -546,32 +546,49 @@ impl<T: TangentialLaw> Dem<T> {
             *f = Vec3::ZERO;
         }
         let mut hist = std::mem::take(&mut self.wl_h);
+        let ne = hist.len();
+        // The arrays sliced once (one bounds check of an index serves every array), the
+        // forces borrowed apart from what the kernels read.
+        let arr = arrays!(self);
+        let n = arr.x.len();
+        let wa = WallArrays {
+            walls: &self.walls,
+            wl_k: &self.wl_k[..ne],
+            wl_i: &self.wl_i[..ne],
+        };
+        let mut acc = WallAcc {
+            f: &mut self.f[..n],
+            t: &mut self.t[..n],
+            wall_force: &mut self.wall_force,
+            counts,
+            energy,
+        };
         let mut pend = WallPending::default();
         let mut lanes = WallForceLanes::default();
         let mut last_mats = (usize::MAX, u32::MAX);
         let (mut last_ci, mut last_block) = (0, false);
-        for e in 0..hist.len() {
+        for e in 0..ne {
             if let Some(ahead) = hist.get(e + crate::kernels::PREFETCH_AHEAD) {
                 crate::kernels::prefetch(ahead);
             }
-            let k = self.wl_k[e] as usize;
-            let i = self.wl_i[e] as usize;
-            let wall = self.walls[k];
-            let (xq, rq) = (self.x[i], self.r[i]);
+            let k = wa.wl_k[e] as usize;
+            let i = wa.wl_i[e] as usize;
+            let wall = &wa.walls[k];
+            let (xq, rq) = (arr.x[i], arr.r[i]);
             // The overlap as `ContactGeometry::plane_sphere` computes it.
             let overlap = rq - (xq - wall.point).dot(wall.normal);
             if overlap > 0.0 && !hist[e].is_virgin() {
-                let mats = (wall.material, self.mat[i]);
+                let mats = (wall.material, arr.mat[i]);
                 if mats != last_mats {
                     last_mats = mats;
-                    last_ci = self.table.pair_index(mats.0, mats.1 as usize);
-                    last_block = block_supports(&self.table.pairs[last_ci]);
+                    last_ci = arr.table.pair_index(mats.0, mats.1 as usize);
+                    last_block = block_supports(&arr.table.pairs[last_ci]);
                 }
                 if last_block {
                     if pend.len > 0 && pend.constants != last_ci {
-                        self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                        flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
                     }
-                    let l = pend.len;
+                    let l = pend.len % LANES;
                     pend.constants = last_ci;
                     pend.entry[l] = e as u32;
                     pend.walls.set(
@@ -581,79 +598,34 @@ impl<T: TangentialLaw> Dem<T> {
                             normal: wall.normal,
                             velocity: wall.velocity,
                             xq,
-                            vq: self.v[i],
-                            wq: self.w[i],
+                            vq: arr.v[i],
+                            wq: arr.w[i],
                             rq,
-                            mq: self.mass[i],
+                            mq: arr.mass[i],
                         },
                     );
                     pend.len += 1;
                     if pend.len == LANES {
-                        self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                        flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
                     }
                     continue;
                 }
             }
             if pend.len > 0 {
-                self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
             }
-            let out = self.wall_pair(e, &mut hist[e], dt);
-            self.apply_wall(e, out, counts, energy);
+            let out = wall_pair_in(&arr, &wa, e, &mut hist[e], dt);
+            acc.apply(i, k, out);
         }
         if pend.len > 0 {
-            self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+            flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
         }
         self.wl_h = hist;
     }
 
-    /// Runs the waiting wall lanes through the block kernel (the unused lanes repeat the first,
-    /// their results dropped) and adds each lane's outputs in order; a lane the block leaves
-    /// goes through the one-contact kernel in its place.
-    #[inline(always)]
-    fn flush_walls(
-        &mut self,
-        pend: &mut WallPending,
-        hist: &mut [ContactHistory<T>],
-        dt: f64,
-        lanes: &mut WallForceLanes,
-        counts: &mut DemCounts,
-        energy: &mut DemEnergy,
-    ) {
-        let n = pend.len;
-        for l in n..LANES {
-            pend.walls.copy_lane(0, l);
-        }
-        let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }] as usize);
-        let mask = wall_block_lanes(
-            &self.table.pairs[pend.constants],
-            &pend.walls,
-            hist,
-            idx,
-            n,
-            dt,
-            lanes,
-        );
-        for (l, &e) in pend.entry[..n].iter().enumerate() {
-            let e = e as usize;
-            let out = if mask >> l & 1 == 1 {
-                let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
-                Ok(WallOut {
-                    force_p: v(&lanes.force_p),
-                    torque_q: v(&lanes.torque_q),
-                    dissipation: lanes.dissipation(l),
-                    sliding: lanes.sliding[l],
-                    creeping: lanes.creeping[l],
-                })
-            } else {
-                self.wall_pair(e, &mut hist[e], dt)
-            };
-            self.apply_wall(e, out, counts, energy);
-        }
-        pend.len = 0;
-    }
-
     /// The contact of wall-list entry `e` (the wall is p): the kernel's output when touching,
     /// else the energy its history released.
+    #[cfg(feature = "parallel")]
     #[inline(always)]
     pub(crate) fn wall_pair(
         &self,
@@ -661,57 +633,128 @@ impl<T: TangentialLaw> Dem<T> {
         h: &mut ContactHistory<T>,
         dt: f64,
     ) -> Result<WallOut, f64> {
-        let k = self.wl_k[e] as usize;
-        let i = self.wl_i[e] as usize;
-        let wall = self.walls[k];
-        let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, self.x[i], self.r[i]);
-        let c = self.table.pair(wall.material, self.mat[i] as usize);
-        if !(geo.overlap > 0.0) {
-            return Err(release(c, Surface::Plane, Surface::Sphere(self.r[i]), h));
-        }
-        let bp = PairBody {
-            position: geo.point,
-            velocity: wall.velocity,
-            angular_velocity: Vec3::ZERO,
-            surface: Surface::Plane,
-            mass: f64::INFINITY,
+        let wa = WallArrays {
+            walls: &self.walls,
+            wl_k: &self.wl_k,
+            wl_i: &self.wl_i,
         };
-        let out = pair_force(c, &bp, &self.body(i, self.x[i]), &geo, h, dt);
-        if out.touching {
-            Ok(WallOut {
-                force_p: out.force_p,
-                torque_q: out.torque_q,
-                dissipation: out.dissipation,
-                sliding: out.sliding,
-                creeping: out.creep_displacement != creep_law::Vec2::ZERO,
-            })
-        } else {
-            Err(0.0)
-        }
+        wall_pair_in(&self.arrays(), &wa, e, h, dt)
     }
+}
 
-    /// Adds wall-list entry `e`'s output to its particle, its wall and the tallies.
+/// The wall list's arrays the wall loops read: the walls and each entry's wall and particle.
+#[derive(Clone, Copy)]
+pub(crate) struct WallArrays<'a> {
+    walls: &'a [crate::Wall],
+    wl_k: &'a [u32],
+    wl_i: &'a [u32],
+}
+
+/// [`Dem::wall_pair`] on the arrays `a` and `wa`.
+#[inline(always)]
+fn wall_pair_in<T: TangentialLaw>(
+    a: &Arrays<'_>,
+    wa: &WallArrays<'_>,
+    e: usize,
+    h: &mut ContactHistory<T>,
+    dt: f64,
+) -> Result<WallOut, f64> {
+    let k = wa.wl_k[e] as usize;
+    let i = wa.wl_i[e] as usize;
+    let wall = wa.walls[k];
+    let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, a.x[i], a.r[i]);
+    let c = a.table.pair(wall.material, a.mat[i] as usize);
+    if !(geo.overlap > 0.0) {
+        return Err(release(c, Surface::Plane, Surface::Sphere(a.r[i]), h));
+    }
+    let bp = PairBody {
+        position: geo.point,
+        velocity: wall.velocity,
+        angular_velocity: Vec3::ZERO,
+        surface: Surface::Plane,
+        mass: f64::INFINITY,
+    };
+    let out = pair_force(c, &bp, &a.body(i, a.x[i]), &geo, h, dt);
+    if out.touching {
+        Ok(WallOut {
+            force_p: out.force_p,
+            torque_q: out.torque_q,
+            dissipation: out.dissipation,
+            sliding: out.sliding,
+            creeping: out.creep_displacement != creep_law::Vec2::ZERO,
+        })
+    } else {
+        Err(0.0)
+    }
+}
+
+/// Where the serial wall loop adds the contacts' outputs: the particles' forces and torques,
+/// the walls' forces, the counts and the energies.
+struct WallAcc<'a> {
+    f: &'a mut [Vec3],
+    t: &'a mut [Vec3],
+    wall_force: &'a mut [Vec3],
+    counts: &'a mut DemCounts,
+    energy: &'a mut DemEnergy,
+}
+
+impl WallAcc<'_> {
+    /// Adds a wall-list entry's output (particle `i`, wall `k`) to its particle, its wall and
+    /// the tallies.
     #[inline(always)]
-    pub(crate) fn apply_wall(
-        &mut self,
-        e: usize,
-        out: Result<WallOut, f64>,
-        counts: &mut DemCounts,
-        energy: &mut DemEnergy,
-    ) {
+    fn apply(&mut self, i: usize, k: usize, out: Result<WallOut, f64>) {
         if let Ok(o) = &out {
-            let i = self.wl_i[e] as usize;
             self.f[i] -= o.force_p;
             self.t[i] += o.torque_q;
         }
-        tally_wall(
-            &out,
-            self.wl_k[e] as usize,
-            &mut self.wall_force,
-            counts,
-            energy,
-        );
+        tally_wall(&out, k, self.wall_force, self.counts, self.energy);
     }
+}
+
+/// Runs the waiting wall lanes through the block kernel (the unused lanes repeat the first,
+/// their results dropped) and adds each lane's outputs in order; a lane the block leaves
+/// goes through the one-contact kernel in its place.
+#[inline(always)]
+fn flush_walls<T: TangentialLaw>(
+    arr: &Arrays<'_>,
+    wa: &WallArrays<'_>,
+    pend: &mut WallPending,
+    hist: &mut [ContactHistory<T>],
+    dt: f64,
+    lanes: &mut WallForceLanes,
+    acc: &mut WallAcc<'_>,
+) {
+    let n = pend.len;
+    for l in n..LANES {
+        pend.walls.copy_lane(0, l);
+    }
+    let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }] as usize);
+    let mask = wall_block_lanes(
+        &arr.table.pairs[pend.constants],
+        &pend.walls,
+        hist,
+        idx,
+        n,
+        dt,
+        lanes,
+    );
+    for (l, &e) in pend.entry[..n.min(LANES)].iter().enumerate() {
+        let e = e as usize;
+        let out = if mask >> l & 1 == 1 {
+            let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+            Ok(WallOut {
+                force_p: v(&lanes.force_p),
+                torque_q: v(&lanes.torque_q),
+                dissipation: lanes.dissipation(l),
+                sliding: lanes.sliding[l],
+                creeping: lanes.creeping[l],
+            })
+        } else {
+            wall_pair_in(arr, wa, e, &mut hist[e], dt)
+        };
+        acc.apply(wa.wl_i[e] as usize, wa.wl_k[e] as usize, out);
+    }
+    pend.len = 0;
 }
 
 /// A wall-list entry's share of the counts, the energies and its wall's force `k` (both
