@@ -294,19 +294,21 @@ impl<T: TangentialLaw> Dem<T> {
             let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
             for (k, &j) in (a..b).zip(&nl_j[a..b]) {
                 let j = j as usize;
+                let (xj, rj) = (arr.x[j], arr.r[j]);
                 let d = if periodic {
-                    arr.grid.min_image(arr.x[j] - xi)
+                    arr.grid.min_image(xj - xi)
                 } else {
-                    arr.x[j] - xi
+                    xj - xi
                 };
-                let rs = ri + arr.r[j];
+                let rs = ri + rj;
                 let touching = d.dot(d) < rs * rs;
                 let h = &mut hist[k];
                 if touching && !h.is_virgin() {
-                    let (p, q, dpq) = if id_i < arr.id[j] {
-                        (i, j, d)
+                    // p's centre and both radii as loaded for the test, not loaded again.
+                    let (p, q, dpq, xp, rp, rq) = if id_i < arr.id[j] {
+                        (i, j, d, xi, ri, rj)
                     } else {
-                        (j, i, -d)
+                        (j, i, -d, xj, rj, ri)
                     };
                     if !uniform {
                         let mats = (arr.mat[p], arr.mat[q]);
@@ -321,7 +323,7 @@ impl<T: TangentialLaw> Dem<T> {
                         if !uniform && pend.len > 0 && pend.constants != ci {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
-                        if pend.push(&arr, ci, (k as u32, p as u32, q as u32), dpq) {
+                        if pend.push(&arr, ci, (k as u32, p as u32, q as u32), xp, dpq, rp, rq) {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
                         continue;
@@ -402,14 +404,15 @@ impl<T: TangentialLaw> Dem<T> {
             for (k, &j) in (a..b).zip(&self.nl_j[a..b]) {
                 let j = j as usize;
                 let o = k - base;
-                let d = self.grid.min_image(arr.x[j] - xi);
-                let rs = ri + arr.r[j];
+                let (xj, rj) = (arr.x[j], arr.r[j]);
+                let d = self.grid.min_image(xj - xi);
+                let rs = ri + rj;
                 let h = &mut hist[o];
                 if d.dot(d) < rs * rs && !h.is_virgin() {
-                    let (p, q, dpq) = if id_i < arr.id[j] {
-                        (i, j, d)
+                    let (p, q, dpq, xp, rp, rq) = if id_i < arr.id[j] {
+                        (i, j, d, xi, ri, rj)
                     } else {
-                        (j, i, -d)
+                        (j, i, -d, xj, rj, ri)
                     };
                     let ci = self
                         .table
@@ -418,7 +421,7 @@ impl<T: TangentialLaw> Dem<T> {
                         if pend.len > 0 && pend.constants != ci {
                             self.flush(&mut pend, hist, dt, outs);
                         }
-                        if pend.push(&arr, ci, (o as u32, p as u32, q as u32), dpq) {
+                        if pend.push(&arr, ci, (o as u32, p as u32, q as u32), xp, dpq, rp, rq) {
                             self.flush(&mut pend, hist, dt, outs);
                         }
                         continue;
@@ -1084,15 +1087,25 @@ struct Pending {
 }
 
 impl Pending {
-    /// Adds the pair of bodies `p, q` (`entry`'s last two; `dpq` from `p` to `q`, the minimum
-    /// image) with pair constants `ci` as the next lane; whether the block is full.
+    /// Adds the pair of bodies `p, q` (`entry`'s last two; p's centre `xp`, `dpq` from `p` to
+    /// `q`, the minimum image; radii `rp`, `rq`) with pair constants `ci` as the next lane;
+    /// whether the block is full.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn push(&mut self, arr: &Arrays, ci: usize, entry: (u32, u32, u32), dpq: Vec3) -> bool {
+    fn push(
+        &mut self,
+        arr: &Arrays,
+        ci: usize,
+        entry: (u32, u32, u32),
+        xp: Vec3,
+        dpq: Vec3,
+        rp: f64,
+        rq: f64,
+    ) -> bool {
         let (p, q) = (entry.1 as usize, entry.2 as usize);
         // `len < LANES` here (a full block is flushed); the mask tells the compiler so, which
         // drops the lane checks and lets it store each value as it loads it.
         let l = self.len % LANES;
-        let xp = arr.x[p];
         self.constants = ci;
         self.entry[l] = entry;
         self.pairs.set(
@@ -1100,8 +1113,8 @@ impl Pending {
             &SpherePair {
                 xp,
                 xq: xp + dpq,
-                rp: arr.r[p],
-                rq: arr.r[q],
+                rp,
+                rq,
                 vp: arr.v[p],
                 vq: arr.v[q],
                 wp: arr.w[p],
