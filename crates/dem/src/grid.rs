@@ -240,6 +240,24 @@ impl Grid {
         let cx = (c % nx) as i32;
         let cy = ((c / nx) % ny) as i32;
         let cz = (c / (nx * ny)) as i32;
+        if (1..self.n[0] - 1).contains(&cx)
+            && (1..self.n[1] - 1).contains(&cy)
+            && (0..self.n[2] - 1).contains(&cz)
+        {
+            // Every stencil cell inside the grid (HALF's offsets are -1..=1 in x and y, 0..=1
+            // in z): no wrap nor edge test, the same cells in the same order.
+            let (nx, nxy) = (nx as isize, (nx * ny) as isize);
+            for o in HALF {
+                let k = (c as isize + o[2] as isize * nxy + o[1] as isize * nx + o[0] as isize)
+                    as usize;
+                let (a, b) = (self.start[k], self.start[k + 1]);
+                if a < b {
+                    s.ranges[s.len] = (a, b);
+                    s.len += 1;
+                }
+            }
+            return;
+        }
         for o in HALF {
             let mut nc = [cx + o[0], cy + o[1], cz + o[2]];
             let mut ok = true;

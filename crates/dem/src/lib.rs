@@ -33,13 +33,15 @@
 //!   adds them, then the second half-kick), energies and counts summed per block of particles
 //!   in both, and the neighbour list is built per block of particles at rebuilds: results are
 //!   the same bits as the serial loop's, run to run and for any number of threads;
-//! * the force loops compiled twice, for the target's baseline and (x86-64) with AVX2 and FMA,
-//!   the latter taken at run time where the CPU has them ([`Kernels`]): the same bits.
+//! * the force loops compiled three times, for the target's baseline and (x86-64) with AVX2
+//!   and FMA, and with AVX-512F and AVX-512VL too (32 vector registers), the widest taken at
+//!   run time where the CPU has it ([`Kernels`]): the same bits.
 //!
 //! Conventions are creep-law's: in a pair the particle with the smaller id is body p, the
 //! normal points from p to q; for a wall contact the wall is p, its normal points into the
 //! domain. SI units throughout.
-// No unsafe code but the one call of the AVX2 copy of the force loops (`kernels`), allowed there.
+// No unsafe code but the calls of the AVX2 and AVX-512 copies of the force loops (`kernels`),
+// allowed there.
 #![deny(unsafe_code)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 // Loops index several per-particle arrays at once (structure of arrays) on purpose.

@@ -66,6 +66,24 @@ impl<T: TangentialLaw> Dem<T> {
     fn kick_drift(&mut self, dt: f64) -> f64 {
         let h = 0.5 * dt;
         let mut d2_max: f64 = 0.0;
+        if !self.grid.is_periodic() {
+            // No periodic axis: `wrap` and `min_image` return their arguments, so the loop
+            // without them (and with the arrays sliced to one length, one bounds check) gives
+            // the same bits.
+            let n = self.len();
+            let (v, w, x) = (&mut self.v[..n], &mut self.w[..n], &mut self.x[..n]);
+            let (f, t) = (&self.f[..n], &self.t[..n]);
+            let (inv_m, inv_i, x_build) = (&self.inv_m[..n], &self.inv_i[..n], &self.x_build[..n]);
+            for i in 0..n {
+                v[i] += f[i] * (h * inv_m[i]);
+                w[i] += t[i] * (h * inv_i[i]);
+                let xi = x[i] + v[i] * dt;
+                x[i] = xi;
+                let d = xi - x_build[i];
+                d2_max = d2_max.max(d.dot(d));
+            }
+            return d2_max;
+        }
         for i in 0..self.len() {
             self.v[i] += self.f[i] * (h * self.inv_m[i]);
             self.w[i] += self.t[i] * (h * self.inv_i[i]);
@@ -79,9 +97,13 @@ impl<T: TangentialLaw> Dem<T> {
 
     /// Velocity Verlet's second half-kick, `h = dt/2` \[s\].
     fn kick(&mut self, h: f64) {
-        for i in 0..self.len() {
-            self.v[i] += self.f[i] * (h * self.inv_m[i]);
-            self.w[i] += self.t[i] * (h * self.inv_i[i]);
+        let n = self.len();
+        let (v, w) = (&mut self.v[..n], &mut self.w[..n]);
+        let (f, t) = (&self.f[..n], &self.t[..n]);
+        let (inv_m, inv_i) = (&self.inv_m[..n], &self.inv_i[..n]);
+        for i in 0..n {
+            v[i] += f[i] * (h * inv_m[i]);
+            w[i] += t[i] * (h * inv_i[i]);
         }
     }
 
@@ -94,9 +116,10 @@ impl<T: TangentialLaw> Dem<T> {
         }
         let n = self.len();
         let g = self.cfg.gravity;
+        let (f, t, mass) = (&mut self.f[..n], &mut self.t[..n], &self.mass[..n]);
         for i in 0..n {
-            self.f[i] = weight(g, self.mass[i]);
-            self.t[i] = Vec3::ZERO;
+            f[i] = weight(g, mass[i]);
+            t[i] = Vec3::ZERO;
         }
         let mut counts = DemCounts {
             neighbours: self.nl_j.len(),
@@ -271,19 +294,21 @@ impl<T: TangentialLaw> Dem<T> {
             let (xi, ri, id_i) = (arr.x[i], arr.r[i], arr.id[i]);
             for (k, &j) in (a..b).zip(&nl_j[a..b]) {
                 let j = j as usize;
+                let (xj, rj) = (arr.x[j], arr.r[j]);
                 let d = if periodic {
-                    arr.grid.min_image(arr.x[j] - xi)
+                    arr.grid.min_image(xj - xi)
                 } else {
-                    arr.x[j] - xi
+                    xj - xi
                 };
-                let rs = ri + arr.r[j];
+                let rs = ri + rj;
                 let touching = d.dot(d) < rs * rs;
                 let h = &mut hist[k];
                 if touching && !h.is_virgin() {
-                    let (p, q, dpq) = if id_i < arr.id[j] {
-                        (i, j, d)
+                    // p's centre and both radii as loaded for the test, not loaded again.
+                    let (p, q, dpq, xp, rp, rq) = if id_i < arr.id[j] {
+                        (i, j, d, xi, ri, rj)
                     } else {
-                        (j, i, -d)
+                        (j, i, -d, xj, rj, ri)
                     };
                     if !uniform {
                         let mats = (arr.mat[p], arr.mat[q]);
@@ -295,15 +320,10 @@ impl<T: TangentialLaw> Dem<T> {
                     }
                     let ci = last_ci;
                     if last_block {
-                        if pend.len > 0 && pend.constants != ci {
+                        if !uniform && pend.len > 0 && pend.constants != ci {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
-                        if pend.push(
-                            &arr,
-                            ci,
-                            (k as u32, i as u32, j as u32, p as u32, q as u32),
-                            dpq,
-                        ) {
+                        if pend.push(&arr, ci, (k as u32, p as u32, q as u32), xp, dpq, rp, rq) {
                             flush_lanes(&arr, &mut pend, hist, dt, &mut lanes, &mut acc);
                         }
                         continue;
@@ -384,14 +404,15 @@ impl<T: TangentialLaw> Dem<T> {
             for (k, &j) in (a..b).zip(&self.nl_j[a..b]) {
                 let j = j as usize;
                 let o = k - base;
-                let d = self.grid.min_image(arr.x[j] - xi);
-                let rs = ri + arr.r[j];
+                let (xj, rj) = (arr.x[j], arr.r[j]);
+                let d = self.grid.min_image(xj - xi);
+                let rs = ri + rj;
                 let h = &mut hist[o];
                 if d.dot(d) < rs * rs && !h.is_virgin() {
-                    let (p, q, dpq) = if id_i < arr.id[j] {
-                        (i, j, d)
+                    let (p, q, dpq, xp, rp, rq) = if id_i < arr.id[j] {
+                        (i, j, d, xi, ri, rj)
                     } else {
-                        (j, i, -d)
+                        (j, i, -d, xj, rj, ri)
                     };
                     let ci = self
                         .table
@@ -400,12 +421,7 @@ impl<T: TangentialLaw> Dem<T> {
                         if pend.len > 0 && pend.constants != ci {
                             self.flush(&mut pend, hist, dt, outs);
                         }
-                        if pend.push(
-                            &arr,
-                            ci,
-                            (o as u32, i as u32, j as u32, p as u32, q as u32),
-                            dpq,
-                        ) {
+                        if pend.push(&arr, ci, (o as u32, p as u32, q as u32), xp, dpq, rp, rq) {
                             self.flush(&mut pend, hist, dt, outs);
                         }
                         continue;
@@ -445,12 +461,15 @@ impl<T: TangentialLaw> Dem<T> {
             dt,
         );
         for l in 0..n {
-            let (o, i, j, p, q) = pend.entry[l];
+            let (o, p, q) = pend.entry[l];
             let o = o as usize;
             if mask >> l & 1 == 1 {
                 outs.pq[o] = [p, q];
             } else {
-                self.pair_out_rare(i as usize, j as usize, &mut hist[o], dt, o, outs);
+                // The entry's pair as (p, q) rather than (i, j): the one-contact kernel orders
+                // them by id itself, on the same separation (`x_q - x_p` is `-(x_j - x_i)`
+                // exactly, and so is its minimum image).
+                self.pair_out_rare(p as usize, q as usize, &mut hist[o], dt, o, outs);
             }
         }
         pend.len = 0;
@@ -530,32 +549,49 @@ impl<T: TangentialLaw> Dem<T> {
             *f = Vec3::ZERO;
         }
         let mut hist = std::mem::take(&mut self.wl_h);
+        let ne = hist.len();
+        // The arrays sliced once (one bounds check of an index serves every array), the
+        // forces borrowed apart from what the kernels read.
+        let arr = arrays!(self);
+        let n = arr.x.len();
+        let wa = WallArrays {
+            walls: &self.walls,
+            wl_k: &self.wl_k[..ne],
+            wl_i: &self.wl_i[..ne],
+        };
+        let mut acc = WallAcc {
+            f: &mut self.f[..n],
+            t: &mut self.t[..n],
+            wall_force: &mut self.wall_force,
+            counts,
+            energy,
+        };
         let mut pend = WallPending::default();
         let mut lanes = WallForceLanes::default();
         let mut last_mats = (usize::MAX, u32::MAX);
         let (mut last_ci, mut last_block) = (0, false);
-        for e in 0..hist.len() {
+        for e in 0..ne {
             if let Some(ahead) = hist.get(e + crate::kernels::PREFETCH_AHEAD) {
                 crate::kernels::prefetch(ahead);
             }
-            let k = self.wl_k[e] as usize;
-            let i = self.wl_i[e] as usize;
-            let wall = self.walls[k];
-            let (xq, rq) = (self.x[i], self.r[i]);
+            let k = wa.wl_k[e] as usize;
+            let i = wa.wl_i[e] as usize;
+            let wall = &wa.walls[k];
+            let (xq, rq) = (arr.x[i], arr.r[i]);
             // The overlap as `ContactGeometry::plane_sphere` computes it.
             let overlap = rq - (xq - wall.point).dot(wall.normal);
             if overlap > 0.0 && !hist[e].is_virgin() {
-                let mats = (wall.material, self.mat[i]);
+                let mats = (wall.material, arr.mat[i]);
                 if mats != last_mats {
                     last_mats = mats;
-                    last_ci = self.table.pair_index(mats.0, mats.1 as usize);
-                    last_block = block_supports(&self.table.pairs[last_ci]);
+                    last_ci = arr.table.pair_index(mats.0, mats.1 as usize);
+                    last_block = block_supports(&arr.table.pairs[last_ci]);
                 }
                 if last_block {
                     if pend.len > 0 && pend.constants != last_ci {
-                        self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                        flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
                     }
-                    let l = pend.len;
+                    let l = pend.len % LANES;
                     pend.constants = last_ci;
                     pend.entry[l] = e as u32;
                     pend.walls.set(
@@ -565,79 +601,34 @@ impl<T: TangentialLaw> Dem<T> {
                             normal: wall.normal,
                             velocity: wall.velocity,
                             xq,
-                            vq: self.v[i],
-                            wq: self.w[i],
+                            vq: arr.v[i],
+                            wq: arr.w[i],
                             rq,
-                            mq: self.mass[i],
+                            mq: arr.mass[i],
                         },
                     );
                     pend.len += 1;
                     if pend.len == LANES {
-                        self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                        flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
                     }
                     continue;
                 }
             }
             if pend.len > 0 {
-                self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+                flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
             }
-            let out = self.wall_pair(e, &mut hist[e], dt);
-            self.apply_wall(e, out, counts, energy);
+            let out = wall_pair_in(&arr, &wa, e, &mut hist[e], dt);
+            acc.apply(i, k, out);
         }
         if pend.len > 0 {
-            self.flush_walls(&mut pend, &mut hist, dt, &mut lanes, counts, energy);
+            flush_walls(&arr, &wa, &mut pend, &mut hist, dt, &mut lanes, &mut acc);
         }
         self.wl_h = hist;
     }
 
-    /// Runs the waiting wall lanes through the block kernel (the unused lanes repeat the first,
-    /// their results dropped) and adds each lane's outputs in order; a lane the block leaves
-    /// goes through the one-contact kernel in its place.
-    #[inline(always)]
-    fn flush_walls(
-        &mut self,
-        pend: &mut WallPending,
-        hist: &mut [ContactHistory<T>],
-        dt: f64,
-        lanes: &mut WallForceLanes,
-        counts: &mut DemCounts,
-        energy: &mut DemEnergy,
-    ) {
-        let n = pend.len;
-        for l in n..LANES {
-            pend.walls.copy_lane(0, l);
-        }
-        let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }] as usize);
-        let mask = wall_block_lanes(
-            &self.table.pairs[pend.constants],
-            &pend.walls,
-            hist,
-            idx,
-            n,
-            dt,
-            lanes,
-        );
-        for (l, &e) in pend.entry[..n].iter().enumerate() {
-            let e = e as usize;
-            let out = if mask >> l & 1 == 1 {
-                let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
-                Ok(WallOut {
-                    force_p: v(&lanes.force_p),
-                    torque_q: v(&lanes.torque_q),
-                    dissipation: lanes.dissipation(l),
-                    sliding: lanes.sliding[l],
-                    creeping: lanes.creeping[l],
-                })
-            } else {
-                self.wall_pair(e, &mut hist[e], dt)
-            };
-            self.apply_wall(e, out, counts, energy);
-        }
-        pend.len = 0;
-    }
-
     /// The contact of wall-list entry `e` (the wall is p): the kernel's output when touching,
     /// else the energy its history released.
+    #[cfg(feature = "parallel")]
     #[inline(always)]
     pub(crate) fn wall_pair(
         &self,
@@ -645,57 +636,128 @@ impl<T: TangentialLaw> Dem<T> {
         h: &mut ContactHistory<T>,
         dt: f64,
     ) -> Result<WallOut, f64> {
-        let k = self.wl_k[e] as usize;
-        let i = self.wl_i[e] as usize;
-        let wall = self.walls[k];
-        let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, self.x[i], self.r[i]);
-        let c = self.table.pair(wall.material, self.mat[i] as usize);
-        if !(geo.overlap > 0.0) {
-            return Err(release(c, Surface::Plane, Surface::Sphere(self.r[i]), h));
-        }
-        let bp = PairBody {
-            position: geo.point,
-            velocity: wall.velocity,
-            angular_velocity: Vec3::ZERO,
-            surface: Surface::Plane,
-            mass: f64::INFINITY,
+        let wa = WallArrays {
+            walls: &self.walls,
+            wl_k: &self.wl_k,
+            wl_i: &self.wl_i,
         };
-        let out = pair_force(c, &bp, &self.body(i, self.x[i]), &geo, h, dt);
-        if out.touching {
-            Ok(WallOut {
-                force_p: out.force_p,
-                torque_q: out.torque_q,
-                dissipation: out.dissipation,
-                sliding: out.sliding,
-                creeping: out.creep_displacement != creep_law::Vec2::ZERO,
-            })
-        } else {
-            Err(0.0)
-        }
+        wall_pair_in(&self.arrays(), &wa, e, h, dt)
     }
+}
 
-    /// Adds wall-list entry `e`'s output to its particle, its wall and the tallies.
+/// The wall list's arrays the wall loops read: the walls and each entry's wall and particle.
+#[derive(Clone, Copy)]
+pub(crate) struct WallArrays<'a> {
+    walls: &'a [crate::Wall],
+    wl_k: &'a [u32],
+    wl_i: &'a [u32],
+}
+
+/// [`Dem::wall_pair`] on the arrays `a` and `wa`.
+#[inline(always)]
+fn wall_pair_in<T: TangentialLaw>(
+    a: &Arrays<'_>,
+    wa: &WallArrays<'_>,
+    e: usize,
+    h: &mut ContactHistory<T>,
+    dt: f64,
+) -> Result<WallOut, f64> {
+    let k = wa.wl_k[e] as usize;
+    let i = wa.wl_i[e] as usize;
+    let wall = wa.walls[k];
+    let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, a.x[i], a.r[i]);
+    let c = a.table.pair(wall.material, a.mat[i] as usize);
+    if !(geo.overlap > 0.0) {
+        return Err(release(c, Surface::Plane, Surface::Sphere(a.r[i]), h));
+    }
+    let bp = PairBody {
+        position: geo.point,
+        velocity: wall.velocity,
+        angular_velocity: Vec3::ZERO,
+        surface: Surface::Plane,
+        mass: f64::INFINITY,
+    };
+    let out = pair_force(c, &bp, &a.body(i, a.x[i]), &geo, h, dt);
+    if out.touching {
+        Ok(WallOut {
+            force_p: out.force_p,
+            torque_q: out.torque_q,
+            dissipation: out.dissipation,
+            sliding: out.sliding,
+            creeping: out.creep_displacement != creep_law::Vec2::ZERO,
+        })
+    } else {
+        Err(0.0)
+    }
+}
+
+/// Where the serial wall loop adds the contacts' outputs: the particles' forces and torques,
+/// the walls' forces, the counts and the energies.
+struct WallAcc<'a> {
+    f: &'a mut [Vec3],
+    t: &'a mut [Vec3],
+    wall_force: &'a mut [Vec3],
+    counts: &'a mut DemCounts,
+    energy: &'a mut DemEnergy,
+}
+
+impl WallAcc<'_> {
+    /// Adds a wall-list entry's output (particle `i`, wall `k`) to its particle, its wall and
+    /// the tallies.
     #[inline(always)]
-    pub(crate) fn apply_wall(
-        &mut self,
-        e: usize,
-        out: Result<WallOut, f64>,
-        counts: &mut DemCounts,
-        energy: &mut DemEnergy,
-    ) {
+    fn apply(&mut self, i: usize, k: usize, out: Result<WallOut, f64>) {
         if let Ok(o) = &out {
-            let i = self.wl_i[e] as usize;
             self.f[i] -= o.force_p;
             self.t[i] += o.torque_q;
         }
-        tally_wall(
-            &out,
-            self.wl_k[e] as usize,
-            &mut self.wall_force,
-            counts,
-            energy,
-        );
+        tally_wall(&out, k, self.wall_force, self.counts, self.energy);
     }
+}
+
+/// Runs the waiting wall lanes through the block kernel (the unused lanes repeat the first,
+/// their results dropped) and adds each lane's outputs in order; a lane the block leaves
+/// goes through the one-contact kernel in its place.
+#[inline(always)]
+fn flush_walls<T: TangentialLaw>(
+    arr: &Arrays<'_>,
+    wa: &WallArrays<'_>,
+    pend: &mut WallPending,
+    hist: &mut [ContactHistory<T>],
+    dt: f64,
+    lanes: &mut WallForceLanes,
+    acc: &mut WallAcc<'_>,
+) {
+    let n = pend.len;
+    for l in n..LANES {
+        pend.walls.copy_lane(0, l);
+    }
+    let idx = std::array::from_fn(|l| pend.entry[if l < n { l } else { 0 }] as usize);
+    let mask = wall_block_lanes(
+        &arr.table.pairs[pend.constants],
+        &pend.walls,
+        hist,
+        idx,
+        n,
+        dt,
+        lanes,
+    );
+    for (l, &e) in pend.entry[..n.min(LANES)].iter().enumerate() {
+        let e = e as usize;
+        let out = if mask >> l & 1 == 1 {
+            let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+            Ok(WallOut {
+                force_p: v(&lanes.force_p),
+                torque_q: v(&lanes.torque_q),
+                dissipation: lanes.dissipation(l),
+                sliding: lanes.sliding[l],
+                creeping: lanes.creeping[l],
+            })
+        } else {
+            wall_pair_in(arr, wa, e, &mut hist[e], dt)
+        };
+        acc.apply(wa.wl_i[e] as usize, wa.wl_k[e] as usize, out);
+    }
+    pend.len = 0;
 }
 
 /// A wall-list entry's share of the counts, the energies and its wall's force `k` (both
@@ -924,19 +986,16 @@ impl Acc<'_> {
         self.f[q] -= force_p;
         self.t[p] += v(&o.torque_p);
         self.t[q] += v(&o.torque_q);
-        tally_parts(
-            self.c,
-            self.e,
-            &creep_law::pair::PairDissipation {
-                damping: o.damping[l],
-                slip: o.slip[l],
-                creep: o.creep[l],
-                rolling: 0.0,
-                truncation: o.truncation[l],
-            },
-            o.sliding[l],
-            o.creep_displacement[0][l] != 0.0 || o.creep_displacement[1][l] != 0.0,
-        );
+        // `tally_parts` without the rolling dissipation, zero for a block lane: the sum starts
+        // at +0 and so is never -0, which `+ 0.0` alone would change.
+        let e = &mut *self.e;
+        e.damping += o.damping[l];
+        e.slip += o.slip[l];
+        e.creep += o.creep[l];
+        e.truncation += o.truncation[l];
+        self.c.sliding += usize::from(o.sliding[l]);
+        self.c.creeping +=
+            usize::from(o.creep_displacement[0][l] != 0.0 || o.creep_displacement[1][l] != 0.0);
         self.c.contacts += 1;
     }
 
@@ -984,11 +1043,14 @@ fn flush_lanes<T: TangentialLaw>(
         lanes,
     );
     for l in 0..n {
-        let (k, i, j, p, q) = pend.entry[l];
+        let (k, p, q) = pend.entry[l];
         if mask >> l & 1 == 1 {
             acc.add_lane(p as usize, q as usize, lanes, l);
         } else {
-            pair_one_rare(arr, i as usize, j as usize, &mut hist[k as usize], dt, acc);
+            // The entry's pair as (p, q) rather than (i, j): the one-contact kernel orders them
+            // by id itself, on the same separation (`x_q - x_p` is `-(x_j - x_i)` exactly, and
+            // so is its minimum image).
+            pair_one_rare(arr, p as usize, q as usize, &mut hist[k as usize], dt, acc);
         }
     }
     pend.len = 0;
@@ -1014,32 +1076,36 @@ fn pair_one_rare<T: TangentialLaw>(
 /// The `p` of an entry whose pair is apart.
 pub(crate) const APART: u32 = u32::MAX;
 
-/// The lanes waiting for the block kernel: their window entry, i, j, p, q, bodies, and the
-/// index of their pair constants.
+/// The lanes waiting for the block kernel: their entry (its history's index), p, q, bodies,
+/// and the index of their pair constants.
 #[derive(Default)]
 struct Pending {
     len: usize,
     constants: usize,
-    entry: [(u32, u32, u32, u32, u32); LANES],
+    entry: [(u32, u32, u32); LANES],
     pairs: SphereLanes,
 }
 
 impl Pending {
-    /// Adds the pair of bodies `p, q` (`entry`'s last two; `dpq` from `p` to `q`, the minimum
-    /// image) with pair constants `ci` as the next lane; whether the block is full.
+    /// Adds the pair of bodies `p, q` (`entry`'s last two; p's centre `xp`, `dpq` from `p` to
+    /// `q`, the minimum image; radii `rp`, `rq`) with pair constants `ci` as the next lane;
+    /// whether the block is full.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn push(
         &mut self,
         arr: &Arrays,
         ci: usize,
-        entry: (u32, u32, u32, u32, u32),
+        entry: (u32, u32, u32),
+        xp: Vec3,
         dpq: Vec3,
+        rp: f64,
+        rq: f64,
     ) -> bool {
-        let (p, q) = (entry.3 as usize, entry.4 as usize);
+        let (p, q) = (entry.1 as usize, entry.2 as usize);
         // `len < LANES` here (a full block is flushed); the mask tells the compiler so, which
         // drops the lane checks and lets it store each value as it loads it.
         let l = self.len % LANES;
-        let xp = arr.x[p];
         self.constants = ci;
         self.entry[l] = entry;
         self.pairs.set(
@@ -1047,8 +1113,8 @@ impl Pending {
             &SpherePair {
                 xp,
                 xq: xp + dpq,
-                rp: arr.r[p],
-                rq: arr.r[q],
+                rp,
+                rq,
                 vp: arr.v[p],
                 vq: arr.v[q],
                 wp: arr.w[p],

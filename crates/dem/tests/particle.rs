@@ -555,7 +555,8 @@ fn set_skin_carries_the_histories_and_keeps_the_physics() {
 /// `par.rs`), so also identical run to run, over a settling run whose contacts amplify any
 /// rounding difference (the sums in different orders drifted 4e-14 to 3.5e-7 m apart in
 /// 1500 steps, depending on the Cattaneo-Mindlin memory's rounding).
-/// The portable and the AVX2 copies of the force loops (`Kernels`) step a settling packing
+/// The portable, the AVX2 and (where the CPU has it) the AVX-512 copies of the force loops
+/// (`Kernels`) step a settling packing
 /// (sliding, creeping, walls, list rebuilds) to the same bits, serial and (with the `parallel`
 /// feature) on two threads.
 #[test]
@@ -606,22 +607,31 @@ fn same_bits_both_kernels<T: TangentialLaw>() {
     }
     for parallel in variants {
         let p = run(Kernels::Portable, parallel);
-        let a = run(Kernels::Avx2, parallel);
         assert!(
             p.2.contacts > 100 && p.2.sliding > 0 && p.2.creeping > 0,
             "{:?}",
             p.2
         );
-        let differ = a.0.iter().zip(&p.0).filter(|(x, y)| x != y).count();
-        println!(
-            "kernels ({}, parallel {parallel}): avx2 vs portable after 1500 steps: {differ} \
-             particles differ in any bit",
-            T::NAME
-        );
-        assert_eq!(differ, 0);
-        assert_eq!(a.1, p.1, "energies");
-        assert_eq!(a.2, p.2, "counts");
-        assert_eq!(a.3, p.3, "wall forces");
+        let mut wide = vec![Kernels::Avx2];
+        if Kernels::Avx512.available() {
+            wide.push(Kernels::Avx512);
+        } else {
+            println!("kernels: this CPU has no AVX-512F and AVX-512VL, that copy is not run");
+        }
+        for k in wide {
+            let a = run(k, parallel);
+            let differ = a.0.iter().zip(&p.0).filter(|(x, y)| x != y).count();
+            println!(
+                "kernels ({}, parallel {parallel}): {} vs portable after 1500 steps: {differ} \
+                 particles differ in any bit",
+                T::NAME,
+                k.name()
+            );
+            assert_eq!(differ, 0);
+            assert_eq!(a.1, p.1, "energies");
+            assert_eq!(a.2, p.2, "counts");
+            assert_eq!(a.3, p.3, "wall forces");
+        }
     }
 }
 

@@ -575,12 +575,12 @@ where
 
 /// Whether the list loop runs its AVX2 copy: the CPU has AVX2 and FMA, and the
 /// environment does not ask for the portable kernels (creep-dem's
-/// [`creep_dem::KERNELS_ENV`], read once per process; a value other than `portable`, `auto`
-/// or empty is an error).
+/// [`creep_dem::KERNELS_ENV`], read once per process; a value other than `portable`, `avx2`,
+/// `auto` or empty is an error).
 #[cfg(target_arch = "x86_64")]
 fn wide_available() -> Result<bool, ModelError> {
     match creep_dem::Kernels::detected() {
-        Ok(k) => Ok(k == creep_dem::Kernels::Avx2),
+        Ok(k) => Ok(k.wide()),
         Err(e) => Err(ModelError::Kernels(e.to_string())),
     }
 }
