@@ -572,6 +572,34 @@ impl Lut {
             wx * wy * vp,
             wx * wy * wp,
         ];
+        let out = if self.n == 1 {
+            // One table (a node, or a blend made into one: `baked`).
+            let cell = &self.tables[0][base..base + NPLANE + NP + 2];
+            let mut acc = [0.0f64; 3];
+            for k in 0..8 {
+                let v = cell[corners[k]];
+                acc[0] += cw[k] * f64::from(v[0]);
+                acc[1] += cw[k] * f64::from(v[1]);
+                acc[2] += cw[k] * f64::from(v[2]);
+            }
+            acc
+        } else {
+            self.read_parts(base, &corners, &cw)
+        };
+        Loads {
+            fx: sx * out[0],
+            fy: sy * out[1],
+            mz: sy * out[2],
+        }
+    }
+
+    /// The loads of a blend read from its computed tables (more than [`BAKED_MAX`] blends):
+    /// each table's cell `base` with the corners' weights `cw`, weighted `w` (forces) and `wm`
+    /// (moment), the force scaled onto Coulomb's bound where the cubic's weights overshoot it
+    /// (which `baked` does at every point of its table).
+    #[cold]
+    #[inline(never)]
+    fn read_parts(&self, base: usize, corners: &[usize; 8], cw: &[f64; 8]) -> [f64; 3] {
         let mut out = [0.0f64; 3];
         for t in 0..self.n {
             let cell = &self.tables[t][base..base + NPLANE + NP + 2];
@@ -586,18 +614,8 @@ impl Lut {
             out[1] += self.w[t] * acc[1];
             out[2] += self.wm[t] * acc[2];
         }
-        if self.n > 1 {
-            // Blended at each read (more than BAKED_MAX blends): the cubic's weights may
-            // overshoot Coulomb's bound, which `baked` keeps at every point.
-            let s = 1.0f64.min(1.0 / out[0].hypot(out[1]));
-            out[0] *= s;
-            out[1] *= s;
-        }
-        Loads {
-            fx: sx * out[0],
-            fy: sy * out[1],
-            mz: sy * out[2],
-        }
+        let s = 1.0f64.min(1.0 / out[0].hypot(out[1]));
+        [out[0] * s, out[1] * s, out[2]]
     }
 }
 
