@@ -619,7 +619,7 @@ impl Lut {
     }
 }
 
-/// Most blended read tables kept ([`baked`]; 368 KB each, 24 MB in all). A contact whose
+/// Most blended read tables kept (368 KB each, 24 MB in all). A contact whose
 /// `(a/b, nu)` needs more than one computed table (between computed `nu` or `a/b`) reads one
 /// table made for it once; beyond this many distinct `(a/b, nu)` in a process, a contact
 /// reads its computed tables at each evaluation (up to eight reads; the same loads but for
