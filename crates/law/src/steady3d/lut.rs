@@ -574,15 +574,7 @@ impl Lut {
         ];
         let out = if self.n == 1 {
             // One table (a node, or a blend made into one: `baked`).
-            let cell = &self.tables[0][base..base + NPLANE + NP + 2];
-            let mut acc = [0.0f64; 3];
-            for k in 0..8 {
-                let v = cell[corners[k]];
-                acc[0] += cw[k] * f64::from(v[0]);
-                acc[1] += cw[k] * f64::from(v[1]);
-                acc[2] += cw[k] * f64::from(v[2]);
-            }
-            acc
+            cell_loads(self.tables[0], base, &corners, &cw)
         } else {
             self.read_parts(base, &corners, &cw)
         };
@@ -602,14 +594,7 @@ impl Lut {
     fn read_parts(&self, base: usize, corners: &[usize; 8], cw: &[f64; 8]) -> [f64; 3] {
         let mut out = [0.0f64; 3];
         for t in 0..self.n {
-            let cell = &self.tables[t][base..base + NPLANE + NP + 2];
-            let mut acc = [0.0f64; 3];
-            for k in 0..8 {
-                let v = cell[corners[k]];
-                acc[0] += cw[k] * f64::from(v[0]);
-                acc[1] += cw[k] * f64::from(v[1]);
-                acc[2] += cw[k] * f64::from(v[2]);
-            }
+            let acc = cell_loads(self.tables[t], base, corners, cw);
             out[0] += self.w[t] * acc[0];
             out[1] += self.w[t] * acc[1];
             out[2] += self.wm[t] * acc[2];
@@ -617,6 +602,21 @@ impl Lut {
         let s = 1.0f64.min(1.0 / out[0].hypot(out[1]));
         [out[0] * s, out[1] * s, out[2]]
     }
+}
+
+/// The loads of one table at a point of its cell `base`: the corners' (offsets `corners` from
+/// `base`; each table's cell is one slice, so one bounds check) weighted trilinearly by `cw`.
+#[inline(always)]
+fn cell_loads(table: &Fine, base: usize, corners: &[usize; 8], cw: &[f64; 8]) -> [f64; 3] {
+    let cell = &table[base..base + NPLANE + NP + 2];
+    let mut acc = [0.0f64; 3];
+    for k in 0..8 {
+        let v = cell[corners[k]];
+        acc[0] += cw[k] * f64::from(v[0]);
+        acc[1] += cw[k] * f64::from(v[1]);
+        acc[2] += cw[k] * f64::from(v[2]);
+    }
+    acc
 }
 
 /// Most blended read tables kept (368 KB each, 24 MB in all). A contact whose
