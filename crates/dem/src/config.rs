@@ -62,6 +62,21 @@ pub struct Wall {
     pub material: usize,
 }
 
+impl Wall {
+    /// The wall as the first body of a sphere's contact at `point` (the contact point on the
+    /// plane): a rigid plane of infinite mass moving with the wall, not turning.
+    #[inline(always)]
+    pub(crate) fn body_at(&self, point: Vec3) -> creep_law::pair::PairBody {
+        creep_law::pair::PairBody {
+            position: point,
+            velocity: self.velocity,
+            angular_velocity: Vec3::ZERO,
+            surface: creep_law::Surface::Plane,
+            mass: f64::INFINITY,
+        }
+    }
+}
+
 /// Settings of the engine.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DemConfig {

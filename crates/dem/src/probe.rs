@@ -2,11 +2,11 @@
 //! re-evaluated on a copy of each touching contact's history, so the engine's state is not
 //! changed and the step loop stores nothing more per contact.
 
+use creep_law::Vec3;
 use creep_law::kinematics::{BodyMotion, contact_rates_and_approach};
 use creep_law::pair::{
     ContactGeometry, ContactHistory, PairBody, PairForces, TangentialLaw, pair_force,
 };
-use creep_law::{Surface, Vec3};
 
 use crate::Dem;
 
@@ -77,13 +77,7 @@ impl<T: TangentialLaw> Dem<T> {
                 continue;
             }
             let c = self.table.pair(wall.material, self.mat[i] as usize);
-            let bp = PairBody {
-                position: geo.point,
-                velocity: wall.velocity,
-                angular_velocity: Vec3::ZERO,
-                surface: Surface::Plane,
-                mass: f64::INFINITY,
-            };
+            let bp = wall.body_at(geo.point);
             let out = pair_force(c, &bp, &self.body(i, self.x[i]), &geo, &mut h, dt);
             if out.touching {
                 f(ContactForce {
@@ -227,13 +221,7 @@ impl<T: TangentialLaw> Dem<T> {
             let wall = self.walls[k];
             let geo = ContactGeometry::plane_sphere(wall.point, wall.normal, self.x[i], self.r[i]);
             let c = self.table.pair(wall.material, self.mat[i] as usize);
-            let bp = PairBody {
-                position: geo.point,
-                velocity: wall.velocity,
-                angular_velocity: Vec3::ZERO,
-                surface: Surface::Plane,
-                mass: f64::INFINITY,
-            };
+            let bp = wall.body_at(geo.point);
             if let Some((normal_force, force_p)) = load(c, &bp, &self.body(i, self.x[i]), &geo, h) {
                 f(ContactLoad {
                     p: None,

@@ -670,13 +670,7 @@ fn wall_pair_in<T: TangentialLaw>(
     if !(geo.overlap > 0.0) {
         return Err(release(c, Surface::Plane, Surface::Sphere(a.r[i]), h));
     }
-    let bp = PairBody {
-        position: geo.point,
-        velocity: wall.velocity,
-        angular_velocity: Vec3::ZERO,
-        surface: Surface::Plane,
-        mass: f64::INFINITY,
-    };
+    let bp = wall.body_at(geo.point);
     let out = pair_force(c, &bp, &a.body(i, a.x[i]), &geo, h, dt);
     if out.touching {
         Ok(WallOut {
