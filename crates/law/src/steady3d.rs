@@ -23,11 +23,16 @@
 //! the onset of full slip, and a lateral creepage against the spin), `f32`. The other signs by
 //! the exact symmetries of the theory (quasi-identical bodies, a contact symmetric about the
 //! rolling direction): `xi -> -xi` negates `Fx`; `(eta, phi) -> -(eta, phi)` negates `Fy` and
-//! `Mz`. Along the spin each table is refined once, at its first use, onto a read grid with the
-//! midpoint of each cell added ([`lut::FINE_PHI`]; the cubic through the cell's two computed
-//! spins and one on each side, [`lut::refine`]), which follows the loads where they bend faster
+//! `Mz`. Each table is refined once, at its first use, onto a read grid ([`lut::refine`]): along
+//! the spin the midpoint of each cell added ([`lut::FINE_PHI`]; the cubic through the cell's
+//! two computed spins and one on each side), which follows the loads where they bend faster
 //! than the computed spins resolve (the pure spin's lateral force of `a > b` peaks between
-//! `phi_n = 0.2` and `0.26`). Within the grid the loads are trilinear in `(xi_n, eta_n, phi_n)`
+//! `phi_n = 0.2` and `0.26`); along `xi_n` and `eta_n` points added in the widest cells,
+//! `0.86 ... 2`, and in `0.14 ... 0.2` ([`lut::FINE_XI`]; the cubic through the four computed
+//! creepages around, the quadratic through the last three in the end cell), where full slip of
+//! translation sets in and the loads bend faster than a straight line across the computed cells
+//! follows. Within
+//! the grid the loads are trilinear in `(xi_n, eta_n, phi_n)`
 //! on the read grid (a convex combination of the eight corners: `|F| <= mu P` holds since it
 //! holds at every point of the read grid, where the extrapolation's and the cubic's excess is
 //! scaled onto it); beyond it see "Beyond the box". Between two

@@ -1,7 +1,8 @@
 //! The tabulated 3-D steady law: per `(a/b, nu)` node, the boundary-element loads on a grid of
-//! the normalised creepages; along the spin refined once, at first use, onto a grid with the
-//! midpoints added (cubic through the four nearest computed spins), and read trilinearly
-//! (module documentation of [`crate::steady3d`], "The table").
+//! the normalised creepages; refined once, at first use, onto a read grid (along the spin the
+//! midpoints added, along `xi` and `eta` points in the widest cells; cubic through the four
+//! nearest computed points), and read trilinearly (module documentation of
+//! [`crate::steady3d`], "The table").
 
 /// Non-negative normalised longitudinal and lateral creepages of the table's grid (both axes):
 /// geometric below `0.1` (the secant slope of the first cell within 0.5 % of Kalker's linear
@@ -38,10 +39,22 @@ pub const REFINE: usize = 2;
 pub const FINE_NP: usize = REFINE * (LUT_PHI.len() - 1) + 1;
 /// Spins per `(xi, eta)` line of a read table.
 const NP: usize = FINE_NP;
+/// The read grid of `|xi_n|` and `|eta_n|`: [`LUT_XI`] with points added in its widest cells
+/// (`0.86 ... 2`, where full slip of translation sets in and the loads bend fastest: `0.86 ...
+/// 1.06` halved, `1.06 ... 1.4` quartered, `1.4 ... 2` in three) and in the cell `0.14 ... 0.2`
+/// (where the lateral force of `a/b = 5` turns against a small spin), each filled by the cubic
+/// through the four nearest computed creepages (the quadratic through the last three in the
+/// end cell), every point a multiple of [`BUCKET`].
+pub const FINE_XI: [f64; 26] = [
+    0.0, 0.004, 0.012, 0.036, 0.068, 0.1, 0.14, 0.172, 0.2, 0.24, 0.3, 0.38, 0.46, 0.54, 0.62,
+    0.72, 0.86, 0.96, 1.06, 1.152, 1.232, 1.32, 1.4, 1.6, 1.8, 2.0,
+];
+/// Creepages per axis of a read table.
+const NX: usize = FINE_XI.len();
 /// Points per `xi` plane of a read table.
-const NPLANE: usize = LUT_XI.len() * NP;
-/// Points of one node's read table (`xi x eta x` [`FINE_PHI`]).
-pub const FINE_LEN: usize = LUT_XI.len() * NPLANE;
+const NPLANE: usize = NX * NP;
+/// Points of one node's read table ([`FINE_XI`] `x` [`FINE_XI`] `x` [`FINE_PHI`]).
+pub const FINE_LEN: usize = NX * NPLANE;
 /// Width of the spin's buckets: every node of [`FINE_PHI`] is a multiple of it.
 const PHI_BUCKET: f64 = BUCKET / REFINE as f64;
 /// Buckets over `[0, 2]` (xi, eta) and `[-4, 4]` (phi).
@@ -56,8 +69,8 @@ pub const PHI_MAX: f64 = 4.0;
 /// index `(i LUT_XI.len() + j) LUT_PHI.len() + k` (project signs, `c = sqrt(a b)`).
 pub type Table = [[f32; 3]; LUT_LEN];
 
-/// One node's read table: [`Table`] on the grid `(LUT_XI, LUT_XI, FINE_PHI)`, index
-/// `(i LUT_XI.len() + j) FINE_NP + k`.
+/// One node's read table: [`Table`] on the grid `(FINE_XI, FINE_XI, FINE_PHI)`, index
+/// `(i FINE_XI.len() + j) FINE_NP + k`.
 pub type Fine = [[f32; 3]; FINE_LEN];
 
 /// The read grid of the spin: [`LUT_PHI`] with `REFINE - 1` equally spaced spins in each cell.
@@ -121,20 +134,24 @@ const fn inverse_steps<const N: usize>(nodes: &[f64; N]) -> [f64; N] {
     out
 }
 
-static XI_CELL: [u8; XI_BUCKETS + 1] = cells(&LUT_XI, 0.0, BUCKET);
+static XI_CELL: [u8; XI_BUCKETS + 1] = cells(&FINE_XI, 0.0, BUCKET);
 static PHI_CELL: [u8; PHI_BUCKETS + 1] = cells(&FINE_PHI, -PHI_MAX, PHI_BUCKET);
-static XI_INV: [f64; LUT_XI.len()] = inverse_steps(&LUT_XI);
+static XI_INV: [f64; NX] = inverse_steps(&FINE_XI);
 static PHI_INV: [f64; FINE_NP] = inverse_steps(&FINE_PHI);
 
-/// A computed table on the read grid: the computed spins as they are; between them the cubic
-/// through the cell's two computed spins and one on each side (Lagrange on the non-uniform
-/// grid; linear in the end cells), its force scaled onto `|F| = mu P` where the cubic
-/// overshoots it; at `eta_n = 0` the reflection `phi -> -phi` kept exact. Linear interpolation
-/// between the computed spins misses the loads where they bend fast (the pure spin's lateral
-/// force of `a > b` peaks between the spins `0.2` and `0.26`); the cubic's points follow the
+/// A computed table on the read grid: the computed points as they are; between the computed
+/// spins the cubic through the cell's two computed spins and one on each side (Lagrange on the
+/// non-uniform grid; linear in the end cells); then at the added `xi_n`, and at the added
+/// `eta_n`, the cubic through the four computed creepages around it (the quadratic through the
+/// last three in the end cell, [`FINE_XI`]); each added point's force scaled onto `|F| = mu P`
+/// where the polynomial overshoots it; at `eta_n = 0` the reflection `phi -> -phi` kept exact.
+/// Linear interpolation between the computed points misses the loads where they bend fast (the
+/// pure spin's lateral force of `a > b` peaks between the spins `0.2` and `0.26`; the loads
+/// saturate between `xi_n = 1.06` and `2` near full slip); the polynomials' points follow the
 /// bend at the trilinear read's cost.
 pub fn refine(table: &Table) -> Box<Fine> {
     let n = LUT_PHI.len();
+    let nx = LUT_XI.len();
     // Per point of the read grid: the first computed spin it is read from, and four weights.
     let weights: Vec<(usize, [f64; 4])> = (0..FINE_NP)
         .map(|f| {
@@ -145,24 +162,15 @@ pub fn refine(table: &Table) -> Box<Fine> {
                 let w = (t - LUT_PHI[k]) / (LUT_PHI[k + 1] - LUT_PHI[k]);
                 (k, [1.0 - w, w, 0.0, 0.0])
             } else {
-                let x = &LUT_PHI[k - 1..k + 3];
-                let w = [0, 1, 2, 3].map(|j| {
-                    (0..4)
-                        .filter(|&m| m != j)
-                        .map(|m| (t - x[m]) / (x[j] - x[m]))
-                        .product()
-                });
-                (k - 1, w)
+                (k - 1, lagrange(&LUT_PHI[k - 1..k + 3], t))
             }
         })
         .collect();
-    let mut out: Box<Fine> = vec![[0.0f32; 3]; FINE_LEN]
-        .into_boxed_slice()
-        .try_into()
-        .unwrap_or_else(|_| unreachable!("FINE_LEN elements"));
-    for line in 0..LUT_XI.len() * LUT_XI.len() {
+    // The computed (xi, eta) lines on the read grid of the spin.
+    let mut lines = vec![[0.0f32; 3]; nx * nx * NP];
+    for line in 0..nx * nx {
         let src = &table[line * n..(line + 1) * n];
-        let dst = &mut out[line * NP..(line + 1) * NP];
+        let dst = &mut lines[line * NP..(line + 1) * NP];
         for (f, &(k0, w)) in weights.iter().enumerate() {
             if f % REFINE == 0 {
                 dst[f] = src[k0];
@@ -174,25 +182,120 @@ pub fn refine(table: &Table) -> Box<Fine> {
                     .map(|j| w[j] * f64::from(src[k0 + j][c]))
                     .sum::<f64>()
             });
-            let s = 1.0f64.min(1.0 / v[0].hypot(v[1]));
-            dst[f] = [(v[0] * s) as f32, (v[1] * s) as f32, v[2] as f32];
+            dst[f] = onto_coulomb(v);
         }
-        if line % LUT_XI.len() == 0 {
-            // At eta_n = 0 the reflection phi -> -phi negates Fy and Mz exactly (as in the
-            // computed spins), not only up to the rounding of the weights' products.
-            for f in 0..NP / 2 {
-                let (a, b) = (dst[f], dst[NP - 1 - f]);
-                let v = [
-                    0.5 * (a[0] + b[0]),
-                    0.5 * (a[1] - b[1]),
-                    0.5 * (a[2] - b[2]),
-                ];
-                dst[f] = v;
-                dst[NP - 1 - f] = [v[0], -v[1], -v[2]];
+        if line % nx == 0 {
+            symmetrise(dst);
+        }
+    }
+    // Along xi, then along eta: the computed creepages as they are, the added ones from the
+    // computed ones around them ([`xi_weights`]).
+    let xw = xi_weights();
+    let mut half = vec![[0.0f32; 3]; NX * nx * NP];
+    for (fi, &(k0, w, m)) in xw.iter().enumerate() {
+        for j in 0..nx {
+            let dst = (fi * nx + j) * NP;
+            for f in 0..NP {
+                half[dst + f] = if m == 1 {
+                    lines[(k0 * nx + j) * NP + f]
+                } else {
+                    onto_coulomb([0, 1, 2].map(|c| {
+                        (0..m)
+                            .map(|q| w[q] * f64::from(lines[((k0 + q) * nx + j) * NP + f][c]))
+                            .sum::<f64>()
+                    }))
+                };
             }
         }
     }
+    let mut out: Box<Fine> = vec![[0.0f32; 3]; FINE_LEN]
+        .into_boxed_slice()
+        .try_into()
+        .unwrap_or_else(|_| unreachable!("FINE_LEN elements"));
+    for fi in 0..NX {
+        for (fj, &(k0, w, m)) in xw.iter().enumerate() {
+            let dst = (fi * NX + fj) * NP;
+            for f in 0..NP {
+                out[dst + f] = if m == 1 {
+                    half[(fi * nx + k0) * NP + f]
+                } else {
+                    onto_coulomb([0, 1, 2].map(|c| {
+                        (0..m)
+                            .map(|q| w[q] * f64::from(half[(fi * nx + k0 + q) * NP + f][c]))
+                            .sum::<f64>()
+                    }))
+                };
+            }
+        }
+        // At eta_n = 0 (a computed creepage) the added xi's lines keep the reflection exact.
+        symmetrise(&mut out[fi * NPLANE..fi * NPLANE + NP]);
+    }
     out
+}
+
+/// Lagrange's weights at `t` of the cubic through the four points `x`.
+fn lagrange(x: &[f64], t: f64) -> [f64; 4] {
+    [0, 1, 2, 3].map(|j| {
+        (0..4)
+            .filter(|&m| m != j)
+            .map(|m| (t - x[m]) / (x[j] - x[m]))
+            .product()
+    })
+}
+
+/// Per point of [`FINE_XI`]: the first computed creepage of [`LUT_XI`] it is read from, the
+/// weights and their number (1 at a computed creepage; the cubic through the cell's two
+/// computed creepages and one on each side; the quadratic through the last three in the end
+/// cell, linear in the first).
+fn xi_weights() -> Vec<(usize, [f64; 4], usize)> {
+    let nx = LUT_XI.len();
+    FINE_XI
+        .iter()
+        .map(|&t| {
+            if let Some(k) = LUT_XI.iter().position(|&x| x == t) {
+                return (k, [1.0, 0.0, 0.0, 0.0], 1);
+            }
+            let k = LUT_XI.iter().rposition(|&x| x < t).unwrap_or(0);
+            if k == 0 {
+                let w = (t - LUT_XI[0]) / (LUT_XI[1] - LUT_XI[0]);
+                (0, [1.0 - w, w, 0.0, 0.0], 2)
+            } else if k + 2 == nx {
+                let x = &LUT_XI[k - 1..k + 2];
+                let w = [0, 1, 2].map(|j| {
+                    (0..3)
+                        .filter(|&m| m != j)
+                        .map(|m| (t - x[m]) / (x[j] - x[m]))
+                        .product::<f64>()
+                });
+                (k - 1, [w[0], w[1], w[2], 0.0], 3)
+            } else {
+                (k - 1, lagrange(&LUT_XI[k - 1..k + 3], t), 4)
+            }
+        })
+        .collect()
+}
+
+/// The loads `v` in `f32`, the force scaled onto `|F| = mu P` where an interpolation
+/// overshoots it.
+fn onto_coulomb(v: [f64; 3]) -> [f32; 3] {
+    let s = 1.0f64.min(1.0 / v[0].hypot(v[1]));
+    [(v[0] * s) as f32, (v[1] * s) as f32, v[2] as f32]
+}
+
+/// At `eta_n = 0` the reflection `phi -> -phi` negates `Fy` and `Mz` exactly (as in the
+/// computed spins), not only up to the rounding of the weights' products.
+fn symmetrise(line: &mut [[f32; 3]]) {
+    let np = line.len();
+    for f in 0..np / 2 {
+        let (a, b) = (line[f], line[np - 1 - f]);
+        let v = [
+            0.5 * (a[0] + b[0]),
+            0.5 * (a[1] - b[1]),
+            0.5 * (a[2] - b[2]),
+        ];
+        line[f] = v;
+        line[np - 1 - f] = [v[0], -v[1], -v[2]];
+    }
 }
 
 /// The computed nodes' read tables, each refined ([`refine`]) at its first use.
@@ -546,8 +649,8 @@ impl Lut {
         let iy = XI_CELL[((y * (1.0 / BUCKET)) as i64 as usize).min(XI_BUCKETS)] as usize;
         let ip = PHI_CELL[(((p + PHI_MAX) * (1.0 / PHI_BUCKET)) as i64 as usize).min(PHI_BUCKETS)]
             as usize;
-        let wx = (x - LUT_XI[ix]) * XI_INV[ix];
-        let wy = (y - LUT_XI[iy]) * XI_INV[iy];
+        let wx = (x - FINE_XI[ix]) * XI_INV[ix];
+        let wy = (y - FINE_XI[iy]) * XI_INV[iy];
         let wp = (p - FINE_PHI[ip]) * PHI_INV[ip];
         let base = ix * NPLANE + iy * NP + ip;
         // The corners' offsets from `base` (each table's cell is one slice: one bounds check).
@@ -619,7 +722,7 @@ fn cell_loads(table: &Fine, base: usize, corners: &[usize; 8], cw: &[f64; 8]) ->
     acc
 }
 
-/// Most blended read tables kept (368 KB each, 24 MB in all). A contact whose
+/// Most blended read tables kept (690 KB each, 44 MB in all). A contact whose
 /// `(a/b, nu)` needs more than one computed table (between computed `nu` or `a/b`) reads one
 /// table made for it once; beyond this many distinct `(a/b, nu)` in a process, a contact
 /// reads its computed tables at each evaluation (up to eight reads; the same loads but for

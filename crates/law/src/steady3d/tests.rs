@@ -835,13 +835,25 @@ fn refine_is_the_cubic_between_the_computed_spins() {
     }
     let f = lut::refine(&t);
     let nf = lut::FINE_NP;
+    let fx = lut::FINE_XI.len();
+    // The read line of computed line `line` (both creepages computed ones).
+    let read_line = |line: usize| {
+        let at = |k: usize| {
+            lut::FINE_XI
+                .iter()
+                .position(|&x| x == lut::LUT_XI[k])
+                .unwrap()
+        };
+        at(line / nx) * fx + at(line % nx)
+    };
     // (Lines at eta_n = 0 are symmetrised under phi -> -phi: the synthetic data is not.)
     for line in (2..nx * nx).filter(|l| l % nx != 0) {
+        let rl = read_line(line);
         for (i, &p) in lut::FINE_PHI.iter().enumerate() {
             let (k, r) = (i / lut::REFINE, i % lut::REFINE);
-            let got = f[line * nf + i].map(f64::from);
+            let got = f[rl * nf + i].map(f64::from);
             if r == 0 {
-                assert_eq!(f[line * nf + i], t[line * np + k], "line {line} spin {p}");
+                assert_eq!(f[rl * nf + i], t[line * np + k], "line {line} spin {p}");
                 continue;
             }
             let want = if k == 0 || k + 2 == np {
@@ -864,7 +876,8 @@ fn refine_is_the_cubic_between_the_computed_spins() {
             }
         }
     }
-    for v in &f[nf..2 * nf] {
+    let rl = read_line(1);
+    for v in &f[rl * nf..(rl + 1) * nf] {
         assert!(
             f64::from(v[0]).hypot(f64::from(v[1])) <= 1.0 + 1e-6,
             "{v:?}"
@@ -877,10 +890,68 @@ fn refine_is_the_cubic_between_the_computed_spins() {
         .position(|&p| p > 0.2 && p < 0.26)
         .unwrap();
     assert_eq!(
-        f[nf + mid],
+        f[rl * nf + mid],
         [1.0, 0.0, 0.0],
         "the overshoot scaled onto mu P"
     );
+}
+
+/// The read grid's added creepages ([`lut::FINE_XI`] beyond [`lut::LUT_XI`]) are the cubic
+/// through the computed creepages around them along `xi_n` and along `eta_n` (exact for a cubic
+/// in each), the quadratic through the last three in the end cell (exact for a quadratic).
+#[test]
+fn refine_adds_the_cubic_between_the_widest_creepages() {
+    let (nx, np) = (lut::LUT_XI.len(), lut::LUT_PHI.len());
+    assert!(lut::LUT_XI.iter().all(|x| lut::FINE_XI.contains(x)));
+    let last = lut::LUT_XI[nx - 2];
+    for cubic in [false, true] {
+        // Within mu P everywhere on the box, so that no value is scaled onto it.
+        let c3 = if cubic { 0.01 } else { 0.0 };
+        let poly = |x: f64, y: f64, p: f64| {
+            [
+                0.1 + 0.05 * x - 0.02 * x * x + c3 * x * x * x + 0.03 * y * y,
+                0.05 + 0.04 * y - 0.01 * y * y + c3 * y * y * y + 0.01 * x * y,
+                0.2 * x * y + 0.1 * p,
+            ]
+        };
+        let mut t: Box<lut::Table> = vec![[0.0f32; 3]; lut::LUT_LEN]
+            .into_boxed_slice()
+            .try_into()
+            .unwrap();
+        for (i, &x) in lut::LUT_XI.iter().enumerate() {
+            for (j, &y) in lut::LUT_XI.iter().enumerate() {
+                for (k, &p) in lut::LUT_PHI.iter().enumerate() {
+                    t[(i * nx + j) * np + k] = poly(x, y, p).map(|v| v as f32);
+                }
+            }
+        }
+        let f = lut::refine(&t);
+        let (fx, nf) = (lut::FINE_XI.len(), lut::FINE_NP);
+        let mut added = 0;
+        for (i, &x) in lut::FINE_XI.iter().enumerate() {
+            // (eta_n = 0 is symmetrised under phi -> -phi: the synthetic data is not.)
+            for (j, &y) in lut::FINE_XI.iter().enumerate().skip(1) {
+                if cubic && (x > last || y > last) {
+                    continue;
+                }
+                added += usize::from(!(lut::LUT_XI.contains(&x) && lut::LUT_XI.contains(&y)));
+                for (k, &p) in lut::FINE_PHI.iter().enumerate() {
+                    let (got, want) = (f[(i * fx + j) * nf + k].map(f64::from), poly(x, y, p));
+                    for c in 0..3 {
+                        // f32 storage: the inputs' rounding, weighted by the cubics' weights.
+                        let tol = 2e-6 * (1.0 + want[c].abs()) * 4.0f64.powi(3);
+                        assert!(
+                            (got[c] - want[c]).abs() < tol,
+                            "cubic {cubic} ({x}, {y}, {p}) component {c}: {} vs {}",
+                            got[c],
+                            want[c]
+                        );
+                    }
+                }
+            }
+        }
+        assert!(added > 0);
+    }
 }
 
 /// A node's table value at grid indices `(i, j, k)` of `(LUT_XI, LUT_XI, LUT_PHI)`.
@@ -1328,6 +1399,32 @@ fn table_falls_back_to_the_fitted_law_outside_its_coverage() {
     assert!(Steady3d::new(0.3, 0.25).unwrap().tabulated());
 }
 
+/// Whether the parts' blend is within Coulomb's bound at every corner of the read cell of
+/// the creepages `c` (true beyond the box, where the read scales them onto it).
+fn corners_within_bound(parts: &lut::Lut, c: [f64; 3]) -> bool {
+    let (x, y, p) = (c[0].abs(), c[1].abs(), c[2] * c[1].signum());
+    if x > lut::XI_MAX || y > lut::XI_MAX || p.abs() > lut::PHI_MAX {
+        return true;
+    }
+    let cell = |g: &[f64], v: f64| {
+        let i = g.partition_point(|&n| n <= v).clamp(1, g.len() - 1);
+        [g[i - 1], g[i]]
+    };
+    let (cx, cy, cp) = (
+        cell(&lut::FINE_XI, x),
+        cell(&lut::FINE_XI, y),
+        cell(&lut::FINE_PHI, p),
+    );
+    cx.iter().all(|&x| {
+        cy.iter().all(|&y| {
+            cp.iter().all(|&p| {
+                let l = parts.loads(x, y, p);
+                l.fx.hypot(l.fy) < 1.0 - 1e-9
+            })
+        })
+    })
+}
+
 /// A blend's one read table (`lut::baked`) gives the loads of its computed tables read and
 /// blended at each evaluation (as beyond `lut::BAKED_MAX` blends), within the `f32` rounding of
 /// the table's entries, over random creepages within and beyond the box at every kind of blend
@@ -1360,8 +1457,9 @@ fn a_blends_one_table_reads_as_its_parts() {
             let (a, b) = (one.loads(c[0], c[1], c[2]), parts.loads(c[0], c[1], c[2]));
             assert!(a.fx.hypot(a.fy) <= 1.0 + 1e-6 && b.fx.hypot(b.fy) <= 1.0 + 1e-6);
             // The parts' read is clamped onto Coulomb's bound at the read point, the table at
-            // its grid points: compare where the parts' blend is within it.
-            if b.fx.hypot(b.fy) < 1.0 - 1e-3 {
+            // its grid points: compare where the parts' blend is within it, and (within the
+            // box) at every corner of the read cell.
+            if b.fx.hypot(b.fy) < 1.0 - 1e-3 && (extrapolate || corners_within_bound(&parts, c)) {
                 compared += 1;
                 for (x, y) in [(a.fx, b.fx), (a.fy, b.fy), (a.mz, b.mz)] {
                     assert!(
