@@ -38,8 +38,9 @@
 //! scaled onto it); beyond it see "Beyond the box". Between two
 //! computed `nu` of one `a/b` the two tables' loads are blended linearly in `nu` (one cell for
 //! both, the tables read at the contact's creepages); between
-//! two computed `a/b`, the rows of the four computed `a/b` nearest around it (three in the end
-//! intervals) are blended by Lagrange's cubic in `ln(a/b)`, the moment in units of each row's
+//! two computed `a/b`, the rows of those two and, beyond each, of the nearest computed `a/b` at
+//! least half the interval's width away (three rows in the end intervals) are blended by
+//! Lagrange's cubic in `ln(a/b)`, the moment in units of each row's
 //! full-slip spin moment `M_max` ([`full_slip::max_moment`]; docs/CREEP3D.md)
 //! ([`Coverage::BetweenRatios`], looser bounds). A blend is made once per `(a/b, nu)` into a
 //! read table of its own (`lut::baked`, at its first use), so every contact reads one table; a `nu`
@@ -545,13 +546,13 @@ pub fn node_at(ab: f64, nu: f64) -> Node {
 pub enum Coverage {
     /// The boundary-element table at a computed `a/b` (between computed `nu` of it, linear in
     /// `nu`): within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment on the
-    /// error map.
+    /// error map but at one point and its mirror image (`a/b = 5`, `nu = 0`: 2.07 %).
     Table,
-    /// Between two computed `a/b`, the cubic in `ln(a/b)` through the four nearest rows: within
-    /// 3 % of `mu P` in each force and 3 % of `mu P a` in the moment on the error map and its
-    /// off-grid validation from `a/b = 0.5` on (worst measured: Fy 2.95 % at `a/b = 1.2`, `nu =
-    /// 0.3`; on the map Fy 2.25 % at `a/b = 1.4`, `nu = 0.5`); 3.5 % and 9 % between `0.2` and
-    /// `0.5` (Mz 8.79 % at one point near full slip, `a/b = 0.27`; docs/CREEP3D.md).
+    /// Between two computed `a/b`, the cubic in `ln(a/b)` through up to four rows: within 2 % of
+    /// `mu P` in each force and 3 % of `mu P a` in the moment on the error map and its off-grid
+    /// validation from `a/b = 0.5` on (worst measured: Fy 1.79 % and Mz 1.78 % at `a/b = 0.7`);
+    /// 2 % and 6.5 % between `0.2` and `0.5` (Mz 5.92 % at one point near full slip, `a/b =
+    /// 0.27`; docs/CREEP3D.md).
     BetweenRatios,
     /// The table at the nearest computed `nu` (a `nu` outside the range its rows compute) with
     /// the creepages scaled by Kalker's coefficients (module documentation, "Beyond the computed

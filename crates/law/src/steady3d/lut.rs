@@ -314,8 +314,8 @@ pub fn nodes() -> &'static [LutNode] {
 pub const SNAP: f64 = 1e-3;
 
 /// The tables at `(a/b, nu)` with their weights: one at a computed node (within [`SNAP`]), two
-/// between two computed `nu` of one computed `a/b` (linear in `nu`), up to four between two
-/// computed `a/b` (linear in `ln(a/b)` between the two rows, each at `nu`).
+/// between two computed `nu` of one computed `a/b` (linear in `nu`), up to eight between two
+/// computed `a/b` (Lagrange's cubic in `ln(a/b)` through up to four rows, each at `nu`).
 #[derive(Clone, Copy)]
 pub struct Lut {
     /// The read tables: a node's, or the blend of several ([`baked`]); the parts themselves
@@ -407,10 +407,14 @@ fn row_at(ab: f64, nu: f64) -> Option<Vec<(&'static Fine, f64)>> {
 
 /// The tables at `(a/b, nu)` with weights and their rows' `a/b`, and whether they are blended
 /// between computed `a/b`: the row of the computed `a/b` at `ab` ([`rows_of`]), or, between
-/// two computed `a/b`, Lagrange's cubic in `ln(a/b)` through the rows of the four computed
-/// `a/b` nearest around it (the quadratic through three in the end intervals). Its weights
-/// sum to one and are one at each row; a cubic follows the loads' curvature across the rows,
-/// which linear blending of the two rows around `a/b` misses by up to 4 % (docs/CREEP3D.md).
+/// two computed `a/b`, Lagrange's cubic in `ln(a/b)` through the rows of those two and, beyond
+/// each, of the nearest computed `a/b` at least half the interval's width (in `ln(a/b)`) away
+/// (the quadratic through three in the end intervals). Its weights sum to one and are one at
+/// each row; a cubic follows the loads' curvature across the rows, which linear blending of the
+/// two rows around `a/b` misses by up to 4 % (docs/CREEP3D.md). A row closer than that (a row
+/// added to refine the next interval) would take a large negative weight and carry its
+/// interval's features into this one: with the rows `0.5, 1, 1.4`, the four nearest put
+/// `a/b = 0.7` at 2.21 % of `mu P`, the stencil `0.2, 0.5, 1, 2` at 1.79 %.
 type Parts = (Vec<(&'static Fine, f64, f64)>, bool);
 fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
     let rows = rows_of(ab)?;
@@ -424,7 +428,21 @@ fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
     let mut all: Vec<f64> = nodes().iter().map(|n| n.ab).collect();
     all.dedup_by(|a, b| (a.ln() - b.ln()).abs() < SNAP);
     let lo = all.iter().position(|&x| x == rows[0])?;
-    let stencil = &all[lo.saturating_sub(1)..(lo + 3).min(all.len())];
+    // Beyond each end of the interval, the nearest computed a/b at least half its width away.
+    let half = 0.5 * (rows[1].ln() - rows[0].ln());
+    let left = all[..lo]
+        .iter()
+        .rev()
+        .find(|&&r| rows[0].ln() - r.ln() >= half);
+    let right = all[lo + 2..]
+        .iter()
+        .find(|&&r| r.ln() - rows[1].ln() >= half);
+    let stencil: Vec<f64> = left
+        .into_iter()
+        .chain(&rows)
+        .chain(right)
+        .copied()
+        .collect();
     let x = ab.ln();
     let mut out = Vec::with_capacity(2 * stencil.len());
     for (i, &r) in stencil.iter().enumerate() {
@@ -590,7 +608,7 @@ impl Lut {
         self.extrapolated
     }
 
-    /// Whether the tables are blended between two computed `a/b` (linear in `ln(a/b)`).
+    /// Whether the tables are blended between two computed `a/b` (cubic in `ln(a/b)`).
     pub fn between_ratios(&self) -> bool {
         self.between_ratios
     }
