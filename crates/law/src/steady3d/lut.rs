@@ -192,19 +192,10 @@ pub fn refine(table: &Table) -> Box<Fine> {
     // computed ones around them ([`xi_weights`]).
     let xw = xi_weights();
     let mut half = vec![[0.0f32; 3]; NX * nx * NP];
-    for (fi, &(k0, w, m)) in xw.iter().enumerate() {
+    for (fi, &w) in xw.iter().enumerate() {
         for j in 0..nx {
-            let dst = (fi * nx + j) * NP;
             for f in 0..NP {
-                half[dst + f] = if m == 1 {
-                    lines[(k0 * nx + j) * NP + f]
-                } else {
-                    onto_coulomb([0, 1, 2].map(|c| {
-                        (0..m)
-                            .map(|q| w[q] * f64::from(lines[((k0 + q) * nx + j) * NP + f][c]))
-                            .sum::<f64>()
-                    }))
-                };
+                half[(fi * nx + j) * NP + f] = along(&lines, j * NP + f, nx * NP, w);
             }
         }
     }
@@ -213,24 +204,29 @@ pub fn refine(table: &Table) -> Box<Fine> {
         .try_into()
         .unwrap_or_else(|_| unreachable!("FINE_LEN elements"));
     for fi in 0..NX {
-        for (fj, &(k0, w, m)) in xw.iter().enumerate() {
-            let dst = (fi * NX + fj) * NP;
+        for (fj, &w) in xw.iter().enumerate() {
             for f in 0..NP {
-                out[dst + f] = if m == 1 {
-                    half[(fi * nx + k0) * NP + f]
-                } else {
-                    onto_coulomb([0, 1, 2].map(|c| {
-                        (0..m)
-                            .map(|q| w[q] * f64::from(half[(fi * nx + k0 + q) * NP + f][c]))
-                            .sum::<f64>()
-                    }))
-                };
+                out[(fi * NX + fj) * NP + f] = along(&half, fi * nx * NP + f, NP, w);
             }
         }
         // At eta_n = 0 (a computed creepage) the added xi's lines keep the reflection exact.
         symmetrise(&mut out[fi * NPLANE..fi * NPLANE + NP]);
     }
     out
+}
+
+/// The loads at a point of the read grid along one axis, from the points `base + k stride` of
+/// `src` on the computed grid: the computed one as it is (`m = 1`), or the weighted sum of `m`
+/// from `k0` on, onto Coulomb's bound ([`xi_weights`]).
+fn along(src: &[[f32; 3]], base: usize, stride: usize, (k0, w, m): XiWeights) -> [f32; 3] {
+    if m == 1 {
+        return src[base + k0 * stride];
+    }
+    onto_coulomb([0, 1, 2].map(|c| {
+        (0..m)
+            .map(|q| w[q] * f64::from(src[base + (k0 + q) * stride][c]))
+            .sum::<f64>()
+    }))
 }
 
 /// Lagrange's weights at `t` of the cubic through the four points `x`.
@@ -243,11 +239,14 @@ fn lagrange(x: &[f64], t: f64) -> [f64; 4] {
     })
 }
 
+/// One point of [`FINE_XI`] from [`LUT_XI`]: the first computed creepage, weights, their number.
+type XiWeights = (usize, [f64; 4], usize);
+
 /// Per point of [`FINE_XI`]: the first computed creepage of [`LUT_XI`] it is read from, the
 /// weights and their number (1 at a computed creepage; the cubic through the cell's two
 /// computed creepages and one on each side; the quadratic through the last three in the end
 /// cell, linear in the first).
-fn xi_weights() -> Vec<(usize, [f64; 4], usize)> {
+fn xi_weights() -> Vec<XiWeights> {
     let nx = LUT_XI.len();
     FINE_XI
         .iter()
