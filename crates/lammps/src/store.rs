@@ -612,10 +612,19 @@ where
     // At most one new slot per entry: reserved once, so that no push below reallocates.
     hist.reserve(slot.len());
     let atoms_ok = atoms_valid(atoms);
-    let models = TypeModels::new(table, tier, atoms);
+    let mut models = TypeModels::new(table, tier, atoms);
     if T::HAS_BLOCK_LANES && atoms_ok {
         return list_pairs_lanes(
-            &models, hist, atoms, acc, list, neighmask, slot, swap, dt, forces,
+            &mut models,
+            hist,
+            atoms,
+            acc,
+            list,
+            neighmask,
+            slot,
+            swap,
+            dt,
+            forces,
         );
     }
     let mut counts = ListCounts::default();
@@ -649,7 +658,7 @@ where
             let (p, q) = if swap[e] != 0 { (j, i) } else { (i, j) };
             counts.contacts += 1;
             counts.owned_contacts += usize::from(p < nlocal);
-            let m = models.of(atoms, p, q, k)?;
+            let (m, _) = models.of(atoms, p, q, k)?;
             let f = step_contact(k, m, atoms, acc, p, q, &mut hist[si], dt, atoms_ok)?;
             finish_contact(&f, &mut slot[e], ids(p, q), k, &mut counts, &mut forces);
         }
@@ -658,16 +667,20 @@ where
     Ok(counts)
 }
 
-/// The models of a step's contacts by their atoms' types: with one atom type and every atom
-/// of it, the one model, looked up once; otherwise each contact's, checked (types within the
-/// table, a model for the pair, the store's tier).
+/// The models of a step's contacts by their atoms' types, and whether the block kernel takes
+/// each ([`block_supports`]): where every atom (owned and ghost) is of one type, that type
+/// pair's model, looked up once; otherwise each contact's, checked (types within the table,
+/// a model for the pair, the store's tier) when its pair of types differs from the contact
+/// before's (the types of two atoms in contact rarely change from one entry to the next).
 struct TypeModels<'t, 'a, F> {
     table: &'t ModelTable<F>,
     tier: Tier,
-    /// The one model of every pair, where there is one.
-    single: Option<&'a Model>,
     /// Every model of the table is of the store's tier.
     tiers_ok: bool,
+    /// Every atom is of one type, whose model is `last`'s.
+    single: bool,
+    /// The types of the last contact looked up, its model and whether the block takes it.
+    last: Option<((i32, i32), &'a Model, bool)>,
 }
 
 impl<'t, 'a, F: Fn(usize) -> Option<&'a Model>> TypeModels<'t, 'a, F> {
@@ -676,39 +689,51 @@ impl<'t, 'a, F: Fn(usize) -> Option<&'a Model>> TypeModels<'t, 'a, F> {
         let stride = table.ntypes + 1;
         let tiers_ok =
             (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
-        let single = (table.ntypes == 1 && atoms.kind.iter().fold(true, |ok, &t| ok & (t == 1)))
-            .then(|| (table.model_of)(stride + 1))
-            .flatten()
-            .filter(|m| m.tier() == tier);
+        let t0 = atoms.kind.first().copied().unwrap_or(0);
+        let last = usize::try_from(t0)
+            .ok()
+            .filter(|&t| (1..=table.ntypes).contains(&t))
+            .filter(|_| atoms.kind.iter().fold(true, |ok, &t| ok & (t == t0)))
+            .and_then(|t| (table.model_of)(t * stride + t))
+            .filter(|m| m.tier() == tier)
+            .map(|m| ((t0, t0), m, block_supports(m.constants())));
         Self {
             table,
             tier,
-            single,
             tiers_ok,
+            single: last.is_some(),
+            last,
         }
     }
 
-    /// The model of contact `k` between atoms `p` and `q`.
+    /// The model of contact `k` between atoms `p` and `q`, and whether the block takes it.
     #[inline(always)]
-    fn of(&self, atoms: &Atoms<'_>, p: usize, q: usize, k: usize) -> Result<&'a Model, ModelError> {
-        if let Some(m) = self.single {
-            return Ok(m);
-        }
-        self.lookup(atoms, p, q, k)
-    }
-
-    /// [`TypeModels::of`] through the table.
-    #[inline(never)]
-    fn lookup(
-        &self,
+    fn of(
+        &mut self,
         atoms: &Atoms<'_>,
         p: usize,
         q: usize,
         k: usize,
-    ) -> Result<&'a Model, ModelError> {
+    ) -> Result<(&'a Model, bool), ModelError> {
+        if self.single
+            && let Some((_, m, b)) = self.last
+        {
+            return Ok((m, b));
+        }
+        let types = (atoms.kind[p], atoms.kind[q]);
+        if let Some((t, m, b)) = self.last
+            && t == types
+        {
+            return Ok((m, b));
+        }
+        self.lookup(types, k)
+    }
+
+    /// [`TypeModels::of`] through the table, for the atoms' types `types`.
+    #[inline(never)]
+    fn lookup(&mut self, types: (i32, i32), k: usize) -> Result<(&'a Model, bool), ModelError> {
         let ntypes = self.table.ntypes;
-        let kind = |a: usize| -> Result<usize, ModelError> {
-            let t = atoms.kind[a];
+        let kind = |t: i32| -> Result<usize, ModelError> {
             usize::try_from(t)
                 .ok()
                 .filter(|&t| (1..=ntypes).contains(&t))
@@ -718,12 +743,14 @@ impl<'t, 'a, F: Fn(usize) -> Option<&'a Model>> TypeModels<'t, 'a, F> {
                     ntypes,
                 })
         };
-        let m = (self.table.model_of)(kind(p)? * (ntypes + 1) + kind(q)?)
+        let m = (self.table.model_of)(kind(types.0)? * (ntypes + 1) + kind(types.1)?)
             .ok_or(ModelError::MissingModel(k))?;
         if !self.tiers_ok && m.tier() != self.tier {
             return Err(ModelError::MixedTiers);
         }
-        Ok(m)
+        let b = block_supports(m.constants());
+        self.last = Some((types, m, b));
+        Ok((m, b))
     }
 }
 
@@ -787,7 +814,7 @@ fn ids(p: usize, q: usize) -> [i32; 2] {
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn list_pairs_lanes<'a, T: TangentialLaw, F, L: HalfList>(
-    models: &TypeModels<'_, 'a, F>,
+    models: &mut TypeModels<'_, 'a, F>,
     hist: &mut Vec<ContactHistory<T>>,
     atoms: &Atoms<'_>,
     acc: &mut Accumulators<'_>,
@@ -806,14 +833,14 @@ where
     // All of one length (`check_arrays`): sliced to it, so that an index below `nall` needs
     // no further check.
     let (x, r) = (&atoms.x[..nall], &atoms.radius[..nall]);
+    let bodies = Bodies {
+        v: &atoms.v[..nall],
+        omega: &atoms.omega[..nall],
+        mass: &atoms.mass[..nall],
+    };
     let mut counts = ListCounts::default();
     let mut pend = Lanes::default();
     let mut out = SphereForceLanes::default();
-    // The model of the contacts met last, by the types of p and q (the types of two atoms in
-    // contact rarely change from one entry to the next), and whether the block takes it.
-    let mut last: Option<((i32, i32), &'a Model, bool)> = models
-        .single
-        .map(|m| ((1, 1), m, block_supports(m.constants())));
     let mut e0 = 0usize;
     for &ia in list.atoms() {
         // Checked by the caller: the atom is in the list's arrays.
@@ -843,16 +870,7 @@ where
             let sw = swap[e] != 0;
             let (p, q) = if sw { (j, i) } else { (i, j) };
             counts.owned_contacts += usize::from(p < nlocal);
-            let (m, block) = match last {
-                Some((_, m, b)) if models.single.is_some() => (m, b),
-                Some((t, m, b)) if t == (atoms.kind[p], atoms.kind[q]) => (m, b),
-                _ => {
-                    let m = models.lookup(atoms, p, q, k)?;
-                    let b = block_supports(m.constants());
-                    last = Some(((atoms.kind[p], atoms.kind[q]), m, b));
-                    (m, b)
-                }
-            };
+            let (m, block) = models.of(atoms, p, q, k)?;
             let s = slot[e];
             // A slot of the store (`s` >= 0 below its length) whose history is not virgin.
             let si = s as u32 as usize;
@@ -874,7 +892,7 @@ where
                 } else {
                     (xi, xj, ri, rj)
                 };
-                if pend.push(m, atoms, (k, e, si), p, q, xp, xq, rp, rq) {
+                if pend.push(m, &bodies, (k, e, si), p, q, xp, xq, rp, rq) {
                     pend.flush(
                         hist,
                         atoms,
@@ -945,6 +963,13 @@ fn finish_contact(
     }
 }
 
+/// The atoms' velocities, angular velocities and masses, all of one length.
+struct Bodies<'a> {
+    v: &'a [[f64; 3]],
+    omega: &'a [[f64; 3]],
+    mass: &'a [f64],
+}
+
 /// Up to [`LANES`] touching contacts of one model waiting for the block kernel: per lane the
 /// contact's index in the step, its list entry and its history's slot, its atoms (p, q), and
 /// the bodies.
@@ -966,7 +991,7 @@ impl<'m> Lanes<'m> {
     fn push(
         &mut self,
         m: &'m Model,
-        atoms: &Atoms<'_>,
+        b: &Bodies<'_>,
         lane: (usize, usize, usize),
         p: usize,
         q: usize,
@@ -984,12 +1009,12 @@ impl<'m> Lanes<'m> {
                 xq: v3(xq),
                 rp,
                 rq,
-                vp: v3(atoms.v[p]),
-                vq: v3(atoms.v[q]),
-                wp: v3(atoms.omega[p]),
-                wq: v3(atoms.omega[q]),
-                mp: atoms.mass[p],
-                mq: atoms.mass[q],
+                vp: v3(b.v[p]),
+                vq: v3(b.v[q]),
+                wp: v3(b.omega[p]),
+                wq: v3(b.omega[q]),
+                mp: b.mass[p],
+                mq: b.mass[q],
             },
         );
         self.lanes[l] = lane;
