@@ -841,6 +841,11 @@ where
     let mut counts = ListCounts::default();
     let mut pend = Lanes::default();
     let mut out = SphereForceLanes::default();
+    // Every atom of one type: its model and whether the block takes it, held here.
+    let single = models
+        .last
+        .filter(|_| models.single)
+        .map(|(_, m, b)| (m, b));
     let mut e0 = 0usize;
     for &ia in list.atoms() {
         // Checked by the caller: the atom is in the list's arrays.
@@ -870,7 +875,10 @@ where
             let sw = swap[e] != 0;
             let (p, q) = if sw { (j, i) } else { (i, j) };
             counts.owned_contacts += usize::from(p < nlocal);
-            let (m, block) = models.of(atoms, p, q, k)?;
+            let (m, block) = match single {
+                Some(mb) => mb,
+                None => models.of(atoms, p, q, k)?,
+            };
             let s = slot[e];
             // A slot of the store (`s` >= 0 below its length) whose history is not virgin.
             let si = s as u32 as usize;
