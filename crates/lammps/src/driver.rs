@@ -548,10 +548,12 @@ impl Sim {
         ))
     }
 
-    /// [`Sim::time_kernel`] through the plugin's hot path instead ([`crate::compute_pairs`] over
-    /// a [`crate::HistoryStore`], forces added into per-atom arrays; a pair across a periodic
-    /// boundary gets a ghost copy of q, as LAMMPS' ghosts): what the plugin's pair style pays
-    /// for the law with LAMMPS' neighbour loop, integration and communication taken away.
+    /// [`Sim::time_kernel`] through the batched store path instead ([`crate::compute_pairs`]
+    /// over a [`crate::HistoryStore`], one contact at a time, forces added into per-atom
+    /// arrays; a pair across a periodic boundary gets a ghost copy of q, as LAMMPS' ghosts):
+    /// the law with LAMMPS' neighbour loop, integration and communication taken away. The
+    /// pair style's own loop ([`crate::compute_list`]) runs in an AVX2 copy where the CPU has
+    /// it and steps the spring tier four contacts at a time, so it can be the faster.
     pub fn time_kernel_store(&mut self, steps: usize) -> Result<(f64, usize), DriverError> {
         self.forces(false)?;
         let p = &self.packing;

@@ -16,7 +16,7 @@
 
 use creep_law::Vec3;
 use creep_law::pair::{
-    Cheap, ContactGeometry, ContactHistory, Exact, LANES, PairBody, PairForces, SphereForces,
+    Cheap, ContactGeometry, ContactHistory, Exact, LANES, PairBody, PairForces, SphereForceLanes,
     SphereLanes, SpherePair, TangentialLaw, block_supports, pair_force,
 };
 use creep_law::{LawError, Surface};
@@ -586,11 +586,9 @@ fn wide_available() -> Result<bool, ModelError> {
 }
 
 /// [`compute_list`] for one tier (monomorphised: the kernel is inlined into this loop, and
-/// the loop into each compiled copy). With a tier that has a block kernel
-/// ([`TangentialLaw::HAS_BLOCK`]: the spring tier) and valid atoms, touching pairs with a
-/// history and constants the block takes wait in a [`Pending`] block of [`LANES`] contacts,
-/// which runs when full, or before any other contact is stepped, so every force is added in
-/// list order and the results are the one-contact kernel's bits.
+/// the loop into each compiled copy). A tier with a block kernel for a loop without a buffer
+/// of outputs ([`TangentialLaw::HAS_BLOCK_LANES`]: the spring tier) with valid atoms runs
+/// [`list_pairs_lanes`]; otherwise each contact goes through the one-contact kernel here.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn list_pairs<'a, T: TangentialLaw, F, L: HalfList>(
@@ -610,31 +608,33 @@ where
 {
     let nall = atoms.x.len();
     let nlocal = acc.force.len();
-    let stride = table.ntypes + 1;
     let ListEntries { slot, swap } = entries;
     // At most one new slot per entry: reserved once, so that no push below reallocates.
     hist.reserve(slot.len());
-    let tiers_ok =
-        (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
     let atoms_ok = atoms_valid(atoms);
-    // One atom type and every atom of it: every pair's model is the same, looked up once
-    // (the per-contact lookup, with its checks of both atoms' types, is then the same model).
-    let single = (table.ntypes == 1 && atoms.kind.iter().fold(true, |ok, &t| ok & (t == 1)))
-        .then(|| (table.model_of)(stride + 1))
-        .flatten();
-    // Whether that one model's constants take the block kernel, also once.
-    let single_block = single.map(|m| block_supports(m.constants()));
+    let mut models = TypeModels::new(table, tier, atoms);
+    if T::HAS_BLOCK_LANES && atoms_ok {
+        return list_pairs_lanes(
+            &mut models,
+            hist,
+            atoms,
+            acc,
+            list,
+            neighmask,
+            slot,
+            swap,
+            dt,
+            forces,
+        );
+    }
     let mut counts = ListCounts::default();
-    let use_block = T::HAS_BLOCK && atoms_ok;
-    let mut pend = Pending::default();
     let mut e0 = 0usize;
     for &ia in list.atoms() {
-        // Checked above: the atom is in the list's arrays.
+        // Checked by the caller: the atom is in the list's arrays.
         let i = usize::try_from(ia).map_err(|_| ModelError::ListAtom(ia))?;
         let neigh = list.neighbours(i).ok_or(ModelError::ListAtom(ia))?;
-        let n = neigh.len();
         let first = e0;
-        e0 += n;
+        e0 += neigh.len();
         if i >= nall {
             return Err(ModelError::AtomIndex {
                 index: counts.contacts,
@@ -645,15 +645,7 @@ where
         let xi = atoms.x[i];
         let ri = atoms.radius[i];
         for (e, &jraw) in (first..).zip(neigh) {
-            let sw = swap[e];
-            let j = usize::try_from(jraw & neighmask)
-                .ok()
-                .filter(|&j| j < nall)
-                .ok_or(ModelError::AtomIndex {
-                    index: counts.contacts,
-                    atom: jraw & neighmask,
-                    nall,
-                })?;
+            let j = neighbour(jraw, neighmask, nall, counts.contacts)?;
             let xj = atoms.x[j];
             let (dx, dy, dz) = (xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]);
             let rsum = ri + atoms.radius[j];
@@ -662,88 +654,294 @@ where
                 continue;
             }
             let k = counts.contacts;
-            let s = &mut slot[e];
-            if *s < 0 {
-                let new = i32::try_from(hist.len()).map_err(|_| ModelError::Slot {
-                    index: k,
-                    slot: -1,
-                    len: hist.len(),
-                })?;
-                hist.push(ContactHistory::default());
-                *s = new;
-            }
-            let len = hist.len();
-            let si = usize::try_from(*s)
-                .ok()
-                .filter(|&s| s < len)
-                .ok_or(ModelError::Slot {
-                    index: k,
-                    slot: *s,
-                    len,
-                })?;
-            let (p, q) = if sw != 0 { (j, i) } else { (i, j) };
+            let si = slot_of(hist, &mut slot[e], k)?;
+            let (p, q) = if swap[e] != 0 { (j, i) } else { (i, j) };
             counts.contacts += 1;
             counts.owned_contacts += usize::from(p < nlocal);
-            let kind = |a: usize| -> Result<usize, ModelError> {
-                let t = atoms.kind[a];
-                usize::try_from(t)
-                    .ok()
-                    .filter(|&t| (1..=table.ntypes).contains(&t))
-                    .ok_or(ModelError::AtomType {
-                        index: k,
-                        kind: t,
-                        ntypes: table.ntypes,
-                    })
-            };
-            let m = match single {
-                Some(m) => m,
-                None => (table.model_of)(kind(p)? * stride + kind(q)?)
-                    .ok_or(ModelError::MissingModel(k))?,
-            };
-            if !tiers_ok && m.tier() != tier {
-                return Err(ModelError::MixedTiers);
+            let (m, _) = models.of(atoms, p, q, k)?;
+            let f = step_contact(k, m, atoms, acc, p, q, &mut hist[si], dt, atoms_ok)?;
+            finish_contact(&f, &mut slot[e], ids(p, q), k, &mut counts, &mut forces);
+        }
+    }
+    counts.nslots = hist.len();
+    Ok(counts)
+}
+
+/// The models of a step's contacts by their atoms' types, and whether the block kernel takes
+/// each ([`block_supports`]): where every atom (owned and ghost) is of one type, that type
+/// pair's model, looked up once; otherwise each contact's, checked (types within the table,
+/// a model for the pair, the store's tier) when its pair of types differs from the contact
+/// before's (the types of two atoms in contact rarely change from one entry to the next).
+struct TypeModels<'t, 'a, F> {
+    table: &'t ModelTable<F>,
+    tier: Tier,
+    /// Every model of the table is of the store's tier.
+    tiers_ok: bool,
+    /// Every atom is of one type, whose model is `last`'s.
+    single: bool,
+    /// The types of the last contact looked up, its model and whether the block takes it.
+    last: Option<((i32, i32), &'a Model, bool)>,
+}
+
+impl<'t, 'a, F: Fn(usize) -> Option<&'a Model>> TypeModels<'t, 'a, F> {
+    #[inline(always)]
+    fn new(table: &'t ModelTable<F>, tier: Tier, atoms: &Atoms<'_>) -> Self {
+        let stride = table.ntypes + 1;
+        let tiers_ok =
+            (0..stride * stride).all(|k| (table.model_of)(k).is_none_or(|m| m.tier() == tier));
+        let t0 = atoms.kind.first().copied().unwrap_or(0);
+        let last = usize::try_from(t0)
+            .ok()
+            .filter(|&t| (1..=table.ntypes).contains(&t))
+            .filter(|_| atoms.kind.iter().fold(true, |ok, &t| ok & (t == t0)))
+            .and_then(|t| (table.model_of)(t * stride + t))
+            .filter(|m| m.tier() == tier)
+            .map(|m| ((t0, t0), m, block_supports(m.constants())));
+        Self {
+            table,
+            tier,
+            tiers_ok,
+            single: last.is_some(),
+            last,
+        }
+    }
+
+    /// The model of contact `k` between atoms `p` and `q`, and whether the block takes it.
+    #[inline(always)]
+    fn of(
+        &mut self,
+        atoms: &Atoms<'_>,
+        p: usize,
+        q: usize,
+        k: usize,
+    ) -> Result<(&'a Model, bool), ModelError> {
+        if self.single
+            && let Some((_, m, b)) = self.last
+        {
+            return Ok((m, b));
+        }
+        let types = (atoms.kind[p], atoms.kind[q]);
+        if let Some((t, m, b)) = self.last
+            && t == types
+        {
+            return Ok((m, b));
+        }
+        self.lookup(types, k)
+    }
+
+    /// [`TypeModels::of`] through the table, for the atoms' types `types`.
+    #[inline(never)]
+    fn lookup(&mut self, types: (i32, i32), k: usize) -> Result<(&'a Model, bool), ModelError> {
+        let ntypes = self.table.ntypes;
+        let kind = |t: i32| -> Result<usize, ModelError> {
+            usize::try_from(t)
+                .ok()
+                .filter(|&t| (1..=ntypes).contains(&t))
+                .ok_or(ModelError::AtomType {
+                    index: k,
+                    kind: t,
+                    ntypes,
+                })
+        };
+        let m = (self.table.model_of)(kind(types.0)? * (ntypes + 1) + kind(types.1)?)
+            .ok_or(ModelError::MissingModel(k))?;
+        if !self.tiers_ok && m.tier() != self.tier {
+            return Err(ModelError::MixedTiers);
+        }
+        let b = block_supports(m.constants());
+        self.last = Some((types, m, b));
+        Ok((m, b))
+    }
+}
+
+/// Entry `jraw`'s atom index (`neighmask` applied), below `nall` (`k`: the contacts so far,
+/// for the error).
+#[inline(always)]
+fn neighbour(jraw: i32, neighmask: i32, nall: usize, k: usize) -> Result<usize, ModelError> {
+    let jm = jraw & neighmask;
+    usize::try_from(jm)
+        .ok()
+        .filter(|&j| j < nall)
+        .ok_or(ModelError::AtomIndex {
+            index: k,
+            atom: jm,
+            nall,
+        })
+}
+
+/// The history slot of a touching entry whose slot is `s` (contact `k`): a new, virgin one at
+/// the store's end where it has none (`*s < 0`), an error where it is outside the store.
+#[inline(always)]
+fn slot_of<T: TangentialLaw>(
+    hist: &mut Vec<ContactHistory<T>>,
+    s: &mut i32,
+    k: usize,
+) -> Result<usize, ModelError> {
+    if *s < 0 {
+        let new = i32::try_from(hist.len()).map_err(|_| ModelError::Slot {
+            index: k,
+            slot: -1,
+            len: hist.len(),
+        })?;
+        hist.push(ContactHistory::default());
+        *s = new;
+    }
+    let len = hist.len();
+    usize::try_from(*s)
+        .ok()
+        .filter(|&s| s < len)
+        .ok_or(ModelError::Slot {
+            index: k,
+            slot: *s,
+            len,
+        })
+}
+
+/// The atoms' ids of the pair (p, q) for the virial: below `nall`, which came from C as a
+/// count of `i32` indices.
+#[inline(always)]
+fn ids(p: usize, q: usize) -> [i32; 2] {
+    [p as i32, q as i32]
+}
+
+/// [`list_pairs`] with the block kernel ([`TangentialLaw::sphere_block_lanes`]), for valid
+/// atoms: touching pairs with a history that is not virgin and constants the block takes wait
+/// in a [`Lanes`] block of [`LANES`] contacts, which runs when full, or before any other
+/// contact is stepped; each lane's outputs are read in place and added to the owned atoms as
+/// they come. So every force is added in list order, and the results are the one-contact
+/// kernel's bits (a lane the block leaves goes to it in its place). The histories are
+/// stepped in their slots of the store.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn list_pairs_lanes<'a, T: TangentialLaw, F, L: HalfList>(
+    models: &mut TypeModels<'_, 'a, F>,
+    hist: &mut Vec<ContactHistory<T>>,
+    atoms: &Atoms<'_>,
+    acc: &mut Accumulators<'_>,
+    list: &L,
+    neighmask: i32,
+    slot: &mut [i32],
+    swap: &[u8],
+    dt: f64,
+    mut forces: Option<&mut [PairForce]>,
+) -> Result<ListCounts, ModelError>
+where
+    F: Fn(usize) -> Option<&'a Model>,
+{
+    let nall = atoms.x.len();
+    let nlocal = acc.force.len();
+    // All of one length (`check_arrays`): sliced to it, so that an index below `nall` needs
+    // no further check.
+    let (x, r) = (&atoms.x[..nall], &atoms.radius[..nall]);
+    let bodies = Bodies {
+        v: &atoms.v[..nall],
+        omega: &atoms.omega[..nall],
+        mass: &atoms.mass[..nall],
+    };
+    let mut counts = ListCounts::default();
+    let mut pend = Lanes::default();
+    let mut out = SphereForceLanes::default();
+    // Every atom of one type: its model and whether the block takes it, held here.
+    let single = models
+        .last
+        .filter(|_| models.single)
+        .map(|(_, m, b)| (m, b));
+    let mut e0 = 0usize;
+    for &ia in list.atoms() {
+        // Checked by the caller: the atom is in the list's arrays.
+        let i = usize::try_from(ia).map_err(|_| ModelError::ListAtom(ia))?;
+        let neigh = list.neighbours(i).ok_or(ModelError::ListAtom(ia))?;
+        let first = e0;
+        e0 += neigh.len();
+        if i >= nall {
+            return Err(ModelError::AtomIndex {
+                index: counts.contacts,
+                atom: ia,
+                nall,
+            });
+        }
+        let (xi, ri) = (x[i], r[i]);
+        for (e, &jraw) in (first..).zip(neigh) {
+            let j = neighbour(jraw, neighmask, nall, counts.contacts)?;
+            let (xj, rj) = (x[j], r[j]);
+            let (dx, dy, dz) = (xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]);
+            let rsum = ri + rj;
+            if dx * dx + dy * dy + dz * dz >= rsum * rsum {
+                slot[e] = -1; // apart: the history is abandoned (its slot reclaimed at the next build)
+                continue;
             }
-            // The atoms' ids for the virial: below nall, which came from C as a count of i32
-            // indices.
-            let ids = if sw != 0 {
-                [jraw & neighmask, ia]
-            } else {
-                [ia, jraw & neighmask]
+            let k = counts.contacts;
+            counts.contacts += 1;
+            let sw = swap[e] != 0;
+            let (p, q) = if sw { (j, i) } else { (i, j) };
+            counts.owned_contacts += usize::from(p < nlocal);
+            let (m, block) = match single {
+                Some(mb) => mb,
+                None => models.of(atoms, p, q, k)?,
             };
-            let supports = match single_block {
-                Some(b) => b,
-                None => block_supports(m.constants()),
-            };
-            if use_block && supports && !hist[si].is_virgin() {
+            let s = slot[e];
+            // A slot of the store (`s` >= 0 below its length) whose history is not virgin.
+            let si = s as u32 as usize;
+            if block && si < hist.len() && !hist[si].is_virgin() {
                 if pend.len > 0 && pend.model.is_some_and(|pm| !std::ptr::eq(pm, m)) {
-                    pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
+                    pend.flush(
+                        hist,
+                        atoms,
+                        acc,
+                        slot,
+                        &mut counts,
+                        &mut forces,
+                        dt,
+                        &mut out,
+                    )?;
                 }
-                pend.push(
-                    m,
-                    atoms,
-                    p,
-                    q,
-                    Lane {
-                        k,
-                        e,
-                        slot: si,
-                        ids,
-                    },
-                );
-                if pend.len == LANES {
-                    pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
+                let (xp, xq, rp, rq) = if sw {
+                    (xj, xi, rj, ri)
+                } else {
+                    (xi, xj, ri, rj)
+                };
+                if pend.push(m, &bodies, (k, e, si), p, q, xp, xq, rp, rq) {
+                    pend.flush(
+                        hist,
+                        atoms,
+                        acc,
+                        slot,
+                        &mut counts,
+                        &mut forces,
+                        dt,
+                        &mut out,
+                    )?;
                 }
                 continue;
             }
             if pend.len > 0 {
-                pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
+                pend.flush(
+                    hist,
+                    atoms,
+                    acc,
+                    slot,
+                    &mut counts,
+                    &mut forces,
+                    dt,
+                    &mut out,
+                )?;
             }
-            let f = step_contact(k, m, atoms, acc, p, q, &mut hist[si], dt, atoms_ok)?;
-            finish_contact(&f, &mut slot[e], ids, k, &mut counts, &mut forces);
+            let si = slot_of(hist, &mut slot[e], k)?;
+            let f = step_contact(k, m, atoms, acc, p, q, &mut hist[si], dt, true)?;
+            finish_contact(&f, &mut slot[e], ids(p, q), k, &mut counts, &mut forces);
         }
     }
     if pend.len > 0 {
-        pend.flush(hist, atoms, acc, slot, &mut counts, &mut forces, dt)?;
+        pend.flush(
+            hist,
+            atoms,
+            acc,
+            slot,
+            &mut counts,
+            &mut forces,
+            dt,
+            &mut out,
+        )?;
     }
     counts.nslots = hist.len();
     Ok(counts)
@@ -773,58 +971,72 @@ fn finish_contact(
     }
 }
 
-/// One waiting contact of a [`Pending`] block: its index in the step (`k`), its list entry
-/// (`e`), its history's slot and its atoms' ids (p, q).
-#[derive(Debug, Clone, Copy, Default)]
-struct Lane {
-    k: usize,
-    e: usize,
-    slot: usize,
-    ids: [i32; 2],
+/// The atoms' velocities, angular velocities and masses, all of one length.
+struct Bodies<'a> {
+    v: &'a [[f64; 3]],
+    omega: &'a [[f64; 3]],
+    mass: &'a [f64],
 }
 
-/// Up to [`LANES`] touching contacts of one model waiting for the block kernel, with their
-/// atoms (p, q) and bodies.
+/// Up to [`LANES`] touching contacts of one model waiting for the block kernel: per lane the
+/// contact's index in the step, its list entry and its history's slot, its atoms (p, q), and
+/// the bodies.
 #[derive(Default)]
-struct Pending<'m> {
+struct Lanes<'m> {
     len: usize,
     model: Option<&'m Model>,
-    lanes: [Lane; LANES],
+    lanes: [(usize, usize, usize); LANES],
     atoms: [(usize, usize); LANES],
     pairs: SphereLanes,
 }
 
-impl<'m> Pending<'m> {
-    /// Adds the contact `lane` of atoms `p`, `q` with model `m` (the block's model: the caller
-    /// flushes first when it differs).
+impl<'m> Lanes<'m> {
+    /// Adds the contact `(k, e, slot)` of atoms `p`, `q` (centres `xp`, `xq`, radii `rp`, `rq`
+    /// as the distance test loaded them) with model `m` (the block's: the caller flushes first
+    /// when it differs) as the next lane; whether the block is full.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn push(&mut self, m: &'m Model, atoms: &Atoms<'_>, p: usize, q: usize, lane: Lane) {
-        let l = self.len;
+    fn push(
+        &mut self,
+        m: &'m Model,
+        b: &Bodies<'_>,
+        lane: (usize, usize, usize),
+        p: usize,
+        q: usize,
+        xp: [f64; 3],
+        xq: [f64; 3],
+        rp: f64,
+        rq: f64,
+    ) -> bool {
+        // `len < LANES` here (a full block is flushed); the mask tells the compiler so.
+        let l = self.len % LANES;
         self.pairs.set(
             l,
             &SpherePair {
-                xp: v3(atoms.x[p]),
-                xq: v3(atoms.x[q]),
-                rp: atoms.radius[p],
-                rq: atoms.radius[q],
-                vp: v3(atoms.v[p]),
-                vq: v3(atoms.v[q]),
-                wp: v3(atoms.omega[p]),
-                wq: v3(atoms.omega[q]),
-                mp: atoms.mass[p],
-                mq: atoms.mass[q],
+                xp: v3(xp),
+                xq: v3(xq),
+                rp,
+                rq,
+                vp: v3(b.v[p]),
+                vq: v3(b.v[q]),
+                wp: v3(b.omega[p]),
+                wq: v3(b.omega[q]),
+                mp: b.mass[p],
+                mq: b.mass[q],
             },
         );
         self.lanes[l] = lane;
         self.atoms[l] = (p, q);
         self.model = Some(m);
         self.len += 1;
+        self.len == LANES
     }
 
-    /// Steps the waiting contacts: the block kernel on copies of their histories (the unused
-    /// lanes repeat the first), then in lane order each lane's history back, its forces into
-    /// the accumulators and its bookkeeping, or, for a lane the block leaves, the one-contact
-    /// kernel ([`step_contact`]): the order and the bits of the one-contact loop.
+    /// Steps the waiting contacts: the block kernel on their histories in the store (the
+    /// unused lanes repeat the first and are not written), then in lane order each lane's
+    /// forces into the accumulators (read in place from `out`) and its bookkeeping, or, for a
+    /// lane the block leaves, the one-contact kernel ([`step_contact`]): the order and the
+    /// bits of the one-contact loop.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn flush<T: TangentialLaw>(
@@ -836,6 +1048,7 @@ impl<'m> Pending<'m> {
         counts: &mut ListCounts,
         forces: &mut Option<&mut [PairForce]>,
         dt: f64,
+        out: &mut SphereForceLanes,
     ) -> Result<(), ModelError> {
         let n = self.len;
         self.len = 0;
@@ -845,61 +1058,36 @@ impl<'m> Pending<'m> {
         for l in n..LANES {
             self.pairs.copy_lane(0, l);
         }
-        // The block's histories: where the lanes' slots follow each other (the common case:
-        // slots are given in list order at each build), the store's own run of them, stepped
-        // in place; otherwise copies, written back lane by lane below. The block writes a
-        // history only for a lane it does, so a lane it leaves reaches the one-contact kernel
-        // unchanged either way; the lanes' slots are distinct.
-        let s0 = self.lanes[0].slot;
-        let in_place =
-            (1..n).all(|l| self.lanes[l].slot == s0 + l) && s0.checked_add(n) <= Some(hist.len());
-        let mut local = [ContactHistory::<T>::default(); LANES];
-        let mut out = [SphereForces::default(); LANES];
-        let idx = std::array::from_fn(|l| if l < n { l } else { 0 });
-        let mask = if in_place {
-            T::sphere_block(
-                m.constants(),
-                &self.pairs,
-                &mut hist[s0..s0 + n],
-                &mut out,
-                idx,
-                n,
-                dt,
-            )
-        } else {
-            // Filled in place (`array::from_fn` built the array aside and copied it: a call
-            // of `memcpy` per block, 3 % of the plugin's run).
-            for (l, h) in local.iter_mut().enumerate() {
-                *h = hist[self.lanes[idx[l]].slot];
-            }
-            T::sphere_block(
-                m.constants(),
-                &self.pairs,
-                &mut local,
-                &mut out,
-                std::array::from_fn(|l| l),
-                n,
-                dt,
-            )
+        let idx = std::array::from_fn(|l| self.lanes[if l < n { l } else { 0 }].2);
+        let mask = T::sphere_block_lanes(m.constants(), &self.pairs, hist, idx, n, dt, out);
+        // `all_finite` of each lane's force and torques, lane by lane.
+        let sum3 = |a: &[[f64; LANES]; 3]| -> [f64; LANES] {
+            std::array::from_fn(|l| a[0][l] + a[1][l] + a[2][l])
         };
-        for l in 0..n {
-            let lane = self.lanes[l];
+        let (sf, stp, stq) = (sum3(&out.force_p), sum3(&out.torque_p), sum3(&out.torque_q));
+        let sum: [f64; LANES] = std::array::from_fn(|l| 0.0 + sf[l] + stp[l] + stq[l]);
+        for l in 0..n.min(LANES) {
+            let (k, e, s) = self.lanes[l];
             let (p, q) = self.atoms[l];
-            let f = if mask >> l & 1 == 1 {
-                if !in_place {
-                    hist[lane.slot] = local[l];
-                }
-                let o = &out[l];
-                add_forces(lane.k, acc, p, q, o.force_p, o.torque_p, o.torque_q)?;
-                PairForces {
-                    force_p: o.force_p,
-                    touching: true,
-                    ..PairForces::default()
-                }
-            } else {
-                step_contact(lane.k, m, atoms, acc, p, q, &mut hist[lane.slot], dt, true)?
-            };
-            finish_contact(&f, &mut slot[lane.e], lane.ids, lane.k, counts, forces);
+            if mask >> l & 1 == 0 {
+                let f = step_contact(k, m, atoms, acc, p, q, &mut hist[s], dt, true)?;
+                finish_contact(&f, &mut slot[e], ids(p, q), k, counts, forces);
+                continue;
+            }
+            let v = |a: &[[f64; LANES]; 3]| Vec3::new(a[0][l], a[1][l], a[2][l]);
+            let force_p = v(&out.force_p);
+            #[allow(clippy::eq_op)] // `s - s` is 0 or NaN, as in `all_finite`
+            if sum[l] - sum[l] != 0.0 {
+                return Err(non_finite(k, force_p));
+            }
+            add_parts(acc, p, q, force_p, v(&out.torque_p), v(&out.torque_q));
+            if let Some(o) = forces.as_deref_mut() {
+                o[k] = PairForce {
+                    p: p as i32,
+                    q: q as i32,
+                    force_p: [force_p.x, force_p.y, force_p.z],
+                };
+            }
         }
         Ok(())
     }
@@ -970,15 +1158,35 @@ fn add_forces(
     torque_q: Vec3,
 ) -> Result<(), ModelError> {
     if !all_finite(&[force_p, torque_p, torque_q]) {
-        return Err(ModelError::History {
-            index: k,
-            source: LawError::OutOfRange {
-                name: "contact force (NaN or infinite history)",
-                value: force_p.x,
-                range: "finite",
-            },
-        });
+        return Err(non_finite(k, force_p));
     }
+    add_parts(acc, p, q, force_p, torque_p, torque_q);
+    Ok(())
+}
+
+/// The error of contact `k` whose force on p (`force_p`) or torques are not finite.
+#[cold]
+fn non_finite(k: usize, force_p: Vec3) -> ModelError {
+    ModelError::History {
+        index: k,
+        source: LawError::OutOfRange {
+            name: "contact force (NaN or infinite history)",
+            value: force_p.x,
+            range: "finite",
+        },
+    }
+}
+
+/// A contact's force on p and torques on p and q added into the owned atoms of `acc`.
+#[inline(always)]
+fn add_parts(
+    acc: &mut Accumulators<'_>,
+    p: usize,
+    q: usize,
+    force_p: Vec3,
+    torque_p: Vec3,
+    torque_q: Vec3,
+) {
     let nlocal = acc.force.len();
     if p < nlocal {
         add(&mut acc.force[p], force_p);
@@ -988,7 +1196,6 @@ fn add_forces(
         add(&mut acc.force[q], -force_p);
         add(&mut acc.torque[q], torque_q);
     }
-    Ok(())
 }
 
 /// The atom arrays all of one length, the accumulators of one length and no longer.

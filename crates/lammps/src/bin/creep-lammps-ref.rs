@@ -18,8 +18,8 @@
 //! creep-lammps-ref kernel DATA PARAMS STEPS [exact|spring] [store|flat]
 //!                                         the kernel alone on the packing's contacts: prints
 //!                                         `Loop time of S` (S = STEPS batches) and the batch size;
-//!                                         store: the plugin's path (compute_pairs, histories in
-//!                                         a HistoryStore, the default), flat: Model::compute on
+//!                                         store: compute_pairs (one contact at a time, histories
+//!                                         in a HistoryStore, the default), flat: Model::compute on
 //!                                         flat histories (read and written per contact)
 //! ```
 
