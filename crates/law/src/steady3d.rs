@@ -550,9 +550,8 @@ pub enum Coverage {
     Table,
     /// Between two computed `a/b`, the cubic in `ln(a/b)` through up to four rows: within 2 % of
     /// `mu P` in each force and 3 % of `mu P a` in the moment on the error map and its off-grid
-    /// validation from `a/b = 0.5` on (worst measured: Fy 1.79 % and Mz 1.78 % at `a/b = 0.7`);
-    /// 2 % and 6.5 % between `0.2` and `0.5` (Mz 5.92 % at one point near full slip, `a/b =
-    /// 0.27`; docs/CREEP3D.md).
+    /// validation (worst measured: Fy 1.57 % at `a/b = 0.85`, Mz 1.56 % at `a/b = 0.7`;
+    /// docs/CREEP3D.md).
     BetweenRatios,
     /// The table at the nearest computed `nu` (a `nu` outside the range its rows compute) with
     /// the creepages scaled by Kalker's coefficients (module documentation, "Beyond the computed
