@@ -149,17 +149,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 const CASES: [(&str, f64, f64); 8] = [
     ("a/b 0.5, nu 0.25 (a node)", 0.5, 0.25),
     ("a/b 0.5, nu 0.125 (table, two nodes)", 0.5, 0.125),
-    (
-        "a/b 0.35, nu 0.125 (the fitted law, between rows)",
-        0.35,
-        0.125,
-    ),
+    ("a/b 0.35, nu 0.125 (table, between a/b)", 0.35, 0.125),
     ("a/b 3, nu 0.375 (table, two nodes)", 3.0, 0.375),
-    (
-        "a/b 1.4, nu 0.125 (table, between a/b, two nodes in each row)",
-        1.4,
-        0.125,
-    ),
+    ("a/b 1.4, nu 0.125 (table, two nodes)", 1.4, 0.125),
     ("a/b 1, nu 0.3 (table node)", 1.0, 0.3),
     ("a/b 1, nu 0.4 (table, two nodes)", 1.0, 0.4),
     ("a/b 0.7, nu 0.3 (table, between a/b)", 0.7, 0.3),

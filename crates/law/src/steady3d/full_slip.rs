@@ -113,13 +113,49 @@ pub fn rigid_slip_frame(ab: f64, dir: [f64; 3], n: usize) -> [f64; 3] {
 }
 
 /// The interpolated loads of full slip at one axis ratio: the two rows around it and their
-/// weights (`a/b` outside `[0.1, 10]` takes the end row).
+/// weights (`a/b` outside `[0.1, 10]` takes the end row), and the row blended once for this
+/// axis ratio ([`blended`]; `None` beyond [`BLENDED_MAX`] axis ratios in a process).
 #[derive(Clone, Copy)]
 pub struct FullSlip {
     rows: [&'static Row; 2],
     w: f64,
+    one: Option<&'static Row>,
     /// [`max_moment`] at this `a/b`.
     m_max: f64,
+}
+
+/// Most full-slip rows blended for an axis ratio and kept (14.7 KB each, 3.8 MB in all); beyond
+/// them a contact blends the two rows at each evaluation (the same bits).
+pub const BLENDED_MAX: usize = 256;
+
+/// The row of full slip at the weight `w` between the rows `r`, entry by entry in `f32` as
+/// [`FullSlip::loads`] blends them (so the same bits), made at the first request of `key` (the
+/// axis ratio's bits) and kept; `None` once [`BLENDED_MAX`] are kept.
+fn blended(key: u64, r: [&'static Row; 2], w: f64) -> Option<&'static Row> {
+    static KEPT: std::sync::Mutex<Vec<(u64, &'static Row)>> = std::sync::Mutex::new(Vec::new());
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(&(_, t)) = kept.iter().find(|(k, _)| *k == key) {
+        return Some(t);
+    }
+    if kept.len() >= BLENDED_MAX {
+        return None;
+    }
+    let t: &'static Row = Box::leak(blend_rows(r, w));
+    kept.push((key, t));
+    Some(t)
+}
+
+/// The rows `r` blended at the weight `w`, entry by entry in `f32`.
+fn blend_rows(r: [&Row; 2], w: f64) -> Box<Row> {
+    let w = w as f32;
+    Box::new(std::array::from_fn(|k| {
+        let (a, b) = (r[0][k], r[1][k]);
+        [
+            a[0] + (b[0] - a[0]) * w,
+            a[1] + (b[1] - a[1]) * w,
+            a[2] + (b[2] - a[2]) * w,
+        ]
+    }))
 }
 
 impl std::fmt::Debug for FullSlip {
@@ -130,6 +166,7 @@ impl std::fmt::Debug for FullSlip {
 
 impl PartialEq for FullSlip {
     fn eq(&self, o: &Self) -> bool {
+        // (`one` is these two rows blended: the same loads whether kept or not.)
         self.w == o.w
             && self.m_max == o.m_max
             && std::ptr::eq(self.rows[0], o.rows[0])
@@ -138,21 +175,45 @@ impl PartialEq for FullSlip {
 }
 
 impl FullSlip {
+    /// The cell's four entries at `base`, blended between the two rows (beyond
+    /// [`BLENDED_MAX`] axis ratios).
+    #[cold]
+    #[inline(never)]
+    fn corners(&self, base: usize) -> ([f32; 3], [f32; 3], [f32; 3], [f32; 3]) {
+        let (r0, r1) = (
+            &self.rows[0][base..base + NV + 2],
+            &self.rows[1][base..base + NV + 2],
+        );
+        let w = self.w as f32;
+        let corner = |k: usize| {
+            let (a, b) = (r0[k], r1[k]);
+            [
+                a[0] + (b[0] - a[0]) * w,
+                a[1] + (b[1] - a[1]) * w,
+                a[2] + (b[2] - a[2]) * w,
+            ]
+        };
+        (corner(0), corner(1), corner(NV), corner(NV + 1))
+    }
+
     /// The table at the axis ratio `ab` (finite, > 0).
     pub fn at(ab: f64) -> FullSlip {
         let k = (12.0 * ab.log10() + 12.0).clamp(0.0, (ROWS - 1) as f64);
         let lo = (k as usize).min(ROWS - 2);
         let w = k - lo as f64;
         let t = &super::full_slip_data::ROWS;
+        let rows = [&t[lo], &t[lo + 1]];
         FullSlip {
-            rows: [&t[lo], &t[lo + 1]],
+            rows,
             w,
+            one: blended(ab.to_bits(), rows, w),
             m_max: max_moment(ab.clamp(0.1, 10.0)),
         }
     }
 
     /// The loads of full slip (project signs) in the direction of the normalised creepages
     /// `(xi_n, eta_n, phi_n)` (finite, not all zero; their size does not matter).
+    #[inline]
     pub fn loads(&self, xi_n: f64, eta_n: f64, phi_n: f64) -> Loads {
         let sx = 1.0f64.copysign(xi_n);
         let sy = 1.0f64.copysign(eta_n);
@@ -171,20 +232,14 @@ impl FullSlip {
         // The cell's four entries of each row (one bounds check per row), blended in `a/b`
         // and bilinearly in f32, the entries' own precision (within 1e-7 of the f64 blend:
         // test `f32_blend_is_the_f64_blend`).
-        let (r0, r1) = (
-            &self.rows[0][base..base + NV + 2],
-            &self.rows[1][base..base + NV + 2],
-        );
-        let (w, wu, wv) = (self.w as f32, wu as f32, wv as f32);
-        let corner = |k: usize| {
-            let (a, b) = (r0[k], r1[k]);
-            [
-                a[0] + (b[0] - a[0]) * w,
-                a[1] + (b[1] - a[1]) * w,
-                a[2] + (b[2] - a[2]) * w,
-            ]
+        let (wu, wv) = (wu as f32, wv as f32);
+        let (c00, c01, c10, c11) = match self.one {
+            Some(row) => {
+                let r = &row[base..base + NV + 2];
+                (r[0], r[1], r[NV], r[NV + 1])
+            }
+            None => self.corners(base),
         };
-        let (c00, c01, c10, c11) = (corner(0), corner(1), corner(NV), corner(NV + 1));
         let mut out = [0.0f64; 3];
         for m in 0..3 {
             let lo = c00[m] + (c01[m] - c00[m]) * wv;
@@ -246,6 +301,36 @@ mod tests {
         }
         assert!(worst[0] < 7e-3 && worst[1] < 7e-3, "{worst:?}");
         assert!(worst[2] < 1.7e-2, "{worst:?}");
+    }
+
+    /// The row blended once for an axis ratio (`blend_rows`) reads the same bits as the two rows
+    /// blended at each evaluation (beyond `BLENDED_MAX` axis ratios), at random axis ratios
+    /// and directions of every sign.
+    #[test]
+    fn blended_row_reads_as_the_two_rows() {
+        let mut st = 0x51a7_c0de_1234_5678u64;
+        for _ in 0..200 {
+            let ab = 10f64.powf(2.0 * rng(&mut st) - 1.0);
+            let at = FullSlip::at(ab);
+            let kept = FullSlip {
+                one: Some(Box::leak(blend_rows(at.rows, at.w))),
+                ..at
+            };
+            let two = FullSlip { one: None, ..at };
+            for _ in 0..20 {
+                let d = [
+                    4.0 * rng(&mut st) - 2.0,
+                    4.0 * rng(&mut st) - 2.0,
+                    8.0 * rng(&mut st) - 4.0,
+                ];
+                let (a, b) = (kept.loads(d[0], d[1], d[2]), two.loads(d[0], d[1], d[2]));
+                assert_eq!(
+                    [a.fx.to_bits(), a.fy.to_bits(), a.mz.to_bits()],
+                    [b.fx.to_bits(), b.fy.to_bits(), b.mz.to_bits()],
+                    "a/b {ab}, {d:?}"
+                );
+            }
+        }
     }
 
     /// The cell read in f32 (`loads`) against the same entries blended in f64: within 1e-6 of
