@@ -24,10 +24,10 @@
 //! the exact symmetries of the theory (quasi-identical bodies, a contact symmetric about the
 //! rolling direction): `xi -> -xi` negates `Fx`; `(eta, phi) -> -(eta, phi)` negates `Fy` and
 //! `Mz`. Each table is refined once, at its first use, onto a read grid ([`lut::refine`]): along
-//! the spin the midpoint of each cell added ([`lut::FINE_PHI`]; the cubic through the cell's
-//! two computed spins and one on each side), which follows the loads where they bend faster
-//! than the computed spins resolve (the pure spin's lateral force of `a > b` peaks between
-//! `phi_n = 0.2` and `0.26`); along `xi_n` and `eta_n` points added in the widest cells,
+//! the spin the midpoint of each cell added, the thirds of `|phi_n| = 0.2 ... 0.26`
+//! ([`lut::FINE_PHI`]; the cubic through the cell's two computed spins and one on each side),
+//! which follows the loads where they bend faster than the computed spins resolve (the pure
+//! spin's lateral force of `a > b` peaks between `phi_n = 0.2` and `0.26`); along `xi_n` and `eta_n` points added in the widest cells,
 //! `0.86 ... 2`, and in `0.14 ... 0.2` ([`lut::FINE_XI`]; the cubic through the four computed
 //! creepages around, the quadratic through the last three in the end cell), where full slip of
 //! translation sets in and the loads bend faster than a straight line across the computed cells
@@ -546,7 +546,7 @@ pub fn node_at(ab: f64, nu: f64) -> Node {
 pub enum Coverage {
     /// The boundary-element table at a computed `a/b` (between computed `nu` of it, linear in
     /// `nu`): within 2 % of `mu P` in each force and 3 % of `mu P a` in the moment on the
-    /// error map but at one point and its mirror image (`a/b = 5`, `nu = 0`: 2.07 %).
+    /// error map.
     Table,
     /// Between two computed `a/b`, the cubic in `ln(a/b)` through up to four rows: within 2 % of
     /// `mu P` in each force and 3 % of `mu P a` in the moment on the error map and its off-grid

@@ -69,7 +69,7 @@ fn beyond_the_box_within_the_table_bounds() {
             let fs = full_slip_loads(ab, c, 60);
             gap = gap.max((p.load[1] - fs[1]).abs());
         }
-        let Some([f, m]) = coverage_bounds(law.coverage(), ab) else {
+        let Some([f, m]) = coverage_bounds(law.coverage()) else {
             continue;
         };
         assert!(

@@ -95,14 +95,14 @@ fn fast_law_on_the_validation_sets_measured_errors() {
     // The target is 2 % of mu P in each force and 3 % of mu P c in the moment at every point.
     // Every validation case is served by the boundary-element table (at a node, between
     // computed nu, or between computed a/b); measured (`steady3d_map -- grade`): on the map's
-    // validation set Fx 1.66 %, Fy 1.83 %, Mz 1.38 % of mu P c (a/b = 2 at nu = 0.3, 3, 0.7); on the
+    // validation set Fx 1.65 %, Fy 1.63 %, Mz 1.38 % of mu P c (a/b = 2 at nu = 0.3, 3, 0.7); on the
     // off-grid table Fx 0.86 %, Fy 1.57 %, Mz 1.23 % (a/b = 0.27, 0.85). These limits pin the
     // present errors (about half a point above them) so that a change of the law shows here;
     // `table_meets_the_bounds_where_it_covers_the_map` holds each case to its bound.
     let (m, v) = validation_worst();
     for (name, got, limit) in [
         ("map Fx", m[0], 0.021),
-        ("map Fy", m[1], 0.023),
+        ("map Fy", m[1], 0.021),
         ("map Mz", m[2], 0.019),
         ("off-grid Fx", v[0], 0.014),
         ("off-grid Fy", v[1], 0.021),
@@ -173,7 +173,7 @@ fn fast_law_at_zero_spin_on_the_whole_map() {
 #[test]
 fn table_meets_the_bounds_where_it_covers_the_map() {
     use creep_law::steady3d::{Coverage, Steady3d};
-    let bounds = |ab: f64, nu: f64| coverage_bounds(Steady3d::new(ab, nu).unwrap().coverage(), ab);
+    let bounds = |ab: f64, nu: f64| coverage_bounds(Steady3d::new(ab, nu).unwrap().coverage());
     let map = grade_steady3d(&map_table().unwrap()).unwrap();
     let (mut covered, mut between) = (0, 0);
     for &ab in &MAP_RATIOS {

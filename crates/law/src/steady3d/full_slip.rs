@@ -113,8 +113,8 @@ pub fn rigid_slip_frame(ab: f64, dir: [f64; 3], n: usize) -> [f64; 3] {
 }
 
 /// The interpolated loads of full slip at one axis ratio: the two rows around it and their
-/// weights (`a/b` outside `[0.1, 10]` takes the end row), and the row blended once for this
-/// axis ratio ([`blended`]; `None` beyond [`BLENDED_MAX`] axis ratios in a process).
+/// weights (`a/b` outside `[0.1, 10]` takes the end row), and the two rows blended once into
+/// one for this axis ratio (`None` beyond [`BLENDED_MAX`] axis ratios in a process).
 #[derive(Clone, Copy)]
 pub struct FullSlip {
     rows: [&'static Row; 2],

@@ -1,6 +1,7 @@
 //! The tabulated 3-D steady law: per `(a/b, nu)` node, the boundary-element loads on a grid of
 //! the normalised creepages; refined once, at first use, onto a read grid (along the spin the
-//! midpoints added, along `xi` and `eta` points in the widest cells; cubic through the four
+//! midpoints added, thirds in `|phi| = 0.2 ... 0.26`, along `xi` and `eta` points in the widest
+//! cells; cubic through the four
 //! nearest computed points), and read trilinearly (module documentation of
 //! [`crate::steady3d`], "The table").
 
@@ -27,16 +28,21 @@ pub const LUT_LEN: usize = LUT_XI.len() * LUT_XI.len() * LUT_PHI.len();
 use super::Loads;
 use std::sync::{Mutex, OnceLock};
 
-/// Points of the read grid [`FINE_PHI`] per cell of [`LUT_PHI`] (2: the midpoints added).
-/// Finer read grids are closer to the cubic (measured on the error map, `a/b = 5`, `nu = 0`:
-/// the spin's lateral force within 2.26 % of `mu P` at 2, 1.97 % at 3, 1.82 % at 4), but they
-/// move the light ball on the heavy slab of creep-scenes' hard cases into a step where Rapier's
-/// penetration correction lifts the ball 9 um further than in its Coulomb twin (2.5e-5 of its
-/// energy in that step, returned over the next ones), which the single-step energy check
-/// refuses.
+/// Points of the read grid [`FINE_PHI`] per cell of [`LUT_PHI`] (2: the midpoints added), but
+/// in the cells of [`PHI_THIRDS`] (3). Finer read grids everywhere are closer to the cubic too,
+/// but they move the light ball on the heavy slab of creep-scenes' hard cases into a step
+/// where Rapier's penetration correction lifts the ball 9 um further than in its Coulomb twin
+/// (2.5e-5 of its energy in that step, returned over the next ones), which the single-step
+/// energy check refuses.
 pub const REFINE: usize = 2;
-/// Spins of the read grid [`FINE_PHI`]: the computed ones and `REFINE - 1` between each two.
-pub const FINE_NP: usize = REFINE * (LUT_PHI.len() - 1) + 1;
+/// The lower computed spins of the cells read in thirds: `|phi_n|` from `0.2` to `0.26`,
+/// where the pure spin's lateral force of `a > b` peaks with a small lateral creepage and bends
+/// faster than the midpoint follows (the error map, `a/b = 5`, `nu = 0`, `(0, -0.15, 0.25)`:
+/// 2.07 % of `mu P` read at the midpoint, 1.78 % in thirds).
+pub const PHI_THIRDS: [f64; 2] = [-0.26, 0.2];
+/// Spins of the read grid [`FINE_PHI`]: the computed ones, `REFINE - 1` between each two, one
+/// more in each cell of [`PHI_THIRDS`].
+pub const FINE_NP: usize = REFINE * (LUT_PHI.len() - 1) + 1 + PHI_THIRDS.len();
 /// Spins per `(xi, eta)` line of a read table.
 const NP: usize = FINE_NP;
 /// The read grid of `|xi_n|` and `|eta_n|`: [`LUT_XI`] with points added in its widest cells
@@ -73,18 +79,28 @@ pub type Table = [[f32; 3]; LUT_LEN];
 /// `(i FINE_XI.len() + j) FINE_NP + k`.
 pub type Fine = [[f32; 3]; FINE_LEN];
 
-/// The read grid of the spin: [`LUT_PHI`] with `REFINE - 1` equally spaced spins in each cell.
+/// The read grid of the spin: [`LUT_PHI`] with `REFINE - 1` equally spaced spins in each cell
+/// (two in the cells of [`PHI_THIRDS`]).
 pub static FINE_PHI: [f64; FINE_NP] = fine_grid(&LUT_PHI);
 
 const fn fine_grid<const N: usize, const M: usize>(nodes: &[f64; N]) -> [f64; M] {
     let mut out = [0.0; M];
-    let mut k = 0;
+    let (mut k, mut i) = (0, 0);
     while k < N {
-        out[REFINE * k] = nodes[k];
-        let mut r = 1;
-        while k + 1 < N && r < REFINE {
-            out[REFINE * k + r] = nodes[k] + (nodes[k + 1] - nodes[k]) * r as f64 / REFINE as f64;
-            r += 1;
+        out[i] = nodes[k];
+        i += 1;
+        if k + 1 < N {
+            let parts = if nodes[k] == PHI_THIRDS[0] || nodes[k] == PHI_THIRDS[1] {
+                REFINE + 1
+            } else {
+                REFINE
+            };
+            let mut r = 1;
+            while r < parts {
+                out[i] = nodes[k] + (nodes[k + 1] - nodes[k]) * r as f64 / parts as f64;
+                i += 1;
+                r += 1;
+            }
         }
         k += 1;
     }
@@ -152,17 +168,20 @@ static PHI_INV: [f64; FINE_NP] = inverse_steps(&FINE_PHI);
 pub fn refine(table: &Table) -> Box<Fine> {
     let n = LUT_PHI.len();
     let nx = LUT_XI.len();
-    // Per point of the read grid: the first computed spin it is read from, and four weights.
-    let weights: Vec<(usize, [f64; 4])> = (0..FINE_NP)
-        .map(|f| {
-            let (k, t) = (f / REFINE, FINE_PHI[f]);
-            if f % REFINE == 0 {
-                (k, [1.0, 0.0, 0.0, 0.0])
-            } else if k == 0 || k + 2 == n {
+    // Per point of the read grid: the first computed spin it is read from, four weights, and
+    // whether it is a computed one.
+    let weights: Vec<(usize, [f64; 4], bool)> = FINE_PHI
+        .iter()
+        .map(|&t| {
+            if let Some(k) = LUT_PHI.iter().position(|&x| x == t) {
+                return (k, [1.0, 0.0, 0.0, 0.0], true);
+            }
+            let k = LUT_PHI.iter().rposition(|&x| x < t).unwrap_or(0);
+            if k == 0 || k + 2 == n {
                 let w = (t - LUT_PHI[k]) / (LUT_PHI[k + 1] - LUT_PHI[k]);
-                (k, [1.0 - w, w, 0.0, 0.0])
+                (k, [1.0 - w, w, 0.0, 0.0], false)
             } else {
-                (k - 1, lagrange(&LUT_PHI[k - 1..k + 3], t))
+                (k - 1, lagrange(&LUT_PHI[k - 1..k + 3], t), false)
             }
         })
         .collect();
@@ -171,8 +190,8 @@ pub fn refine(table: &Table) -> Box<Fine> {
     for line in 0..nx * nx {
         let src = &table[line * n..(line + 1) * n];
         let dst = &mut lines[line * NP..(line + 1) * NP];
-        for (f, &(k0, w)) in weights.iter().enumerate() {
-            if f % REFINE == 0 {
+        for (f, &(k0, w, computed)) in weights.iter().enumerate() {
+            if computed {
                 dst[f] = src[k0];
                 continue;
             }
@@ -739,7 +758,7 @@ fn cell_loads(table: &Fine, base: usize, corners: &[usize; 8], cw: &[f64; 8]) ->
     acc
 }
 
-/// Most blended read tables kept (690 KB each, 44 MB in all). A contact whose
+/// Most blended read tables kept (706 KB each, 45 MB in all). A contact whose
 /// `(a/b, nu)` needs more than one computed table (between computed `nu` or `a/b`) reads one
 /// table made for it once; beyond this many distinct `(a/b, nu)` in a process, a contact
 /// reads its computed tables at each evaluation (up to eight reads; the same loads but for

@@ -850,12 +850,12 @@ fn refine_is_the_cubic_between_the_computed_spins() {
     for line in (2..nx * nx).filter(|l| l % nx != 0) {
         let rl = read_line(line);
         for (i, &p) in lut::FINE_PHI.iter().enumerate() {
-            let (k, r) = (i / lut::REFINE, i % lut::REFINE);
             let got = f[rl * nf + i].map(f64::from);
-            if r == 0 {
+            if let Some(k) = lut::LUT_PHI.iter().position(|&x| x == p) {
                 assert_eq!(f[rl * nf + i], t[line * np + k], "line {line} spin {p}");
                 continue;
             }
+            let k = lut::LUT_PHI.iter().rposition(|&x| x < p).unwrap();
             let want = if k == 0 || k + 2 == np {
                 let (a, b) = (lut::LUT_PHI[k], lut::LUT_PHI[k + 1]);
                 let w = (p - a) / (b - a);
