@@ -133,16 +133,7 @@ pub const BLENDED_MAX: usize = 256;
 /// axis ratio's bits) and kept; `None` once [`BLENDED_MAX`] are kept.
 fn blended(key: u64, r: [&'static Row; 2], w: f64) -> Option<&'static Row> {
     static KEPT: std::sync::Mutex<Vec<(u64, &'static Row)>> = std::sync::Mutex::new(Vec::new());
-    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(&(_, t)) = kept.iter().find(|(k, _)| *k == key) {
-        return Some(t);
-    }
-    if kept.len() >= BLENDED_MAX {
-        return None;
-    }
-    let t: &'static Row = Box::leak(blend_rows(r, w));
-    kept.push((key, t));
-    Some(t)
+    super::lut::kept(&KEPT, key, BLENDED_MAX, || blend_rows(r, w))
 }
 
 /// The rows `r` blended at the weight `w`, entry by entry in `f32`.

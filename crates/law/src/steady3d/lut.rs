@@ -168,48 +168,20 @@ static PHI_INV: [f64; FINE_NP] = inverse_steps(&FINE_PHI);
 pub fn refine(table: &Table) -> Box<Fine> {
     let n = LUT_PHI.len();
     let nx = LUT_XI.len();
-    // Per point of the read grid: the first computed spin it is read from, four weights, and
-    // whether it is a computed one.
-    let weights: Vec<(usize, [f64; 4], bool)> = FINE_PHI
-        .iter()
-        .map(|&t| {
-            if let Some(k) = LUT_PHI.iter().position(|&x| x == t) {
-                return (k, [1.0, 0.0, 0.0, 0.0], true);
-            }
-            let k = LUT_PHI.iter().rposition(|&x| x < t).unwrap_or(0);
-            if k == 0 || k + 2 == n {
-                let w = (t - LUT_PHI[k]) / (LUT_PHI[k + 1] - LUT_PHI[k]);
-                (k, [1.0 - w, w, 0.0, 0.0], false)
-            } else {
-                (k - 1, lagrange(&LUT_PHI[k - 1..k + 3], t), false)
-            }
-        })
-        .collect();
-    // The computed (xi, eta) lines on the read grid of the spin.
+    // The computed (xi, eta) lines on the read grid of the spin (linear in its end cells).
+    let pw = grid_weights(&FINE_PHI, &LUT_PHI, false);
     let mut lines = vec![[0.0f32; 3]; nx * nx * NP];
     for line in 0..nx * nx {
-        let src = &table[line * n..(line + 1) * n];
-        let dst = &mut lines[line * NP..(line + 1) * NP];
-        for (f, &(k0, w, computed)) in weights.iter().enumerate() {
-            if computed {
-                dst[f] = src[k0];
-                continue;
-            }
-            let v = [0, 1, 2].map(|c| {
-                (0..4)
-                    .filter(|&j| w[j] != 0.0)
-                    .map(|j| w[j] * f64::from(src[k0 + j][c]))
-                    .sum::<f64>()
-            });
-            dst[f] = onto_coulomb(v);
+        for (f, &w) in pw.iter().enumerate() {
+            lines[line * NP + f] = along(table, line * n, 1, w);
         }
         if line % nx == 0 {
-            symmetrise(dst);
+            symmetrise(&mut lines[line * NP..(line + 1) * NP]);
         }
     }
     // Along xi, then along eta: the computed creepages as they are, the added ones from the
-    // computed ones around them ([`xi_weights`]).
-    let xw = xi_weights();
+    // computed ones around them (the quadratic in the end cell).
+    let xw = grid_weights(&FINE_XI, &LUT_XI, true);
     let mut half = vec![[0.0f32; 3]; NX * nx * NP];
     for (fi, &w) in xw.iter().enumerate() {
         for j in 0..nx {
@@ -236,8 +208,8 @@ pub fn refine(table: &Table) -> Box<Fine> {
 
 /// The loads at a point of the read grid along one axis, from the points `base + k stride` of
 /// `src` on the computed grid: the computed one as it is (`m = 1`), or the weighted sum of `m`
-/// from `k0` on, onto Coulomb's bound ([`xi_weights`]).
-fn along(src: &[[f32; 3]], base: usize, stride: usize, (k0, w, m): XiWeights) -> [f32; 3] {
+/// from `k0` on, onto Coulomb's bound ([`grid_weights`]).
+fn along(src: &[[f32; 3]], base: usize, stride: usize, (k0, w, m): Weights) -> [f32; 3] {
     if m == 1 {
         return src[base + k0 * stride];
     }
@@ -248,47 +220,44 @@ fn along(src: &[[f32; 3]], base: usize, stride: usize, (k0, w, m): XiWeights) ->
     }))
 }
 
-/// Lagrange's weights at `t` of the cubic through the four points `x`.
-fn lagrange(x: &[f64], t: f64) -> [f64; 4] {
-    [0, 1, 2, 3].map(|j| {
-        (0..4)
+/// Lagrange's weights at `t` of the polynomial through the points `x` (two to four; the
+/// unused weights zero).
+pub(crate) fn lagrange(x: &[f64], t: f64) -> [f64; 4] {
+    std::array::from_fn(|j| {
+        if j >= x.len() {
+            return 0.0;
+        }
+        (0..x.len())
             .filter(|&m| m != j)
             .map(|m| (t - x[m]) / (x[j] - x[m]))
             .product()
     })
 }
 
-/// One point of [`FINE_XI`] from [`LUT_XI`]: the first computed creepage, weights, their number.
-type XiWeights = (usize, [f64; 4], usize);
+/// One point of a read grid from its computed grid: the first computed point it is read
+/// from, the weights and their number.
+type Weights = (usize, [f64; 4], usize);
 
-/// Per point of [`FINE_XI`]: the first computed creepage of [`LUT_XI`] it is read from, the
-/// weights and their number (1 at a computed creepage; the cubic through the cell's two
-/// computed creepages and one on each side; the quadratic through the last three in the end
-/// cell, linear in the first).
-fn xi_weights() -> Vec<XiWeights> {
-    let nx = LUT_XI.len();
-    FINE_XI
-        .iter()
+/// Per point of the read grid `fine`: the first point of the computed grid `nodes` it is read
+/// from, the weights and their number (1 at a computed point; the cubic through the cell's two
+/// computed points and one on each side; linear in the first cell, and in the last, or with
+/// `quadratic_end` the quadratic through the last three).
+fn grid_weights(fine: &[f64], nodes: &[f64], quadratic_end: bool) -> Vec<Weights> {
+    let n = nodes.len();
+    fine.iter()
         .map(|&t| {
-            if let Some(k) = LUT_XI.iter().position(|&x| x == t) {
+            if let Some(k) = nodes.iter().position(|&x| x == t) {
                 return (k, [1.0, 0.0, 0.0, 0.0], 1);
             }
-            let k = LUT_XI.iter().rposition(|&x| x < t).unwrap_or(0);
-            if k == 0 {
-                let w = (t - LUT_XI[0]) / (LUT_XI[1] - LUT_XI[0]);
-                (0, [1.0 - w, w, 0.0, 0.0], 2)
-            } else if k + 2 == nx {
-                let x = &LUT_XI[k - 1..k + 2];
-                let w = [0, 1, 2].map(|j| {
-                    (0..3)
-                        .filter(|&m| m != j)
-                        .map(|m| (t - x[m]) / (x[j] - x[m]))
-                        .product::<f64>()
-                });
-                (k - 1, [w[0], w[1], w[2], 0.0], 3)
+            let k = nodes.iter().rposition(|&x| x < t).unwrap_or(0);
+            let (k0, x) = if k == 0 || (k + 2 == n && !quadratic_end) {
+                (k, &nodes[k..k + 2])
+            } else if k + 2 == n {
+                (k - 1, &nodes[k - 1..k + 2])
             } else {
-                (k - 1, lagrange(&LUT_XI[k - 1..k + 3], t), 4)
-            }
+                (k - 1, &nodes[k - 1..k + 3])
+            };
+            (k0, lagrange(x, t), x.len())
         })
         .collect()
 }
@@ -461,15 +430,10 @@ fn tables_at(ab: f64, nu: f64) -> Option<Parts> {
         .chain(right)
         .copied()
         .collect();
-    let x = ab.ln();
+    let ln: Vec<f64> = stencil.iter().map(|r| r.ln()).collect();
+    let weights = lagrange(&ln, ab.ln());
     let mut out = Vec::with_capacity(2 * stencil.len());
-    for (i, &r) in stencil.iter().enumerate() {
-        let w: f64 = stencil
-            .iter()
-            .enumerate()
-            .filter(|&(j, _)| j != i)
-            .map(|(_, q)| (x - q.ln()) / (r.ln() - q.ln()))
-            .product();
+    for (&r, &w) in stencil.iter().zip(&weights) {
         out.extend(row_at(r, nu)?.into_iter().map(|(t, v)| (t, v * w, r)));
     }
     Some((out, true))
@@ -771,29 +735,42 @@ pub const BAKED_MAX: usize = 64;
 /// `nu`) and kept; `None` once [`BAKED_MAX`] are kept.
 fn baked(key: (u64, u64), lut: &Lut) -> Option<&'static Fine> {
     static BAKED: Mutex<Vec<((u64, u64), &'static Fine)>> = Mutex::new(Vec::new());
-    let mut kept = BAKED.lock().unwrap_or_else(|e| e.into_inner());
+    kept(&BAKED, key, BAKED_MAX, || {
+        let mut out: Box<Fine> = vec![[0.0f32; 3]; FINE_LEN]
+            .into_boxed_slice()
+            .try_into()
+            .unwrap_or_else(|_| unreachable!("FINE_LEN elements"));
+        for (i, o) in out.iter_mut().enumerate() {
+            let mut v = [0.0f64; 3];
+            for t in 0..lut.n {
+                let x = lut.tables[t][i];
+                v[0] += lut.w[t] * f64::from(x[0]);
+                v[1] += lut.w[t] * f64::from(x[1]);
+                v[2] += lut.wm[t] * f64::from(x[2]);
+            }
+            *o = onto_coulomb(v);
+        }
+        out
+    })
+}
+
+/// The value of `key` in `cache`, made by `make` at its first request and kept for the
+/// process (leaked: the tables the law reads by `'static` reference); `None` once `max` are
+/// kept.
+pub(crate) fn kept<K: PartialEq, T>(
+    cache: &Mutex<Vec<(K, &'static T)>>,
+    key: K,
+    max: usize,
+    make: impl FnOnce() -> Box<T>,
+) -> Option<&'static T> {
+    let mut kept = cache.lock().unwrap_or_else(|e| e.into_inner());
     if let Some(&(_, t)) = kept.iter().find(|(k, _)| *k == key) {
         return Some(t);
     }
-    if kept.len() >= BAKED_MAX {
+    if kept.len() >= max {
         return None;
     }
-    let mut out: Box<Fine> = vec![[0.0f32; 3]; FINE_LEN]
-        .into_boxed_slice()
-        .try_into()
-        .unwrap_or_else(|_| unreachable!("FINE_LEN elements"));
-    for (i, o) in out.iter_mut().enumerate() {
-        let mut v = [0.0f64; 3];
-        for t in 0..lut.n {
-            let x = lut.tables[t][i];
-            v[0] += lut.w[t] * f64::from(x[0]);
-            v[1] += lut.w[t] * f64::from(x[1]);
-            v[2] += lut.wm[t] * f64::from(x[2]);
-        }
-        let s = 1.0f64.min(1.0 / v[0].hypot(v[1]));
-        *o = [(v[0] * s) as f32, (v[1] * s) as f32, v[2] as f32];
-    }
-    let t: &'static Fine = Box::leak(out);
+    let t: &'static T = Box::leak(make());
     kept.push((key, t));
     Some(t)
 }
